@@ -1,0 +1,27 @@
+#pragma once
+// The subcommands. Each returns the process exit status.
+
+#include <string>
+
+#include "cli_options.h"
+
+namespace lic3d::cli {
+
+struct BenchOptions {
+  FieldOptions input;
+  std::string sizes = "64,128,256,512";
+  std::string lengths = "10,20";
+  std::string frameSizes = "512,1024,2048";
+  int frameVolume = 256;
+  int repeats = 7;
+  int warmup = 2;
+  double budgetSeconds = 120.0;
+  std::string json;
+};
+
+int runDevices(const GlobalOptions& global);
+int runCompute(const GlobalOptions& global, const ComputeOptions& options);
+int runRender(const GlobalOptions& global, const RenderOptions& options);
+int runBench(const GlobalOptions& global, const BenchOptions& options);
+
+}  // namespace lic3d::cli

@@ -1,0 +1,84 @@
+// lic3d: 3D Line Integral Convolution of vector fields with Vulkan, from the command line.
+#include <cstdio>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_options.h"
+#include "commands.h"
+
+using namespace lic3d::cli;
+
+int main(int argc, char** argv) {
+  CLI::App app{"lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
+               "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices."};
+  app.set_version_flag("--version", "lic3d 0.1.0");
+  app.require_subcommand(1);
+  app.fallthrough();
+  app.footer("Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
+             "files.");
+
+  GlobalOptions global;
+  addGlobalOptions(app, global);
+
+  CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices lic3d can use");
+
+  ComputeOptions compute;
+  CLI::App* computeCommand =
+      app.add_subcommand("compute", "Compute a LIC volume and write it as float32 NRRD");
+  addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
+
+  RenderOptions render;
+  CLI::App* renderCommand =
+      app.add_subcommand("render", "Compute a LIC volume and render it to a PNG image");
+  addComputeOptions(*renderCommand, render.compute, "lic3d.png");
+  addViewOptions(*renderCommand, render);
+
+  BenchOptions bench;
+  CLI::App* benchCommand = app.add_subcommand(
+      "bench", "Time the LIC pass and frames with GPU timestamps (median of repeats)");
+  addFieldOptions(*benchCommand, bench.input);
+  benchCommand->add_option("--sizes", bench.sizes, "Volume sizes N (N^3) of the LIC table")
+      ->capture_default_str();
+  benchCommand->add_option("--lengths", bench.lengths, "LIC lengths L of the LIC table")
+      ->capture_default_str();
+  benchCommand->add_option("--frame-sizes", bench.frameSizes, "Square image sizes of the frame table")
+      ->capture_default_str();
+  benchCommand->add_option("--frame-volume", bench.frameVolume, "Volume size N of the frame table")
+      ->check(CLI::Range(4, 2048))
+      ->capture_default_str();
+  benchCommand->add_option("--repeats", bench.repeats, "Timed repeats per row (median reported)")
+      ->check(CLI::Range(5, 1000))
+      ->capture_default_str();
+  benchCommand->add_option("--warmup", bench.warmup, "Untimed runs before the repeats")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  benchCommand->add_option("--budget", bench.budgetSeconds,
+                           "Seconds the whole benchmark may take; rows that would exceed it are "
+                           "skipped")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  benchCommand->add_option("--json", bench.json, "Also write the results as JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "lic3d: error: %s\nRun `lic3d --help` or `lic3d <command> --help`.\n",
+                 e.what());
+    return kExitBadInput;
+  }
+
+  if (devices->parsed()) return runDevices(global);
+  if (computeCommand->parsed()) return runCompute(global, compute);
+  if (renderCommand->parsed()) {
+    if (auto r = finishViewOptions(render); !r) return reportError(r.error());
+    return runRender(global, render);
+  }
+  if (benchCommand->parsed()) return runBench(global, bench);
+  return kExitBadInput;
+}

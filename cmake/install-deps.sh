@@ -1,0 +1,26 @@
+#!/bin/sh
+# Installs every Debian 12 package lic3d needs to build, run and test.
+# Idempotent: apt-get skips what is already installed. Run as root (or with sudo).
+set -eu
+
+packages="
+  ca-certificates cmake ninja-build g++ pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  glslang-tools glslang-dev
+  libglm-dev libglfw3-dev libimgui-dev libstb-dev
+  libcli11-dev nlohmann-json3-dev zlib1g-dev libgtest-dev
+"
+
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+
+if [ -n "$missing" ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update
+  # shellcheck disable=SC2086
+  $sudo apt-get install -y --no-install-recommends $missing
+fi

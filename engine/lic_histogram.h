@@ -1,0 +1,53 @@
+#pragma once
+// A histogram of the LIC volume on the GPU. LIC values crowd around the noise mean (their spread
+// shrinks like 1/sqrt(samples)), so the renderer stretches a window between two percentiles to
+// full grey; this pass supplies them without reading the volume back.
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "error.h"
+#include "gpu_resources.h"
+#include "volume.h"
+#include "vulkan_context.h"
+
+namespace lic3d {
+
+struct IntensityWindow {
+  float low = 0.0f;
+  float high = 1.0f;
+};
+
+// The window between the `lowFraction` and `highFraction` quantiles of a histogram over [0,1].
+IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, double lowFraction = 0.005,
+                                 double highFraction = 0.995);
+
+class LicHistogramPass {
+ public:
+  // `context` must outlive the pass.
+  static Result<LicHistogramPass> create(const Context& context);
+  LicHistogramPass() = default;
+  LicHistogramPass(LicHistogramPass&& other) noexcept;
+  LicHistogramPass& operator=(LicHistogramPass&& other) noexcept;
+  ~LicHistogramPass();
+
+  // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
+  // visible to compute shaders) and its copy to host-visible memory.
+  void record(VkCommandBuffer cmd, const Image& volume, Dims dims);
+  // The counts of the last recorded histogram, once its command buffer completed.
+  std::vector<std::uint32_t> counts() const;
+
+ private:
+  void release();
+  const Context* context_ = nullptr;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  Sampler sampler_;
+  Buffer counts_;
+  Buffer readback_;
+};
+
+}  // namespace lic3d

@@ -1,0 +1,47 @@
+#pragma once
+// What the LIC volume depends on. Any change here means the compute pass runs again; nothing
+// else (camera, opacity, slices) does.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "error.h"
+
+namespace lic3d {
+
+enum class Integrator : std::uint32_t { Euler = 0, Rk2 = 1, Rk4 = 2 };
+enum class Kernel : std::uint32_t { Box = 0, Hann = 1, Gauss = 2 };
+enum class NoiseFilter : std::uint32_t { Nearest = 0, Linear = 1 };
+// Normalized: unit steps of h voxels. Magnitude: steps of h * |v| / max|v| voxels (the thesis'
+// velocity-scaled steps, which shorten streamlines in slow regions).
+enum class DirectionMode : std::uint32_t { Normalized = 0, Magnitude = 1 };
+
+struct LicParams {
+  int length = 10;      // L: steps each way (before bias)
+  float step = 0.5f;    // h: step length in voxels
+  int bias = 0;         // Lb = L - bias steps backward, Lf = L + bias forward; |bias| <= L
+  Integrator integrator = Integrator::Rk2;
+  Kernel kernel = Kernel::Box;
+  NoiseFilter noiseFilter = NoiseFilter::Linear;
+  DirectionMode direction = DirectionMode::Normalized;
+
+  bool operator==(const LicParams&) const = default;
+};
+
+// Checks ranges: 0 <= L <= kMaxLicLength, 0 < h <= 8, |bias| <= L.
+Result<void> validate(const LicParams& params);
+inline constexpr int kMaxLicLength = 4096;
+
+// A streamline stops where |v| <= kCriticalFraction * max|v| (a critical point).
+inline constexpr double kCriticalFraction = 1e-6;
+
+// Kernel weight of sample i (i = -Lb..Lf), the same formula on CPU and GPU.
+double kernelWeight(Kernel kernel, int i, int length, int bias);
+
+std::string_view toString(Integrator value);
+std::string_view toString(Kernel value);
+std::string_view toString(NoiseFilter value);
+std::string_view toString(DirectionMode value);
+
+}  // namespace lic3d

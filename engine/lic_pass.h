@@ -1,0 +1,67 @@
+#pragma once
+// The LIC compute pass: one invocation per voxel writes the LIC volume (a 3D storage image).
+// Each (integrator, kernel, noise filter, direction) variant is its own pipeline, specialized
+// at creation and cached: the thesis' #ifdef variants without copied shaders.
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "error.h"
+#include "gpu_resources.h"
+#include "lic_params.h"
+#include "volume_textures.h"
+#include "vulkan_context.h"
+
+namespace lic3d {
+
+// constant_id i <-> field i (see shaders/lic.comp).
+struct LicSpecialization {
+  std::uint32_t integrator = 1;
+  std::uint32_t kernel = 0;
+  std::uint32_t noiseFilter = 1;
+  std::uint32_t direction = 0;
+  std::uint32_t localSizeX = 8;  // 8x8x1 beats 4x4x4 on lavapipe and ties on discrete GPUs
+  std::uint32_t localSizeY = 8;
+  std::uint32_t localSizeZ = 1;
+
+  bool operator==(const LicSpecialization&) const = default;
+};
+static_assert(sizeof(LicSpecialization) == 7 * 4);
+
+LicSpecialization licSpecialization(const LicParams& params);
+
+// The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding.
+inline constexpr VkFormat kLicVolumeFormat = VK_FORMAT_R16_UNORM;
+
+class LicPass {
+ public:
+  // `context` must outlive the pass.
+  static Result<LicPass> create(const Context& context);
+  LicPass() = default;
+  LicPass(LicPass&& other) noexcept;
+  LicPass& operator=(LicPass&& other) noexcept;
+  ~LicPass();
+
+  // Records the dispatch for z slices [zBegin, zEnd). `field` and `noise` must be in
+  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's.
+  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& noise,
+                      const Image& output, const LicParams& params, int zBegin, int zEnd);
+
+  std::size_t variantCount() const { return pipelines_.size(); }
+
+ private:
+  Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
+  void release();
+
+  const Context* context_ = nullptr;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkShaderModule shader_ = VK_NULL_HANDLE;
+  Sampler sampler_;
+  std::vector<std::pair<LicSpecialization, VkPipeline>> pipelines_;
+};
+
+}  // namespace lic3d

@@ -1,0 +1,165 @@
+#include "lic_reference.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include <glm/glm.hpp>
+
+namespace lic3d {
+namespace {
+
+struct Corner {
+  int i0, i1;
+  double t;
+};
+
+// Trilinear weights along one axis with edge clamping; positions outside [0, n-1] clamp.
+Corner axisCorner(double x, int n) {
+  if (n == 1) return {0, 0, 0.0};
+  x = std::clamp(x, 0.0, static_cast<double>(n - 1));
+  int i0 = std::min(static_cast<int>(std::floor(x)), n - 2);
+  return {i0, i0 + 1, x - i0};
+}
+
+bool inside(glm::dvec3 x, Dims dims) {
+  for (int a = 0; a < 3; ++a)
+    if (x[a] < 0.0 || x[a] > dims[a] - 1) return false;
+  return true;
+}
+
+// The step direction at x, zero where |v| is at or below the critical threshold.
+struct Stepper {
+  const FieldSampler& sampler;
+  const LicParams& params;
+  double criticalMagnitude;
+
+  glm::dvec3 direction(glm::dvec3 v) const {
+    const double magnitude = glm::length(v);
+    if (magnitude <= criticalMagnitude) return glm::dvec3(0.0);
+    return params.direction == DirectionMode::Normalized ? v / magnitude
+                                                         : v / sampler.maxMagnitude();
+  }
+  glm::dvec3 directionAt(glm::dvec3 x) const { return direction(sampler.at(x)); }
+
+  glm::dvec3 advance(glm::dvec3 x, glm::dvec3 d0, double sh) const {
+    switch (params.integrator) {
+      case Integrator::Euler: return x + sh * d0;
+      case Integrator::Rk2: return x + sh * directionAt(x + 0.5 * sh * d0);
+      case Integrator::Rk4: {
+        const glm::dvec3 k2 = directionAt(x + 0.5 * sh * d0);
+        const glm::dvec3 k3 = directionAt(x + 0.5 * sh * k2);
+        const glm::dvec3 k4 = directionAt(x + sh * k3);
+        return x + (sh / 6.0) * (d0 + 2.0 * k2 + 2.0 * k3 + k4);
+      }
+    }
+    return x;
+  }
+};
+
+}  // namespace
+
+FieldSampler::FieldSampler(const VectorField& field)
+    : field_(field), maxMagnitude_(lic3d::maxMagnitude(field)) {}
+
+glm::dvec3 FieldSampler::at(glm::dvec3 x) const {
+  const Dims d = field_.dims;
+  const Corner cx = axisCorner(x.x, d.x), cy = axisCorner(x.y, d.y), cz = axisCorner(x.z, d.z);
+  auto v = [&](int i, int j, int k) { return glm::dvec3(field_.at(i, j, k)); };
+  const glm::dvec3 c00 = glm::mix(v(cx.i0, cy.i0, cz.i0), v(cx.i1, cy.i0, cz.i0), cx.t);
+  const glm::dvec3 c10 = glm::mix(v(cx.i0, cy.i1, cz.i0), v(cx.i1, cy.i1, cz.i0), cx.t);
+  const glm::dvec3 c01 = glm::mix(v(cx.i0, cy.i0, cz.i1), v(cx.i1, cy.i0, cz.i1), cx.t);
+  const glm::dvec3 c11 = glm::mix(v(cx.i0, cy.i1, cz.i1), v(cx.i1, cy.i1, cz.i1), cx.t);
+  return glm::mix(glm::mix(c00, c10, cy.t), glm::mix(c01, c11, cy.t), cz.t);
+}
+
+double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x) {
+  const Dims d = noise.dims;
+  if (filter == NoiseFilter::Nearest) {
+    glm::ivec3 v;
+    for (int a = 0; a < 3; ++a)
+      v[a] = std::clamp(static_cast<int>(std::floor(x[a] + 0.5)), 0, d[a] - 1);
+    return noise.value(voxelIndex(d, v.x, v.y, v.z));
+  }
+  const Corner cx = axisCorner(x.x, d.x), cy = axisCorner(x.y, d.y), cz = axisCorner(x.z, d.z);
+  auto n = [&](int i, int j, int k) { return static_cast<double>(noise.value(voxelIndex(d, i, j, k))); };
+  const double c00 = std::lerp(n(cx.i0, cy.i0, cz.i0), n(cx.i1, cy.i0, cz.i0), cx.t);
+  const double c10 = std::lerp(n(cx.i0, cy.i1, cz.i0), n(cx.i1, cy.i1, cz.i0), cx.t);
+  const double c01 = std::lerp(n(cx.i0, cy.i0, cz.i1), n(cx.i1, cy.i0, cz.i1), cx.t);
+  const double c11 = std::lerp(n(cx.i0, cy.i1, cz.i1), n(cx.i1, cy.i1, cz.i1), cx.t);
+  return std::lerp(std::lerp(c00, c10, cy.t), std::lerp(c01, c11, cy.t), cz.t);
+}
+
+std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
+                                        const LicParams& params, glm::dvec3 start, int sign,
+                                        int steps) {
+  const Stepper stepper{sampler, params, kCriticalFraction * sampler.maxMagnitude()};
+  std::vector<glm::dvec3> samples{start};
+  glm::dvec3 x = start;
+  const double sh = sign * static_cast<double>(params.step);
+  for (int i = 1; i <= steps; ++i) {
+    const glm::dvec3 d = stepper.directionAt(x);
+    if (d == glm::dvec3(0.0)) break;  // critical point: x was the last sample
+    x = stepper.advance(x, d, sh);
+    if (!inside(x, dims)) break;  // never clamp a streamline back into the grid
+    samples.push_back(x);
+  }
+  return samples;
+}
+
+double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const LicParams& params,
+                  glm::ivec3 voxel) {
+  const glm::dvec3 start(voxel);
+  double sum = 0.0, weights = 0.0;
+  for (int sign : {-1, 1}) {
+    const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
+    const std::vector<glm::dvec3> samples =
+        traceStreamline(sampler, noise.dims, params, start, sign, steps);
+    // The start sample belongs to both directions; count it once (with the backward pass).
+    for (std::size_t i = sign < 0 ? 0 : 1; i < samples.size(); ++i) {
+      const double w = kernelWeight(params.kernel, sign * static_cast<int>(i), params.length,
+                                    params.bias);
+      sum += w * sampleNoise(noise, params.noiseFilter, samples[i]);
+      weights += w;
+    }
+  }
+  return sum / weights;
+}
+
+Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
+                                         const LicParams& params, unsigned threads,
+                                         const ProgressCallback& progress) {
+  LIC3D_TRY(validate(params));
+  if (noise.dims != field.dims)
+    return inputError("the noise volume and the field must have the same grid");
+
+  ScalarVolume out;
+  out.dims = field.dims;
+  out.geometry = field.geometry;
+  out.values.resize(voxelCount(field.dims));
+  const FieldSampler sampler(field);
+
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  const int slices = field.dims.z;
+  std::atomic<int> next{0};
+  std::atomic<int> done{0};
+  auto work = [&](bool reports) {
+    for (int k = next++; k < slices; k = next++) {
+      for (int j = 0; j < field.dims.y; ++j)
+        for (int i = 0; i < field.dims.x; ++i)
+          out.values[voxelIndex(field.dims, i, j, k)] =
+              static_cast<float>(licAtVoxel(sampler, noise, params, {i, j, k}));
+      const int finished = ++done;
+      if (reports && progress) progress(static_cast<double>(finished) / slices);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
+  work(true);
+  for (std::thread& t : pool) t.join();
+  if (progress) progress(1.0);
+  return out;
+}
+
+}  // namespace lic3d

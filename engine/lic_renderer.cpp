@@ -1,0 +1,311 @@
+#include "lic_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/packing.hpp>
+
+#include "gpu_submit.h"
+#include "vk_check.h"
+
+namespace lic3d {
+namespace {
+
+// With progress reporting the pass is split into this many slabs along z (at most).
+constexpr int kProgressSlabs = 16;
+
+constexpr VkPipelineStageFlags2 kVolumeReaders =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+}  // namespace
+
+Result<LicRenderer> LicRenderer::create(const Context& context) {
+  LicRenderer renderer;
+  renderer.context_ = &context;
+  LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
+  LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
+  LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context));
+  if (context.supportsTimestamps()) {
+    LIC3D_TRY_ASSIGN(renderer.timer_, GpuTimer::create(context, 2, "renderer timestamps"));
+  }
+  if (!supportsFormat(context, kLicVolumeFormat,
+                      VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT |
+                          VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+    return unsupportedError(context.deviceInfo().name +
+                            " cannot use R16_UNORM as a filtered storage image");
+  if (!supportsFormat(context, kOffscreenColorFormat,
+                      VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT))
+    return unsupportedError(context.deviceInfo().name + " cannot blend into RGBA16F");
+  return renderer;
+}
+
+LicRenderer::~LicRenderer() {
+  // Resources may still be in use by the last submission only if it failed; be safe.
+  if (context_) vkDeviceWaitIdle(context_->device());
+}
+
+Result<void> LicRenderer::setField(const VectorField& field) {
+  LIC3D_TRY_ASSIGN(field_, uploadField(*context_, field));
+  licParams_.reset();
+  return {};
+}
+
+Result<void> LicRenderer::setNoise(const NoiseVolume& noise) {
+  LIC3D_TRY_ASSIGN(noise_, uploadNoise(*context_, noise));
+  noiseDims_ = noise.dims;
+  licParams_.reset();
+  return {};
+}
+
+Result<void> LicRenderer::ensureLicVolume() {
+  if (!field_.image) return inputError("no vector field was set");
+  if (licVolume_) {
+    const VkExtent3D e = licVolume_.extent();
+    if (Dims(e.width, e.height, e.depth) == field_.dims) return {};
+  }
+  ImageDesc desc;
+  desc.format = kLicVolumeFormat;
+  desc.extent = {static_cast<std::uint32_t>(field_.dims.x), static_cast<std::uint32_t>(field_.dims.y),
+                 static_cast<std::uint32_t>(field_.dims.z)};
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "lic volume";
+  licVolume_ = Image();  // free the old volume before allocating the new one
+  LIC3D_TRY_ASSIGN(licVolume_, Image::create(*context_, desc));
+  return {};
+}
+
+Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicParams& params) {
+  if (!field_.image || volume.dims != field_.dims)
+    return inputError("the LIC volume's grid does not match the field's");
+  LIC3D_TRY(ensureLicVolume());
+  std::vector<std::uint16_t> texels(volume.values.size());
+  for (std::size_t i = 0; i < texels.size(); ++i)
+    texels[i] = static_cast<std::uint16_t>(
+        std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
+  LIC3D_TRY(uploadImage(*context_, licVolume_, texels.data(), texels.size() * sizeof(std::uint16_t)));
+  LIC3D_TRY(submitAndWait(
+      *context_, [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, licVolume_, field_.dims); },
+      "lic histogram"));
+  window_ = percentileWindow(histogramPass_.counts());
+  licParams_ = params;
+  return {};
+}
+
+void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
+                                bool first, bool last, Result<void>& status) {
+  if (first) {
+    // The old contents are discarded; earlier frames and histograms must be done reading.
+    imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                 kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  } else {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  status = licPass_.record(cmd, field_, noise_, licVolume_, params, zBegin, zEnd);
+  if (!status) return;
+  if (last) {
+    imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    histogramPass_.record(cmd, licVolume_, field_.dims);
+  }
+}
+
+Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
+  LIC3D_TRY(validate(params));
+  if (licParams_ && *licParams_ == params) return false;
+  if (!field_.image) return inputError("no vector field was set");
+  if (!noise_) return inputError("no noise volume was set");
+  if (noiseDims_ != field_.dims)
+    return inputError("the noise grid (" + std::to_string(noiseDims_.x) + "x" +
+                      std::to_string(noiseDims_.y) + "x" + std::to_string(noiseDims_.z) +
+                      ") must match the field grid (" + std::to_string(field_.dims.x) + "x" +
+                      std::to_string(field_.dims.y) + "x" + std::to_string(field_.dims.z) + ")");
+  LIC3D_TRY(ensureLicVolume());
+  licParams_.reset();
+
+  const Dims dims = field_.dims;
+  const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
+  for (int z = 0; z < dims.z; z += slab) {
+    const int zEnd = std::min(dims.z, z + slab);
+    Result<void> status;
+    LIC3D_TRY(submitAndWait(
+        *context_,
+        [&](VkCommandBuffer cmd) {
+          recordLicSlab(cmd, params, z, zEnd, z == 0, zEnd == dims.z, status);
+        },
+        "lic compute"));
+    LIC3D_TRY(std::move(status));
+    if (progress) progress(static_cast<double>(zEnd) / dims.z);
+  }
+  ++licDispatches_;
+  window_ = percentileWindow(histogramPass_.counts());
+  licParams_ = params;
+  return true;
+}
+
+Result<void> LicRenderer::ensureTarget(int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    return inputError("image size must be 1..16384 pixels per side, got " + std::to_string(width) +
+                      "x" + std::to_string(height));
+  const std::uint32_t limit = context_->properties().limits.maxImageDimension2D;
+  if (static_cast<std::uint32_t>(std::max(width, height)) > limit)
+    return inputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                      " exceeds the device's limit of " + std::to_string(limit));
+  if (target_ && target_.extent().width == static_cast<std::uint32_t>(width) &&
+      target_.extent().height == static_cast<std::uint32_t>(height))
+    return {};
+  target_ = Image();
+  targetReadback_ = Buffer();
+  ImageDesc desc;
+  desc.type = VK_IMAGE_TYPE_2D;
+  desc.format = kOffscreenColorFormat;
+  desc.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), 1};
+  desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  desc.name = "offscreen colour";
+  LIC3D_TRY_ASSIGN(target_, Image::create(*context_, desc));
+  LIC3D_TRY_ASSIGN(targetReadback_,
+                   Buffer::create(*context_, static_cast<VkDeviceSize>(width) * height * 8,
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
+                                  "offscreen readback"));
+  return {};
+}
+
+void LicRenderer::recordFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status) {
+  // The previous frame's copy must finish reading before the target is cleared again.
+  imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = target_.view();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  color.clearValue.color = {{view.background.r, view.background.g, view.background.b, 1.0f}};
+  const VkExtent2D extent{target_.extent().width, target_.extent().height};
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  vkCmdBeginRendering(cmd, &rendering);
+  const SliceFrame frame =
+      makeSliceFrame(view, field_.dims, field_.geometry, window_.low, window_.high);
+  status = slicePass_.record(cmd, target_.format(), extent, licVolume_, frame);
+  vkCmdEndRendering(cmd);
+}
+
+Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams& view) {
+  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool recomputed, updateLic(params));
+  LIC3D_TRY(ensureTarget(view.width, view.height));
+  Result<void> status;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        recordFrame(cmd, view, status);
+        imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = target_.extent();
+        vkCmdCopyImageToBuffer(cmd, target_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               targetReadback_.handle(), 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+      },
+      "render frame"));
+  LIC3D_TRY(std::move(status));
+
+  RgbaImage image;
+  image.width = view.width;
+  image.height = view.height;
+  image.pixels.resize(static_cast<std::size_t>(view.width) * view.height * 4);
+  const auto* halves = static_cast<const std::uint16_t*>(targetReadback_.mapped());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const float v = std::clamp(glm::unpackHalf1x16(halves[i]), 0.0f, 1.0f);
+    image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+  }
+  return image;
+}
+
+Result<ScalarVolume> LicRenderer::readLicVolume() const {
+  if (!licParams_) return inputError("no LIC volume has been computed");
+  LIC3D_TRY_ASSIGN(std::vector<std::byte> bytes,
+                   readImage(*context_, licVolume_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2));
+  ScalarVolume volume;
+  volume.dims = field_.dims;
+  volume.geometry = field_.geometry;
+  volume.values.resize(voxelCount(field_.dims));
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    std::uint16_t v;
+    std::memcpy(&v, bytes.data() + 2 * i, 2);
+    volume.values[i] = static_cast<float>(v) / 65535.0f;
+  }
+  return volume;
+}
+
+Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
+  LIC3D_TRY(validate(params));
+  if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
+  if (!field_.image || !noise_) return inputError("no field or noise was set");
+  LIC3D_TRY(ensureLicVolume());
+  licParams_.reset();
+  Result<void> status;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        timer_.reset(cmd, 0);
+        imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        timer_.begin(cmd, 0);
+        status = licPass_.record(cmd, field_, noise_, licVolume_, params, 0, field_.dims.z);
+        timer_.end(cmd, 0);
+        imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+        histogramPass_.record(cmd, licVolume_, field_.dims);
+      },
+      "lic timing"));
+  LIC3D_TRY(std::move(status));
+  ++licDispatches_;
+  window_ = percentileWindow(histogramPass_.counts());
+  licParams_ = params;
+  return timer_.milliseconds(0);
+}
+
+Result<double> LicRenderer::timeFrame(const ViewParams& view) {
+  if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
+  if (!licParams_) return inputError("no LIC volume has been computed");
+  LIC3D_TRY(ensureTarget(view.width, view.height));
+  Result<void> status;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        timer_.reset(cmd, 1);
+        timer_.begin(cmd, 1);
+        recordFrame(cmd, view, status);
+        timer_.end(cmd, 1);
+        // Leave the target as the next frame's barrier expects it (after a copy).
+        imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_NONE);
+      },
+      "frame timing"));
+  LIC3D_TRY(std::move(status));
+  return timer_.milliseconds(1);
+}
+
+}  // namespace lic3d

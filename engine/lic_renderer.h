@@ -1,0 +1,88 @@
+#pragma once
+// Ties the passes together for one field and one noise volume: keeps the LIC volume on the GPU,
+// recomputes it only when LicParams, the field or the noise change, and draws it offscreen.
+
+#include <cstdint>
+#include <optional>
+
+#include "error.h"
+#include "gpu_resources.h"
+#include "gpu_timer.h"
+#include "lic_histogram.h"
+#include "lic_params.h"
+#include "lic_pass.h"
+#include "lic_reference.h"
+#include "rgba_image.h"
+#include "slice_pass.h"
+#include "view_params.h"
+#include "volume.h"
+#include "volume_textures.h"
+#include "vulkan_context.h"
+
+namespace lic3d {
+
+// The offscreen colour format: 16-bit float keeps hundreds of faint slices from banding.
+inline constexpr VkFormat kOffscreenColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+class LicRenderer {
+ public:
+  // `context` must outlive the renderer.
+  static Result<LicRenderer> create(const Context& context);
+  LicRenderer(LicRenderer&&) noexcept = default;
+  LicRenderer& operator=(LicRenderer&&) noexcept = default;
+  ~LicRenderer();
+
+  Result<void> setField(const VectorField& field);
+  Result<void> setNoise(const NoiseVolume& noise);
+  // Uses a LIC volume computed elsewhere (the CPU reference) as the result for `params`.
+  Result<void> setLicVolume(const ScalarVolume& volume, const LicParams& params);
+
+  // Runs the LIC pass unless the volume already matches `params`, the field and the noise.
+  // With a progress callback the work is split into slabs along z, each submitted and waited
+  // for, so long computations report progress (and hold the GPU in shorter pieces).
+  // Returns whether the pass ran.
+  Result<bool> updateLic(const LicParams& params, const ProgressCallback& progress = {});
+
+  // updateLic, then one frame into an offscreen image read back as 8-bit RGBA.
+  Result<RgbaImage> render(const LicParams& params, const ViewParams& view);
+
+  Result<ScalarVolume> readLicVolume() const;
+
+  // Benchmark helpers: GPU milliseconds from timestamp queries around one LIC dispatch over the
+  // whole volume (always dispatched), and around one frame's draw (no read-back).
+  Result<double> timeLicDispatch(const LicParams& params);
+  Result<double> timeFrame(const ViewParams& view);
+
+  std::uint64_t licDispatchCount() const { return licDispatches_; }
+  IntensityWindow intensityWindow() const { return window_; }
+  Dims dims() const { return field_.dims; }
+  const GridGeometry& geometry() const { return field_.geometry; }
+  double fieldMaxMagnitude() const { return field_.maxMagnitude; }
+  const LicPass& licPass() const { return licPass_; }
+  const SlicePass& slicePass() const { return slicePass_; }
+
+ private:
+  LicRenderer() = default;
+  Result<void> ensureLicVolume();
+  Result<void> ensureTarget(int width, int height);
+  void recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
+                     bool first, bool last, Result<void>& status);
+  void recordFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status);
+
+  const Context* context_ = nullptr;
+  LicPass licPass_;
+  LicHistogramPass histogramPass_;
+  SlicePass slicePass_;
+  GpuTimer timer_;  // region 0: LIC dispatch, region 1: frame
+  FieldTexture field_;
+  Image noise_;
+  Dims noiseDims_{0};
+  Image licVolume_;
+  std::optional<LicParams> licParams_;  // what licVolume_ holds; empty when stale
+  IntensityWindow window_;
+  std::uint64_t licDispatches_ = 0;
+  Image target_;
+  Buffer targetReadback_;
+};
+
+}  // namespace lic3d

@@ -1,0 +1,39 @@
+#pragma once
+// NRRD files (teem.sourceforge.net/nrrd/format.html) with attached headers: vector fields and
+// noise in, vector fields, noise and LIC results out.
+//
+// Readers accept NRRD0001..NRRD0005, `raw` and `gzip` encodings, either byte order, every NRRD
+// spelling of the types they take, comments, `key:=value` lines and unknown fields. Detached
+// headers (`data file`) are refused with an error that says so. Inputs are untrusted: header
+// numbers are checked against limits (header <= 64 KiB, each size in [1, 16384], at most 2^31
+// voxels) and the payload against the bytes in the file before anything is allocated. Every error
+// is InvalidInput and its message names the file and the field.
+
+#include <filesystem>
+
+#include "error.h"
+#include "volume.h"
+
+namespace lic3d {
+
+// `dimension: 4`, `sizes: 3 NX NY NZ`, type float or double (converted to float). The grid comes
+// from `space directions` (the length of each axis vector is its spacing: lic3d grids are axis
+// aligned, so a rotation is dropped) or else from `spacings`; `space origin` sets the origin.
+// Every component must be finite (NaN, Inf, or a double beyond the float range is an error).
+Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path);
+
+// `dimension: 3`, `sizes: NX NY NZ`, type uchar, ushort or float; integer noise keeps its type.
+// Float noise must be finite. Float values that stray outside [0,1] are mapped linearly onto
+// [0,1] through the volume's own min and max (a constant volume outside [0,1] is an error);
+// float values already inside [0,1] are kept exactly.
+Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path);
+
+// Float32, raw, little endian, with `space directions` and `space origin` from the geometry.
+// All writers go through writeFileAtomically, so a failed write leaves no partial file.
+Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume);
+// Float32, raw, little endian: what readVectorFieldNrrd reads back unchanged.
+Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field);
+// Keeps the noise's type (uchar, ushort or float); raw, little endian.
+Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume& noise);
+
+}  // namespace lic3d

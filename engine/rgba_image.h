@@ -1,0 +1,28 @@
+#pragma once
+// An 8-bit RGBA picture in memory (rows top to bottom) and its PNG file.
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "error.h"
+
+namespace lic3d {
+
+struct RgbaImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> pixels;  // width * height * 4
+
+  glm::u8vec4 at(int x, int y) const {
+    const std::size_t i = 4 * (static_cast<std::size_t>(y) * width + x);
+    return {pixels[i], pixels[i + 1], pixels[i + 2], pixels[i + 3]};
+  }
+};
+
+// Writes through a temporary file renamed on success, so a failure never leaves a partial PNG.
+Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image);
+
+}  // namespace lic3d

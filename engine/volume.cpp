@@ -1,0 +1,44 @@
+#include "volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lic3d {
+
+double maxMagnitude(const VectorField& field) {
+  double largest = 0.0;
+  for (const glm::vec3& v : field.vectors) {
+    const double x = v.x, y = v.y, z = v.z;
+    largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
+  }
+  return largest;
+}
+
+std::size_t bytesPerValue(NoiseType type) {
+  switch (type) {
+    case NoiseType::UInt8: return 1;
+    case NoiseType::UInt16: return 2;
+    case NoiseType::Float32: return 4;
+  }
+  return 1;
+}
+
+float NoiseVolume::value(std::size_t index) const {
+  switch (type) {
+    case NoiseType::UInt8: return static_cast<float>(bytes[index]) / 255.0f;
+    case NoiseType::UInt16: {
+      std::uint16_t v;
+      std::memcpy(&v, bytes.data() + 2 * index, 2);
+      return static_cast<float>(v) / 65535.0f;
+    }
+    case NoiseType::Float32: {
+      float v;
+      std::memcpy(&v, bytes.data() + 4 * index, 4);
+      return v;
+    }
+  }
+  return 0.0f;
+}
+
+}  // namespace lic3d

@@ -1,0 +1,244 @@
+// The command line as a user meets it: flags, help, exit status, files.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "analytic_fields.h"
+#include "lic_reference.h"
+#include "nrrd.h"
+#include "noise.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lic3d_cli_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CommandRun run(const std::string& args, const std::string& environment = "") const {
+    const std::string command = "cd '" + dir_.string() + "' && " + environment + " '" +
+                                LIC3D_EXECUTABLE + "' " + args + " 2>&1";
+    CommandRun result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    std::size_t n;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    return result;
+  }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+  // Files in the work folder: a failed command must leave nothing behind, not even temporaries.
+  std::size_t fileCount() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+  }
+
+ private:
+  fs::path dir_;
+};
+
+// Width and height from a PNG's IHDR chunk.
+std::pair<int, int> pngSize(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::array<unsigned char, 24> header{};
+  in.read(reinterpret_cast<char*>(header.data()), header.size());
+  if (!in || header[1] != 'P' || header[2] != 'N' || header[3] != 'G') return {0, 0};
+  auto be32 = [&](int at) {
+    return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3];
+  };
+  return {be32(16), be32(20)};
+}
+
+TEST_F(CliTest, HelpListsEveryOption) {
+  const CommandRun top = run("--help");
+  EXPECT_EQ(top.status, 0) << top.output;
+  for (const char* command : {"devices", "compute", "render", "bench", "--device", "--validation"})
+    EXPECT_NE(top.output.find(command), std::string::npos) << command;
+
+  const char* shared[] = {"--field", "--grid", "--noise", "--seed", "--length", "--step",
+                          "--bias", "--integrator", "--kernel", "--noise-filter", "--direction",
+                          "--cpu", "--output"};
+  const char* view[] = {"--width", "--height", "--slices", "--slicing", "--azimuth",
+                        "--elevation", "--distance", "--fov", "--ortho", "--alpha", "--opacity",
+                        "--filter", "--background", "--window", "--gain", "--brightness"};
+  const CommandRun compute = run("compute --help");
+  EXPECT_EQ(compute.status, 0);
+  for (const char* flag : shared) EXPECT_NE(compute.output.find(flag), std::string::npos) << flag;
+  const CommandRun render = run("render --help");
+  EXPECT_EQ(render.status, 0);
+  for (const char* flag : shared) EXPECT_NE(render.output.find(flag), std::string::npos) << flag;
+  for (const char* flag : view) EXPECT_NE(render.output.find(flag), std::string::npos) << flag;
+  const CommandRun bench = run("bench --help");
+  EXPECT_EQ(bench.status, 0);
+  for (const char* flag : {"--sizes", "--lengths", "--frame-sizes", "--frame-volume", "--repeats",
+                           "--warmup", "--budget", "--json"})
+    EXPECT_NE(bench.output.find(flag), std::string::npos) << flag;
+}
+
+TEST_F(CliTest, EveryRenderFlagParses) {
+  const CommandRun r = run(
+      "render --field abc --grid 10,12,14 --seed 3 --length 6 --step 0.75 --bias -2 "
+      "--integrator rk4 --kernel hann --noise-filter nearest --direction magnitude "
+      "--width 64 --height 48 --slices 20 --slicing axis --azimuth 10 --elevation -30 "
+      "--distance 3 --fov 40 --ortho --alpha 0.5 --opacity constant --filter nearest "
+      "--background 255,128,0 --window 0.2,0.8 --gain 1.2 --brightness 0.1 -o out.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(pngSize(path("out.png")), std::make_pair(64, 48));
+  const CommandRun cpu = run("--device 0 render --cpu --grid 8 --width 32 --height 32 -q -o cpu.png");
+  ASSERT_EQ(cpu.status, 0) << cpu.output;
+  EXPECT_TRUE(cpu.output.empty()) << "--quiet: " << cpu.output;
+  EXPECT_EQ(pngSize(path("cpu.png")), std::make_pair(32, 32));
+}
+
+TEST_F(CliTest, ComputeWritesTheLicVolumeOnTheFieldGrid) {
+  const CommandRun gpu = run("compute --field abc --grid 12,10,8 --length 8 -o gpu.nrrd");
+  ASSERT_EQ(gpu.status, 0) << gpu.output;
+  const CommandRun cpu = run("compute --field abc --grid 12,10,8 --length 8 --cpu -o cpu.nrrd");
+  ASSERT_EQ(cpu.status, 0) << cpu.output;
+
+  // Float NRRD volumes read back through the noise reader (values in [0,1] are kept as they are).
+  const Result<NoiseVolume> a = readNoiseNrrd(path("gpu.nrrd"));
+  const Result<NoiseVolume> b = readNoiseNrrd(path("cpu.nrrd"));
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_EQ(a->dims, Dims(12, 10, 8));
+  EXPECT_EQ(a->type, NoiseType::Float32);
+
+  LicParams params;
+  params.length = 8;
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {12, 10, 8});
+  const ScalarVolume reference = *computeLicReference(field, makeWhiteNoise(field.dims, 1), params);
+  double gpuDiff = 0.0, cpuDiff = 0.0;
+  for (std::size_t i = 0; i < reference.values.size(); ++i) {
+    gpuDiff += std::abs(a->value(i) - reference.values[i]);
+    cpuDiff = std::max(cpuDiff, static_cast<double>(std::abs(b->value(i) - reference.values[i])));
+  }
+  EXPECT_LE(gpuDiff / static_cast<double>(reference.values.size()), 1e-3);
+  EXPECT_EQ(cpuDiff, 0.0) << "--cpu writes the reference itself";
+}
+
+TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
+  const char* cases[] = {
+      "",                                         // no subcommand
+      "paint",                                    // unknown subcommand
+      "render --no-such-flag",
+      "render --integrator rk3",
+      "render --kernel triangle",
+      "render --length -1",
+      "render --length 10 --bias 11",
+      "render --step 0",
+      "render --grid 0",
+      "render --grid 8,8",
+      "render --grid 8,x,8",
+      "render --grid 5000",
+      "render --width 0",
+      "render --background 1,2",
+      "render --background 300,0,0",
+      "render --window 0.8,0.2",
+      "render --window high",
+      "render --slicing diagonal",
+      "render --elevation 120",
+      "render --field hurricane",
+      "render --field missing.nrrd",
+      "render --field data.vtk --grid 32",
+      "render --noise missing.nrrd --grid 8",
+      "render --grid 8 -o picture.jpg",
+      "render --grid 8 -o no/such/folder/out.png",
+      "compute --grid 8 -o volume.png",
+      "bench --sizes 64,abc",
+      "bench --repeats 2",
+      "--device no-such-device render --grid 8",
+  };
+  for (const char* args : cases) {
+    const CommandRun r = run(args);
+    EXPECT_EQ(r.status, 2) << "lic3d " << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << "lic3d " << args << "\n" << r.output;
+    EXPECT_EQ(fileCount(), 0u) << "lic3d " << args << " left files behind";
+  }
+}
+
+TEST_F(CliTest, BadFilesExitWithStatusTwoNamingTheFile) {
+  {
+    std::ofstream truncated(path("truncated.nrrd"), std::ios::binary);
+    truncated << "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 8 8 8\nencoding: raw\n"
+                 "endian: little\n\n"
+              << std::string(100, '\0');
+  }
+  {
+    std::ofstream garbage(path("garbage.vtk"), std::ios::binary);
+    garbage << "this is not a VTK file\n";
+  }
+  {
+    std::ofstream noise(path("noise.nrrd"), std::ios::binary);
+    noise << "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n"
+          << std::string(64, 'x');
+  }
+  const std::pair<const char*, const char*> cases[] = {
+      {"render --field truncated.nrrd -o out.png", "truncated.nrrd"},
+      {"compute --field garbage.vtk -o out.nrrd", "garbage.vtk"},
+      {"render --grid 8 --noise noise.nrrd -o out.png", "noise.nrrd"},  // 4^3 noise, 8^3 field
+  };
+  for (const auto& [args, file] : cases) {
+    const CommandRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(file), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(path("out.png")) || fs::exists(path("out.nrrd"))) << args;
+  }
+}
+
+TEST_F(CliTest, RealFieldFromFile) {
+  const char* data = std::getenv("LIC3D_TEST_DATA");
+  ASSERT_NE(data, nullptr);
+  const CommandRun r = run(std::string("render --field '") + data +
+                    "/example-femm-3d.vtk' --width 64 --height 64 -o femm.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(pngSize(path("femm.png")), std::make_pair(64, 64));
+}
+
+TEST_F(CliTest, NoVulkanDriverIsAClearErrorNotACrash) {
+  const CommandRun r = run("render --grid 8", "VK_DRIVER_FILES=/nonexistent/icd.json");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("no Vulkan"), std::string::npos) << r.output;
+  EXPECT_EQ(fileCount(), 0u);
+  const CommandRun devices = run("devices", "VK_DRIVER_FILES=/nonexistent/icd.json");
+  EXPECT_EQ(devices.status, 1) << devices.output;
+}
+
+TEST_F(CliTest, DevicesListsTheDriver) {
+  const CommandRun r = run("devices");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, RenderWithNoOptionsWritesLic3dPng) {
+  const CommandRun r = run("render");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(pngSize(path("lic3d.png")), std::make_pair(1024, 1024));
+  EXPECT_NE(r.output.find("tornado"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace lic3d

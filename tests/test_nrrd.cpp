@@ -1,0 +1,740 @@
+// NRRD reading and writing, the file helpers behind them, and readVectorField / readNoise dispatch.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "field_io.h"
+#include "file_util.h"
+#include "nrrd.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each test gets its own folder, so a failure leaves nothing that could confuse another test.
+class NrrdTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string("lic3d_") + info->test_suite_name() + "_" + info->name();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+
+  fs::path writeBytes(const std::string& name, const std::string& bytes) const {
+    const fs::path target = path(name);
+    std::ofstream out(target, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return target;
+  }
+
+  std::vector<std::string> listFolder() const {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir_))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+std::string readWhole(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Values as bytes in the given byte order.
+template <class T>
+std::string bytesOf(const std::vector<T>& values, std::endian order) {
+  std::string bytes(values.size() * sizeof(T), '\0');
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  if (order != std::endian::native)
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i * sizeof(T)),
+                   bytes.begin() + static_cast<std::ptrdiff_t>((i + 1) * sizeof(T)));
+  return bytes;
+}
+
+std::string gzipCompress(const std::string& data) {
+  z_stream zs{};
+  // 15 + 16: a gzip header and trailer, as teem writes them.
+  EXPECT_EQ(deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+VectorField makeField(Dims dims, GridGeometry geometry) {
+  VectorField field;
+  field.dims = dims;
+  field.geometry = geometry;
+  field.vectors.resize(voxelCount(dims));
+  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
+    const float t = static_cast<float>(i);
+    field.vectors[i] = {std::sin(0.7f * t) * 3.0f, std::cos(0.3f * t) - 0.25f, 1.0f / (1.0f + t)};
+  }
+  return field;
+}
+
+// The components of a field in file order, for hand-made payloads.
+std::vector<float> componentsOf(const VectorField& field) {
+  std::vector<float> values;
+  for (const glm::vec3& v : field.vectors) values.insert(values.end(), {v.x, v.y, v.z});
+  return values;
+}
+
+template <class T>
+void expectInputError(const Result<T>& result, const fs::path& file, const std::string& fragment) {
+  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
+  const std::string& message = result.error().message;
+  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
+  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
+  EXPECT_NE(message.find(fragment), std::string::npos)
+      << "'" << fragment << "' not in: " << message;
+}
+
+void expectSameField(const VectorField& actual, const VectorField& expected) {
+  EXPECT_EQ(actual.dims, expected.dims);
+  EXPECT_EQ(actual.geometry, expected.geometry);
+  ASSERT_EQ(actual.vectors.size(), expected.vectors.size());
+  for (std::size_t i = 0; i < expected.vectors.size(); ++i)
+    ASSERT_EQ(actual.vectors[i], expected.vectors[i]) << "voxel " << i;
+}
+
+// --- Round trips --------------------------------------------------------------------------------
+
+TEST_F(NrrdTest, VectorFieldRoundTripKeepsValuesAndGeometry) {
+  // Spacings like 0.1 and 1/3 have no short decimal form: the header must still round-trip them.
+  const VectorField field = makeField({5, 4, 3}, {{0.1, 1.0 / 3.0, 2.0}, {-1.5, 2.25, 1e-3}});
+  const fs::path file = path("field.nrrd");
+  ASSERT_TRUE(writeVectorFieldNrrd(file, field).ok());
+  EXPECT_TRUE(readWhole(file).starts_with("NRRD0004\n# written by lic3d\n"));
+  const Result<VectorField> read = readVectorFieldNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  expectSameField(*read, field);
+}
+
+TEST_F(NrrdTest, VectorFieldRoundTripOfOneVoxelAndOfLargeGrid) {
+  for (const Dims dims : {Dims{1, 1, 1}, Dims{70, 60, 50}}) {
+    const VectorField field = makeField(dims, {});
+    const fs::path file = path("field.nrrd");
+    ASSERT_TRUE(writeVectorFieldNrrd(file, field).ok());
+    const Result<VectorField> read = readVectorFieldNrrd(file);
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    expectSameField(*read, field);
+  }
+}
+
+TEST_F(NrrdTest, ScalarVolumeIsWrittenAsDocumented) {
+  ScalarVolume volume;
+  volume.dims = {3, 2, 2};
+  volume.geometry = {{0.5, 0.25, 2.0}, {-1.0, 0.0, 10.5}};
+  for (int i = 0; i < 12; ++i) volume.values.push_back(static_cast<float>(i) / 11.0f);
+  const fs::path file = path("lic.nrrd");
+  ASSERT_TRUE(writeScalarNrrd(file, volume).ok());
+
+  const std::string bytes = readWhole(file);
+  const std::size_t end = bytes.find("\n\n");
+  ASSERT_NE(end, std::string::npos);
+  const std::string header = bytes.substr(0, end + 1);
+  for (const char* line : {"NRRD0004\n", "# written by lic3d\n", "type: float\n", "dimension: 3\n",
+                           "space dimension: 3\n", "sizes: 3 2 2\n",
+                           "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\n", "endian: little\n",
+                           "encoding: raw\n", "space origin: (-1,0,10.5)\n"})
+    EXPECT_NE(header.find(line), std::string::npos) << line << " not in:\n" << header;
+  EXPECT_EQ(bytes.substr(end + 2), bytesOf(volume.values, std::endian::little));
+
+  // The same file is valid float noise (values in [0,1] are kept exactly).
+  const Result<NoiseVolume> noise = readNoiseNrrd(file);
+  ASSERT_TRUE(noise.ok()) << noise.error().message;
+  EXPECT_EQ(noise->dims, volume.dims);
+  ASSERT_EQ(noise->type, NoiseType::Float32);
+  for (std::size_t i = 0; i < volume.values.size(); ++i)
+    EXPECT_EQ(noise->value(i), volume.values[i]);
+}
+
+TEST_F(NrrdTest, NoiseRoundTripKeepsType) {
+  for (const NoiseType type : {NoiseType::UInt8, NoiseType::UInt16, NoiseType::Float32}) {
+    NoiseVolume noise;
+    noise.dims = {4, 3, 2};
+    noise.type = type;
+    noise.bytes.resize(voxelCount(noise.dims) * bytesPerValue(type));
+    for (std::size_t i = 0; i < voxelCount(noise.dims); ++i) {
+      if (type == NoiseType::UInt8) noise.bytes[i] = static_cast<std::uint8_t>(i * 37);
+      if (type == NoiseType::UInt16) {
+        const std::uint16_t v = static_cast<std::uint16_t>(i * 2731);
+        std::memcpy(noise.bytes.data() + 2 * i, &v, 2);
+      }
+      if (type == NoiseType::Float32) {
+        const float v = static_cast<float>(i) / 23.0f;
+        std::memcpy(noise.bytes.data() + 4 * i, &v, 4);
+      }
+    }
+    const fs::path file = path("noise.nrrd");
+    ASSERT_TRUE(writeNoiseNrrd(file, noise).ok());
+    const Result<NoiseVolume> read = readNoise(file);
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    EXPECT_EQ(read->dims, noise.dims);
+    EXPECT_EQ(read->type, noise.type);
+    EXPECT_EQ(read->bytes, noise.bytes);
+  }
+}
+
+TEST_F(NrrdTest, WritersRefuseInconsistentVolumesAndLeaveNoFile) {
+  VectorField field = makeField({2, 2, 2}, {});
+  field.vectors.pop_back();
+  const fs::path file = path("bad.nrrd");
+  expectInputError(writeVectorFieldNrrd(file, field), file, "needs 8");
+  ScalarVolume volume;
+  volume.dims = {0, 1, 1};
+  expectInputError(writeScalarNrrd(file, volume), file, "empty");
+  field = makeField({2, 2, 2}, {{1.0, 0.0, 1.0}, {0.0, 0.0, 0.0}});
+  expectInputError(writeVectorFieldNrrd(file, field), file, "spacing");
+  EXPECT_TRUE(listFolder().empty());
+}
+
+// --- Encodings, byte orders, types ---------------------------------------------------------------
+
+TEST_F(NrrdTest, ReadsGzipVectorField) {
+  const VectorField field = makeField({6, 5, 4}, {{0.5, 0.5, 1.0}, {1.0, 2.0, 3.0}});
+  const std::string payload = bytesOf(componentsOf(field), std::endian::little);
+  for (const char* encoding : {"gzip", "gz", "GZIP"}) {
+    const fs::path file =
+        writeBytes("field.nrrd", std::string("NRRD0005\ntype: float\ndimension: 4\nsizes: 3 6 5 4\n"
+                                             "spacings: nan 0.5 0.5 1\nspace origin: (1,2,3)\n"
+                                             "endian: little\nencoding: ") +
+                                     encoding + "\n\n" + gzipCompress(payload));
+    const Result<VectorField> read = readVectorFieldNrrd(file);
+    ASSERT_TRUE(read.ok()) << encoding << ": " << read.error().message;
+    expectSameField(*read, field);
+  }
+}
+
+TEST_F(NrrdTest, ReadsGzipNoiseAndIgnoresBytesAfterTheStream) {
+  std::vector<std::uint8_t> values(40 * 30 * 20);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<std::uint8_t>(i % 7 * 30);
+  const std::string payload(values.begin(), values.end());
+  const fs::path file = writeBytes("noise.nrrd",
+                                   "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 40 30 20\n"
+                                   "encoding: gzip\n\n" +
+                                       gzipCompress(payload) + "trailing garbage");
+  const Result<NoiseVolume> read = readNoiseNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->type, NoiseType::UInt8);
+  EXPECT_EQ(read->bytes, values);
+}
+
+TEST_F(NrrdTest, GzipThatDoesNotMatchTheHeaderIsAnError) {
+  const std::string payload = bytesOf(std::vector<float>(12, 0.5f), std::endian::little);
+  const std::string compressed = gzipCompress(payload);
+  const std::string header =
+      "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\nendian: little\n"
+      "encoding: gzip\n\n";
+  fs::path file = writeBytes("half.nrrd", header + compressed.substr(0, compressed.size() / 2));
+  expectInputError(readVectorFieldNrrd(file), file, "truncated");
+  // All data present, but the gzip trailer (CRC and length) cut off.
+  file = writeBytes("notrailer.nrrd", header + compressed.substr(0, compressed.size() - 8));
+  expectInputError(readVectorFieldNrrd(file), file, "truncated");
+  file = writeBytes("short.nrrd", header + gzipCompress(payload.substr(0, 40)));
+  expectInputError(readVectorFieldNrrd(file), file, "holds only 40 bytes");
+  file = writeBytes("long.nrrd", header + gzipCompress(payload + payload));
+  expectInputError(readVectorFieldNrrd(file), file, "more than the 48 bytes");
+  std::string corrupt = compressed;
+  for (std::size_t i = 10; i < corrupt.size(); ++i)
+    corrupt[i] = static_cast<char>(corrupt[i] ^ 0x5a);
+  file = writeBytes("corrupt.nrrd", header + corrupt);
+  expectInputError(readVectorFieldNrrd(file), file, "gzip data");
+  file = writeBytes("missing.nrrd", header);
+  expectInputError(readVectorFieldNrrd(file), file, "gzip data is missing");
+}
+
+TEST_F(NrrdTest, ReadsBigEndianAndDoubleVectorFields) {
+  const VectorField field = makeField({3, 2, 2}, {});
+  const std::vector<float> floats = componentsOf(field);
+  const std::vector<double> doubles(floats.begin(), floats.end());
+  struct Case {
+    const char* type;
+    const char* endian;
+    std::string payload;
+  };
+  const Case cases[] = {
+      {"float", "big", bytesOf(floats, std::endian::big)},
+      {"double", "little", bytesOf(doubles, std::endian::little)},
+      {"double", "big", bytesOf(doubles, std::endian::big)},
+  };
+  for (const Case& c : cases) {
+    const fs::path file =
+        writeBytes("field.nrrd", std::string("NRRD0004\ntype: ") + c.type +
+                                     "\ndimension: 4\nsizes: 3 3 2 2\nendian: " + c.endian +
+                                     "\nencoding: raw\n\n" + c.payload);
+    const Result<VectorField> read = readVectorFieldNrrd(file);
+    ASSERT_TRUE(read.ok()) << c.type << " " << c.endian << ": " << read.error().message;
+    expectSameField(*read, field);
+  }
+}
+
+TEST_F(NrrdTest, ReadsBigEndianUShortAndFloatNoise) {
+  const std::vector<std::uint16_t> shorts = {0, 1, 256, 65535, 4660, 9};
+  fs::path file = writeBytes("u16.nrrd",
+                             "NRRD0004\ntype: ushort\ndimension: 3\nsizes: 3 2 1\nendian: big\n"
+                             "encoding: raw\n\n" +
+                                 bytesOf(shorts, std::endian::big));
+  Result<NoiseVolume> read = readNoiseNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->type, NoiseType::UInt16);
+  for (std::size_t i = 0; i < shorts.size(); ++i) EXPECT_EQ(read->value(i), shorts[i] / 65535.0f);
+
+  const std::vector<float> floats = {0.0f, 0.25f, 1.0f, 0.5f, 0.125f, 0.75f};
+  file = writeBytes("f32.nrrd",
+                    "NRRD0004\ntype: float\ndimension: 3\nsizes: 3 2 1\nendian: big\n"
+                    "encoding: raw\n\n" +
+                        bytesOf(floats, std::endian::big));
+  read = readNoiseNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  for (std::size_t i = 0; i < floats.size(); ++i) EXPECT_EQ(read->value(i), floats[i]);
+}
+
+TEST_F(NrrdTest, AcceptsEveryNrrdSpellingOfTheNoiseTypes) {
+  const std::vector<std::uint16_t> shorts = {1, 2, 3, 4};
+  const std::vector<std::uint8_t> bytes = {1, 2, 3, 4};
+  struct Case {
+    const char* spelling;
+    NoiseType type;
+  };
+  const Case cases[] = {
+      {"uchar", NoiseType::UInt8},           {"unsigned char", NoiseType::UInt8},
+      {"uint8", NoiseType::UInt8},           {"uint8_t", NoiseType::UInt8},
+      {"UNSIGNED  CHAR", NoiseType::UInt8},  {"ushort", NoiseType::UInt16},
+      {"unsigned short", NoiseType::UInt16}, {"unsigned short int", NoiseType::UInt16},
+      {"uint16", NoiseType::UInt16},         {"uint16_t", NoiseType::UInt16},
+      {"float", NoiseType::Float32},
+  };
+  for (const Case& c : cases) {
+    std::string payload;
+    if (c.type == NoiseType::UInt8) payload.assign(bytes.begin(), bytes.end());
+    if (c.type == NoiseType::UInt16) payload = bytesOf(shorts, std::endian::little);
+    if (c.type == NoiseType::Float32)
+      payload = bytesOf(std::vector<float>{0.0f, 0.5f, 0.25f, 1.0f}, std::endian::little);
+    const fs::path file =
+        writeBytes("noise.nrrd", std::string("NRRD0004\ntype: ") + c.spelling +
+                                     "\ndimension: 3\nsizes: 2 2 1\nendian: little\n"
+                                     "encoding: raw\n\n" +
+                                     payload);
+    const Result<NoiseVolume> read = readNoiseNrrd(file);
+    ASSERT_TRUE(read.ok()) << c.spelling << ": " << read.error().message;
+    EXPECT_EQ(read->type, c.type) << c.spelling;
+  }
+}
+
+TEST_F(NrrdTest, FloatNoiseOutsideTheUnitRangeIsRescaledByItsMinAndMax) {
+  const std::vector<float> values = {2.0f, 4.0f, 6.0f, 10.0f};
+  const fs::path file = writeBytes("noise.nrrd",
+                                   "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 1\n"
+                                   "endian: little\nencoding: raw\n\n" +
+                                       bytesOf(values, std::endian::little));
+  const Result<NoiseVolume> read = readNoiseNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->value(0), 0.0f);
+  EXPECT_EQ(read->value(1), 0.25f);
+  EXPECT_EQ(read->value(2), 0.5f);
+  EXPECT_EQ(read->value(3), 1.0f);
+}
+
+TEST_F(NrrdTest, FloatNoiseMustBeFiniteAndRescalable) {
+  const std::string header =
+      "NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 1\nendian: little\nencoding: raw\n\n";
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  fs::path file = writeBytes(
+      "nan.nrrd", header + bytesOf(std::vector<float>{0.0f, nan, 0.5f, 1.0f}, std::endian::little));
+  expectInputError(readNoiseNrrd(file), file, "voxel (1,0,0) is NaN or infinite");
+  file = writeBytes(
+      "inf.nrrd", header + bytesOf(std::vector<float>{0.0f, 0.5f, 1.0f, inf}, std::endian::little));
+  expectInputError(readNoiseNrrd(file), file, "voxel (1,1,0) is NaN or infinite");
+  file =
+      writeBytes("const.nrrd", header + bytesOf(std::vector<float>(4, 7.0f), std::endian::little));
+  expectInputError(readNoiseNrrd(file), file, "constant");
+  // A constant inside [0,1] needs no rescaling and is fine.
+  file =
+      writeBytes("half.nrrd", header + bytesOf(std::vector<float>(4, 0.5f), std::endian::little));
+  EXPECT_TRUE(readNoiseNrrd(file).ok());
+}
+
+// --- Header details -----------------------------------------------------------------------------
+
+TEST_F(NrrdTest, AcceptsCommentsKeyValuesUnknownFieldsAndCrlf) {
+  const VectorField field = makeField({2, 2, 1}, {{0.5, 0.75, 2.0}, {-1.0, 0.5, 4.0}});
+  const std::string header =
+      "NRRD0001\r\n# a comment\r\ncontent: test field\r\nmy key:=my: value\r\ntype: float\r\n"
+      "dimension: 4\r\nspace: right-anterior-superior\r\nsizes: 3 2 2 1\r\nunknown field: "
+      "whatever\r\n"
+      "kinds: 3-vector domain domain domain\r\nspacings: NaN 0.5 0.75 2\r\n"
+      "space origin: ( -1 , 0.5 , 4 )\r\nendian: little\r\nencoding: raw\r\n\r\n";
+  const fs::path file =
+      writeBytes("field.nrrd", header + bytesOf(componentsOf(field), std::endian::little) + "junk");
+  const Result<VectorField> read = readVectorFieldNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  expectSameField(*read, field);
+}
+
+TEST_F(NrrdTest, SpaceDirectionsGiveTheSpacingEvenWhenRotated) {
+  const VectorField field = makeField({2, 2, 1}, {});
+  // A frame rotated about z: each axis keeps its length (0.5, 2, 3); the rotation is dropped.
+  const fs::path file =
+      writeBytes("field.nrrd",
+                 "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\nspace dimension: 3\n"
+                 "space directions: none (0.3,0.4,0) (-1.2, 1.6, 0) (0,0,3)\n"
+                 "spacings: nan 9 9 9\nendian: little\nencoding: raw\n\n" +
+                     bytesOf(componentsOf(field), std::endian::little));
+  const Result<VectorField> read = readVectorFieldNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_DOUBLE_EQ(read->geometry.spacing.x, 0.5);
+  EXPECT_DOUBLE_EQ(read->geometry.spacing.y, 2.0);
+  EXPECT_DOUBLE_EQ(read->geometry.spacing.z, 3.0);
+  EXPECT_EQ(read->geometry.origin, glm::dvec3(0.0));
+}
+
+struct MalformedCase {
+  const char* label;
+  std::string content;
+  const char* fragment;
+};
+
+std::string fieldFile(const std::string& fields,
+                      const std::string& payload = std::string(48, '\0')) {
+  return "NRRD0004\n" + fields + "\n" + payload;
+}
+
+const std::string kGoodFields =
+    "type: float\ndimension: 4\nsizes: 3 2 2 1\nendian: little\nencoding: raw\n";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
+  const std::string nanBytes = bytesOf(
+      std::vector<float>{0, 0, 0, 0, std::numeric_limits<float>::quiet_NaN(), 0, 0, 0, 0, 0, 0, 0},
+      std::endian::little);
+  const std::string hugeDouble =
+      bytesOf(std::vector<double>{0, 0, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 0}, std::endian::little);
+  const MalformedCase cases[] = {
+      {"empty", "", "empty file"},
+      {"bad magic", "NRRX0004\n" + kGoodFields + "\n", "not a NRRD file"},
+      {"binary garbage", std::string("\x89PNG\r\n\x1a\n\0\0", 10), "not a NRRD file"},
+      {"no newline", std::string(200, 'N'), "not a NRRD file"},
+      {"future version", "NRRD0006\n" + kGoodFields + "\n", "unsupported NRRD version"},
+      {"version zero", "NRRD0000\n" + kGoodFields + "\n", "unsupported NRRD version"},
+      {"missing sizes", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1\n", "")),
+       "missing field 'sizes'"},
+      {"missing type", fieldFile(replaced(kGoodFields, "type: float\n", "")),
+       "missing field 'type'"},
+      {"missing dimension", fieldFile(replaced(kGoodFields, "dimension: 4\n", "")),
+       "missing field 'dimension'"},
+      {"missing encoding", fieldFile(replaced(kGoodFields, "encoding: raw\n", "")),
+       "missing field 'encoding'"},
+      {"missing endian", fieldFile(replaced(kGoodFields, "endian: little\n", "")),
+       "missing field 'endian'"},
+      {"wrong dimension", fieldFile(replaced(kGoodFields, "dimension: 4", "dimension: 3")),
+       "dimension: expected 4"},
+      {"non-numeric dimension", fieldFile(replaced(kGoodFields, "dimension: 4", "dimension: four")),
+       "not a whole number"},
+      {"sizes count", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 2 2")),
+       "sizes: expected 4 numbers"},
+      {"two components", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 2 2 2 1")),
+       "must have size 3"},
+      {"size too large", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 16385 2 1")),
+       "outside [1, 16384]"},
+      {"size zero", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 2 0 1")),
+       "outside [1, 16384]"},
+      {"too many voxels",
+       fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 16384 16384 9")),
+       "exceed the limit"},
+      {"non-numeric size", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 2 x 1")),
+       "'x' is not a whole number"},
+      {"negative size", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 -2 2 1")),
+       "'-2' is not a whole number"},
+      {"fractional size", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 2.0 2 1")),
+       "'2.0' is not a whole number"},
+      {"overflowing size",
+       fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 99999999999999999999999 2 1")),
+       "not a whole number"},
+      {"unknown type", fieldFile(replaced(kGoodFields, "type: float", "type: quaternion")),
+       "unknown type 'quaternion'"},
+      {"integer type", fieldFile(replaced(kGoodFields, "type: float", "type: short")),
+       "'short' is not supported"},
+      {"block type", fieldFile(replaced(kGoodFields, "type: float", "type: block")),
+       "'block' is not supported"},
+      {"ascii encoding", fieldFile(replaced(kGoodFields, "encoding: raw", "encoding: ascii")),
+       "'ascii' is not supported"},
+      {"bzip2 encoding", fieldFile(replaced(kGoodFields, "encoding: raw", "encoding: bzip2")),
+       "'bzip2' is not supported"},
+      {"unknown encoding", fieldFile(replaced(kGoodFields, "encoding: raw", "encoding: lz4")),
+       "unknown encoding"},
+      {"bad endian", fieldFile(replaced(kGoodFields, "endian: little", "endian: middle")),
+       "expected little or big, found 'middle'"},
+      {"truncated payload", fieldFile(kGoodFields, std::string(47, '\0')), "truncated"},
+      {"no payload", fieldFile(kGoodFields, ""), "truncated"},
+      {"no blank line", "NRRD0004\n" + kGoodFields, "blank line"},
+      {"huge header", "NRRD0004\n" + std::string(70000, '#') + "\n" + kGoodFields + "\n", "64 KiB"},
+      {"detached", fieldFile(kGoodFields + "data file: field.raw\n"), "detached NRRD"},
+      {"detached old spelling", fieldFile(kGoodFields + "datafile: field.raw\n"), "detached NRRD"},
+      {"duplicate field", fieldFile(kGoodFields + "type: double\n"), "appears twice"},
+      {"no colon", fieldFile(kGoodFields + "what is this\n"), "expected 'field: value'"},
+      {"line skip", fieldFile(kGoodFields + "line skip: 2\n"), "line skip"},
+      {"byte skip", fieldFile(kGoodFields + "byte skip: -1\n"), "byte skip"},
+      {"nan spacing", fieldFile(kGoodFields + "spacings: nan nan 1 1\n"), "spacings: axis 1"},
+      {"zero spacing", fieldFile(kGoodFields + "spacings: nan 1 0 1\n"), "spacings: axis 2"},
+      {"spacings count", fieldFile(kGoodFields + "spacings: 1 1 1\n"),
+       "spacings: expected 4 numbers"},
+      {"short direction", fieldFile(kGoodFields + "space directions: none (1,0) (0,1,0) (0,0,1)\n"),
+       "space directions: axis 1"},
+      {"zero direction",
+       fieldFile(kGoodFields + "space directions: none (0,0,0) (0,1,0) (0,0,1)\n"), "zero length"},
+      {"direction for components",
+       fieldFile(kGoodFields + "space directions: (1,0,0) (1,0,0) (0,1,0) (0,0,1)\n"),
+       "must be 'none'"},
+      {"directions count", fieldFile(kGoodFields + "space directions: none (1,0,0) (0,1,0)\n"),
+       "expected 4 entries"},
+      {"unclosed direction",
+       fieldFile(kGoodFields + "space directions: none (1,0,0 (0,1,0) (0,0,1)\n"),
+       "space directions"},
+      {"bad origin", fieldFile(kGoodFields + "space origin: (1,2)\n"), "space origin"},
+      {"nan origin", fieldFile(kGoodFields + "space origin: (nan,0,0)\n"), "space origin"},
+      {"origin without parentheses", fieldFile(kGoodFields + "space origin: 1,2,3\n"),
+       "space origin"},
+      {"space dimension", fieldFile(kGoodFields + "space dimension: 2\n"),
+       "space dimension: expected 3"},
+      {"nan vector", fieldFile(kGoodFields, nanBytes), "vector at voxel (1,0,0) is NaN"},
+      {"double beyond float",
+       fieldFile(replaced(kGoodFields, "type: float", "type: double"), hugeDouble),
+       "outside the float range"},
+      {"gzip cannot hold",
+       fieldFile(replaced(replaced(kGoodFields, "encoding: raw", "encoding: gzip"),
+                          "sizes: 3 2 2 1", "sizes: 3 512 512 512"),
+                 std::string(10, 'x')),
+       "cannot inflate"},
+  };
+  for (const MalformedCase& c : cases) {
+    SCOPED_TRACE(c.label);
+    const fs::path file = writeBytes("bad field.nrrd", c.content);
+    expectInputError(readVectorFieldNrrd(file), file, c.fragment);
+  }
+}
+
+TEST_F(NrrdTest, MalformedNoiseFilesAreInputErrors) {
+  const std::string good = "type: uchar\ndimension: 3\nsizes: 2 2 1\nencoding: raw\n";
+  const MalformedCase cases[] = {
+      {"vector dimension",
+       fieldFile(replaced(good, "dimension: 3\nsizes: 2 2 1", "dimension: 4\nsizes: 3 2 2 1"), ""),
+       "dimension: expected 3"},
+      {"double noise",
+       fieldFile(replaced(good, "uchar", "double") + "endian: little\n", std::string(32, '\0')),
+       "'double' is not supported here (expected uchar, ushort or float)"},
+      {"signed noise", fieldFile(replaced(good, "uchar", "signed char"), "abcd"),
+       "'signed char' is not supported"},
+      {"ushort without endian", fieldFile(replaced(good, "uchar", "ushort"), std::string(8, '\0')),
+       "missing field 'endian'"},
+      {"truncated", fieldFile(good, "abc"), "truncated"},
+      {"sizes count", fieldFile(replaced(good, "sizes: 2 2 1", "sizes: 2 2"), "abcd"),
+       "expected 3 numbers"},
+  };
+  for (const MalformedCase& c : cases) {
+    SCOPED_TRACE(c.label);
+    const fs::path file = writeBytes("bad-noise.nrrd", c.content);
+    expectInputError(readNoiseNrrd(file), file, c.fragment);
+  }
+}
+
+TEST_F(NrrdTest, HugeHeaderSizesAreRefusedBeforeAllocating) {
+  // 2^31 voxels of float vectors would be 24 GiB; the 48-byte payload must be refused first.
+  const fs::path file = writeBytes(
+      "huge.nrrd", fieldFile(replaced(kGoodFields, "sizes: 3 2 2 1", "sizes: 3 16384 16384 8")));
+  expectInputError(readVectorFieldNrrd(file), file, "truncated");
+}
+
+TEST_F(NrrdTest, CorruptedFilesNeverCrashTheReaders) {
+  // Random byte flips and cuts of valid files must give a value or an InvalidInput error; run
+  // under the sanitizers this also checks every read stays in bounds.
+  const VectorField field = makeField({3, 2, 2}, {{0.5, 1.0, 2.0}, {1.0, 2.0, 3.0}});
+  const fs::path source = path("source.nrrd");
+  ASSERT_TRUE(writeVectorFieldNrrd(source, field).ok());
+  const std::string raw = readWhole(source);
+  const std::string gzipped =
+      replaced(raw.substr(0, raw.find("\n\n") + 2), "encoding: raw", "encoding: gzip") +
+      gzipCompress(raw.substr(raw.find("\n\n") + 2));
+  std::mt19937 random(1234);
+  for (const std::string& original : {raw, gzipped}) {
+    for (int trial = 0; trial < 400; ++trial) {
+      std::string mutated = original;
+      const int flips = 1 + static_cast<int>(random() % 4);
+      for (int f = 0; f < flips; ++f) {
+        const std::size_t at = random() % mutated.size();
+        mutated[at] =
+            static_cast<char>(random() % 2 ? random() % 256 : "0123456789 :\n(),-"[random() % 17]);
+      }
+      if (trial % 5 == 0) mutated.resize(random() % mutated.size());
+      const fs::path file = writeBytes("mutated.nrrd", mutated);
+      const Result<VectorField> read = readVectorFieldNrrd(file);
+      if (!read.ok()) {
+        EXPECT_EQ(read.error().kind, ErrorKind::InvalidInput) << read.error().message;
+      } else {
+        EXPECT_EQ(read->vectors.size(), voxelCount(read->dims));
+      }
+      const Result<NoiseVolume> noise = readNoiseNrrd(file);
+      if (!noise.ok()) {
+        EXPECT_EQ(noise.error().kind, ErrorKind::InvalidInput) << noise.error().message;
+      }
+    }
+  }
+}
+
+// --- File helpers -------------------------------------------------------------------------------
+
+TEST_F(NrrdTest, WriteFileAtomicallyLeavesOnlyTheTarget) {
+  const fs::path file = path("out.bin");
+  const std::string content("bytes\0with a NUL", 16);
+  ASSERT_TRUE(writeFileAtomically(file, content).ok());
+  EXPECT_EQ(readWhole(file), content);
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"out.bin"});
+  // Overwriting goes through the same temporary-then-rename path.
+  ASSERT_TRUE(writeFileAtomically(file, [](std::ostream& out) {
+                return static_cast<bool>(out << "second");
+              }).ok());
+  EXPECT_EQ(readWhole(file), "second");
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"out.bin"});
+}
+
+TEST_F(NrrdTest, FailedWriterLeavesNoTargetAndNoTemporaryFile) {
+  const fs::path file = path("out.nrrd");
+  const Result<void> result = writeFileAtomically(file, [](std::ostream& out) {
+    out << "half of the content";
+    return false;
+  });
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find(file.string()), std::string::npos)
+      << result.error().message;
+  EXPECT_TRUE(listFolder().empty());
+
+  // An existing file keeps its content when a later write fails.
+  ASSERT_TRUE(writeFileAtomically(file, std::string_view("old")).ok());
+  EXPECT_FALSE(writeFileAtomically(file, [](std::ostream&) { return false; }).ok());
+  EXPECT_EQ(readWhole(file), "old");
+  EXPECT_THROW((void)writeFileAtomically(file,
+                                         [](std::ostream& out) -> bool {
+                                           out << "partial";
+                                           throw std::runtime_error("writer failed");
+                                         }),
+               std::runtime_error);
+  EXPECT_EQ(readWhole(file), "old");
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"out.nrrd"});
+}
+
+TEST_F(NrrdTest, WriteFileAtomicallyReportsPathAndReason) {
+  const fs::path missingFolder = path("no such folder") / "out.nrrd";
+  Result<void> result = writeFileAtomically(missingFolder, std::string_view("x"));
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(result.error().message.find(missingFolder.string()), std::string::npos)
+      << result.error().message;
+  EXPECT_NE(result.error().message.find("No such file or directory"), std::string::npos)
+      << result.error().message;
+
+  // Renaming over a folder fails after the temporary file exists: it must be cleaned up.
+  fs::create_directory(path("folder.nrrd"));
+  result = writeFileAtomically(path("folder.nrrd"), std::string_view("x"));
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find("folder.nrrd"), std::string::npos)
+      << result.error().message;
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"folder.nrrd"});
+  EXPECT_TRUE(fs::is_directory(path("folder.nrrd")));
+}
+
+TEST_F(NrrdTest, ReadFileHonoursTheLimitAndNamesTheFile) {
+  const fs::path file = writeBytes("data.txt", "0123456789");
+  Result<std::string> read = readFile(file, 10);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(*read, "0123456789");
+  expectInputError(readFile(file, 9), file, "too large");
+  expectInputError(readFile(path("missing.txt"), 100), path("missing.txt"),
+                   "No such file or directory");
+  fs::create_directory(path("folder"));
+  expectInputError(readFile(path("folder"), 100), path("folder"), "not a regular file");
+  // A FIFO without a writer must be refused, not waited on.
+  ASSERT_EQ(::mkfifo(path("fifo.nrrd").c_str(), 0600), 0);
+  expectInputError(readVectorFieldNrrd(path("fifo.nrrd")), path("fifo.nrrd"), "not a regular file");
+  EXPECT_EQ(*readFile(writeBytes("empty.txt", ""), 0), "");
+}
+
+// --- Dispatch by extension ----------------------------------------------------------------------
+
+TEST_F(NrrdTest, ReadVectorFieldDispatchesByExtension) {
+  const VectorField field = makeField({2, 3, 4}, {});
+  const fs::path file = path("FIELD.NRRD");
+  ASSERT_TRUE(writeVectorFieldNrrd(file, field).ok());
+  const Result<VectorField> read = readVectorField(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  expectSameField(*read, field);
+  expectInputError(readVectorField(file, "velocity"), file, "applies only to .vtk files");
+
+  const fs::path raw = writeBytes("field.raw", "whatever");
+  expectInputError(readVectorField(raw), raw, "supported: .nrrd, .vtk");
+  const fs::path noExtension = writeBytes("field", "whatever");
+  expectInputError(readVectorField(noExtension), noExtension, "no extension");
+  expectInputError(readVectorField(path("missing.nrrd")), path("missing.nrrd"), "no such file");
+  expectInputError(readVectorField(path("missing.vtk")), path("missing.vtk"), "no such file");
+  fs::create_directory(path("folder.nrrd"));
+  expectInputError(readVectorField(path("folder.nrrd")), path("folder.nrrd"), "directory");
+  const fs::path detached = writeBytes("field.nhdr", "NRRD0004\n");
+  expectInputError(readVectorField(detached), detached, "not supported yet");
+}
+
+TEST_F(NrrdTest, ReadNoiseTakesOnlyNrrd) {
+  NoiseVolume noise;
+  noise.dims = {2, 2, 2};
+  noise.bytes.assign(8, 128);
+  ASSERT_TRUE(writeNoiseNrrd(path("noise.nrrd"), noise).ok());
+  const Result<NoiseVolume> read = readNoise(path("noise.nrrd"));
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->bytes, noise.bytes);
+  const fs::path vtk = writeBytes("noise.vtk", "# vtk DataFile Version 3.0\n");
+  expectInputError(readNoise(vtk), vtk, "supported: .nrrd");
+  expectInputError(readNoise(path("missing.nrrd")), path("missing.nrrd"), "no such file");
+}
+
+}  // namespace
+}  // namespace lic3d
