@@ -60,13 +60,15 @@ Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
   return timing;
 }
 
-// Field (RGBA16F), noise (R8), LIC volume (R16) and the upload staging of the field.
-double residentBytes(int n) { return static_cast<double>(n) * n * n * (8.0 + 1.0 + 2.0 + 8.0); }
+// Field and noise texture, LIC volume (R16) and the texture's upload staging.
+double residentBytes(int n, FieldPrecision precision) {
+  const double texel = precision == FieldPrecision::Half ? 8.0 : 16.0;
+  return static_cast<double>(n) * n * n * (2.0 * texel + 2.0);
+}
 
 Result<void> setVolume(LicRenderer& renderer, AnalyticField field, int n, std::uint64_t seed) {
   const Dims dims(n);
-  LIC3D_TRY(renderer.setField(makeAnalyticField(field, dims)));
-  return renderer.setNoise(makeWhiteNoise(dims, seed));
+  return renderer.setInputs(makeAnalyticField(field, dims), makeWhiteNoise(dims, seed));
 }
 
 std::string today() {
@@ -98,17 +100,21 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
 
   std::printf("lic3d bench on %s (%s, %s), %s\n", device.name.c_str(), deviceTypeName(device.type),
               device.driver.c_str(), report["date"].get<std::string>().c_str());
-  std::printf("LIC compute: %s field, rk2, box kernel, h = 0.5, trilinear noise; median of %d "
-              "after %d warm-up (GPU timestamps)\n",
-              options.input.field.c_str(), options.repeats, options.warmup);
+  std::printf("LIC compute: %s field, rk2, box kernel, h = 0.5, trilinear noise, %s-precision "
+              "field texture; median of %d after %d warm-up (GPU timestamps)\n",
+              options.input.field.c_str(),
+              resolvePrecision(context, options.precision) == FieldPrecision::Half ? "half" : "float",
+              options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
 
-  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context));
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, options.precision));
+  const FieldPrecision precision = renderer.fieldPrecision();
+  report["field_precision"] = precision == FieldPrecision::Half ? "half" : "float";
   report["lic"] = nlohmann::json::array();
   for (const int n : sizes) {
-    if (residentBytes(n) > 0.8 * memory) {
+    if (residentBytes(n, precision) > 0.8 * memory) {
       std::printf("%6d^3 %6s %12s (skipped: needs %.1f GiB of device memory)\n", n, "-", "-",
-                  residentBytes(n) / (1 << 30));
+                  residentBytes(n, precision) / (1 << 30));
       report["lic"].push_back({{"n", n}, {"skipped", "device memory"}});
       continue;
     }
@@ -139,7 +145,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   std::printf("\nFrame: %d^3 volume, %d view-aligned slices (one per voxel), default camera\n", n, n);
   std::printf("%12s %12s %12s\n", "image", "median ms", "min ms");
   report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
-  if (residentBytes(n) > 0.8 * memory) {
+  if (residentBytes(n, precision) > 0.8 * memory) {
     report["frame"]["skipped"] = "device memory";
   } else {
     LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));

@@ -114,9 +114,21 @@ void addLicParamsOptions(CLI::App& app, LicParams& params) {
 
 void addLicOptions(CLI::App& app, LicParams& params) { addLicParamsOptions(app, params); }
 
+void addPrecisionOption(CLI::App& app, FieldPrecision& precision) {
+  const std::map<std::string, FieldPrecision> precisions{{"auto", FieldPrecision::Auto},
+                                                         {"half", FieldPrecision::Half},
+                                                         {"float", FieldPrecision::Float}};
+  app.add_option("--field-precision", precision,
+                 "Precision of the field and noise texture on the device: auto (float on CPU "
+                 "drivers, half on GPUs), half (RGBA16F) or float (RGBA32F)")
+      ->transform(CLI::CheckedTransformer(precisions).description(""))
+      ->default_str("auto");
+}
+
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput) {
   addFieldOptions(app, options.input);
   addLicOptions(app, options.lic);
+  addPrecisionOption(app, options.precision);
   app.add_flag("--cpu", options.cpu,
                "Compute the LIC volume with the CPU reference (multi-threaded, double "
                "precision) instead of the GPU");

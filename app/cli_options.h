@@ -11,6 +11,7 @@
 #include "lic_params.h"
 #include "view_params.h"
 #include "volume.h"
+#include "volume_textures.h"
 
 namespace lic3d::cli {
 
@@ -37,6 +38,7 @@ struct FieldOptions {
 struct ComputeOptions {
   FieldOptions input;
   LicParams lic;
+  FieldPrecision precision = FieldPrecision::Auto;
   bool cpu = false;
   std::string output;
 };
@@ -51,6 +53,7 @@ struct RenderOptions {
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
 void addFieldOptions(CLI::App& app, FieldOptions& options);
 void addLicOptions(CLI::App& app, LicParams& params);
+void addPrecisionOption(CLI::App& app, FieldPrecision& precision);
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput);
 void addViewOptions(CLI::App& app, RenderOptions& options);
 

@@ -55,8 +55,7 @@ Result<ScalarVolume> computeOnCpu(const GlobalOptions& global, const Inputs& inp
 // Uploads the inputs and makes the LIC volume, on the GPU or (with --cpu) the CPU.
 Result<void> prepareRenderer(const GlobalOptions& global, const ComputeOptions& options,
                              const Inputs& inputs, LicRenderer& renderer) {
-  LIC3D_TRY(renderer.setField(inputs.field));
-  LIC3D_TRY(renderer.setNoise(inputs.noise));
+  LIC3D_TRY(renderer.setInputs(inputs.field, inputs.noise));
   if (options.cpu) {
     LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(global, inputs, options.lic));
     return renderer.setLicVolume(volume, options.lic);
@@ -104,7 +103,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   if (!context) return reportError(context.error());
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context);
+    Result<LicRenderer> renderer = LicRenderer::create(*context, options.precision);
     Result<void> done = renderer ? prepareRenderer(global, options, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<ScalarVolume> volume = done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
@@ -128,7 +127,7 @@ int runRender(const GlobalOptions& global, const RenderOptions& options) {
 
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context);
+    Result<LicRenderer> renderer = LicRenderer::create(*context, compute.precision);
     Result<void> done = renderer ? prepareRenderer(global, compute, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<RgbaImage> image =

@@ -9,6 +9,7 @@ namespace lic3d::cli {
 
 struct BenchOptions {
   FieldOptions input;
+  FieldPrecision precision = FieldPrecision::Auto;
   std::string sizes = "64,128,256,512";
   std::string lengths = "10,20";
   std::string frameSizes = "512,1024,2048";

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   CLI::App* benchCommand = app.add_subcommand(
       "bench", "Time the LIC pass and frames with GPU timestamps (median of repeats)");
   addFieldOptions(*benchCommand, bench.input);
+  addPrecisionOption(*benchCommand, bench.precision);
   benchCommand->add_option("--sizes", bench.sizes, "Volume sizes N (N^3) of the LIC table")
       ->capture_default_str();
   benchCommand->add_option("--lengths", bench.lengths, "LIC lengths L of the LIC table")

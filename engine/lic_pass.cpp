@@ -23,12 +23,10 @@ Result<LicPass> LicPass::create(const Context& context) {
   pass.context_ = &context;
   VkDevice device = context.device();
 
-  std::array<VkDescriptorSetLayoutBinding, 3> bindings{};
+  std::array<VkDescriptorSetLayoutBinding, 2> bindings{};
   bindings[0] = {gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                  VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  bindings[1] = {gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  bindings[2] = {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+  bindings[1] = {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
                  VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
@@ -111,18 +109,16 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
   return pipeline;
 }
 
-Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& noise,
-                             const Image& output, const LicParams& params, int zBegin, int zEnd) {
+Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& output,
+                             const LicParams& params, int zBegin, int zEnd) {
   const LicSpecialization specialization = licSpecialization(params);
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
 
   const VkDescriptorImageInfo fieldInfo{sampler_.handle(), field.image.view(),
                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo noiseInfo{sampler_.handle(), noise.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output.view(), VK_IMAGE_LAYOUT_GENERAL};
-  std::array<VkWriteDescriptorSet, 3> writes{};
+  std::array<VkWriteDescriptorSet, 2> writes{};
   for (auto& w : writes) {
     w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     w.descriptorCount = 1;
@@ -130,12 +126,9 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   writes[0].dstBinding = gpu::kLicBindingField;
   writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   writes[0].pImageInfo = &fieldInfo;
-  writes[1].dstBinding = gpu::kLicBindingNoise;
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  writes[1].pImageInfo = &noiseInfo;
-  writes[2].dstBinding = gpu::kLicBindingOutput;
-  writes[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  writes[2].pImageInfo = &outputInfo;
+  writes[1].dstBinding = gpu::kLicBindingOutput;
+  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  writes[1].pImageInfo = &outputInfo;
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0,
                                  static_cast<std::uint32_t>(writes.size()), writes.data());
 

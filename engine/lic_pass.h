@@ -45,10 +45,10 @@ class LicPass {
   LicPass& operator=(LicPass&& other) noexcept;
   ~LicPass();
 
-  // Records the dispatch for z slices [zBegin, zEnd). `field` and `noise` must be in
+  // Records the dispatch for z slices [zBegin, zEnd). `field` must be in
   // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's.
-  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& noise,
-                      const Image& output, const LicParams& params, int zBegin, int zEnd);
+  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& output,
+                      const LicParams& params, int zBegin, int zEnd);
 
   std::size_t variantCount() const { return pipelines_.size(); }
 

@@ -20,9 +20,10 @@ constexpr VkPipelineStageFlags2 kVolumeReaders =
 
 }  // namespace
 
-Result<LicRenderer> LicRenderer::create(const Context& context) {
+Result<LicRenderer> LicRenderer::create(const Context& context, FieldPrecision precision) {
   LicRenderer renderer;
   renderer.context_ = &context;
+  renderer.precision_ = resolvePrecision(context, precision);
   LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context));
@@ -45,21 +46,15 @@ LicRenderer::~LicRenderer() {
   if (context_) vkDeviceWaitIdle(context_->device());
 }
 
-Result<void> LicRenderer::setField(const VectorField& field) {
-  LIC3D_TRY_ASSIGN(field_, uploadField(*context_, field));
+Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume& noise) {
   licParams_.reset();
-  return {};
-}
-
-Result<void> LicRenderer::setNoise(const NoiseVolume& noise) {
-  LIC3D_TRY_ASSIGN(noise_, uploadNoise(*context_, noise));
-  noiseDims_ = noise.dims;
-  licParams_.reset();
+  field_ = FieldTexture();  // free the old texture before allocating the new one
+  LIC3D_TRY_ASSIGN(field_, uploadLicInputs(*context_, field, noise, precision_));
   return {};
 }
 
 Result<void> LicRenderer::ensureLicVolume() {
-  if (!field_.image) return inputError("no vector field was set");
+  if (!field_.image) return inputError("no vector field and noise were set");
   if (licVolume_) {
     const VkExtent3D e = licVolume_.extent();
     if (Dims(e.width, e.height, e.depth) == field_.dims) return {};
@@ -104,7 +99,7 @@ void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, in
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
-  status = licPass_.record(cmd, field_, noise_, licVolume_, params, zBegin, zEnd);
+  status = licPass_.record(cmd, field_, licVolume_, params, zBegin, zEnd);
   if (!status) return;
   if (last) {
     imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
@@ -118,13 +113,6 @@ void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, in
 Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
   LIC3D_TRY(validate(params));
   if (licParams_ && *licParams_ == params) return false;
-  if (!field_.image) return inputError("no vector field was set");
-  if (!noise_) return inputError("no noise volume was set");
-  if (noiseDims_ != field_.dims)
-    return inputError("the noise grid (" + std::to_string(noiseDims_.x) + "x" +
-                      std::to_string(noiseDims_.y) + "x" + std::to_string(noiseDims_.z) +
-                      ") must match the field grid (" + std::to_string(field_.dims.x) + "x" +
-                      std::to_string(field_.dims.y) + "x" + std::to_string(field_.dims.z) + ")");
   LIC3D_TRY(ensureLicVolume());
   licParams_.reset();
 
@@ -255,7 +243,6 @@ Result<ScalarVolume> LicRenderer::readLicVolume() const {
 Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
   LIC3D_TRY(validate(params));
   if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
-  if (!field_.image || !noise_) return inputError("no field or noise was set");
   LIC3D_TRY(ensureLicVolume());
   licParams_.reset();
   Result<void> status;
@@ -267,7 +254,7 @@ Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
                      kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         timer_.begin(cmd, 0);
-        status = licPass_.record(cmd, field_, noise_, licVolume_, params, 0, field_.dims.z);
+        status = licPass_.record(cmd, field_, licVolume_, params, 0, field_.dims.z);
         timer_.end(cmd, 0);
         imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,

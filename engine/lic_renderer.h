@@ -27,13 +27,15 @@ inline constexpr VkFormat kOffscreenColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 class LicRenderer {
  public:
   // `context` must outlive the renderer.
-  static Result<LicRenderer> create(const Context& context);
+  static Result<LicRenderer> create(const Context& context,
+                                    FieldPrecision precision = FieldPrecision::Auto);
   LicRenderer(LicRenderer&&) noexcept = default;
   LicRenderer& operator=(LicRenderer&&) noexcept = default;
   ~LicRenderer();
 
-  Result<void> setField(const VectorField& field);
-  Result<void> setNoise(const NoiseVolume& noise);
+  // The field and the noise that LIC smears along it; they share one texture, so they are set
+  // together (the noise must be on the field's grid).
+  Result<void> setInputs(const VectorField& field, const NoiseVolume& noise);
   // Uses a LIC volume computed elsewhere (the CPU reference) as the result for `params`.
   Result<void> setLicVolume(const ScalarVolume& volume, const LicParams& params);
 
@@ -58,6 +60,7 @@ class LicRenderer {
   Dims dims() const { return field_.dims; }
   const GridGeometry& geometry() const { return field_.geometry; }
   double fieldMaxMagnitude() const { return field_.maxMagnitude; }
+  FieldPrecision fieldPrecision() const { return field_.precision; }
   const LicPass& licPass() const { return licPass_; }
   const SlicePass& slicePass() const { return slicePass_; }
 
@@ -74,9 +77,8 @@ class LicRenderer {
   LicHistogramPass histogramPass_;
   SlicePass slicePass_;
   GpuTimer timer_;  // region 0: LIC dispatch, region 1: frame
+  FieldPrecision precision_ = FieldPrecision::Auto;
   FieldTexture field_;
-  Image noise_;
-  Dims noiseDims_{0};
   Image licVolume_;
   std::optional<LicParams> licParams_;  // what licVolume_ holds; empty when stale
   IntensityWindow window_;

@@ -1,5 +1,9 @@
 #pragma once
-// The LIC inputs on the GPU: the vector field and the noise as sampled 3D textures.
+// The LIC inputs on the GPU: one 3D texture holding the vector field and the noise together.
+//
+// xyz = v / max|v| and w = the noise value, so the texture fetch at a streamline sample gives
+// both the noise there and the direction of the next step: RK2 needs two fetches per sample
+// instead of three.
 
 #include "error.h"
 #include "gpu_resources.h"
@@ -8,18 +12,26 @@
 
 namespace lic3d {
 
+enum class FieldPrecision {
+  Auto,   // Float on CPU devices (lavapipe), Half on GPUs
+  Half,   // RGBA16F: half the memory and bandwidth; 11 significant bits per component
+  Float,  // RGBA32F: exact float32 field and noise; GPUs fetch it markedly slower, CPUs faster
+};
+
 struct FieldTexture {
-  Image image;  // RGBA16F: xyz = v / max|v| (w = 0), so half floats keep full relative precision
+  Image image;
   Dims dims{0};
   GridGeometry geometry;
   double maxMagnitude = 0.0;
+  FieldPrecision precision = FieldPrecision::Half;
 };
 
-// Fails with InvalidInput when the grid exceeds the device's 3D image limit.
-Result<FieldTexture> uploadField(const Context& context, const VectorField& field);
+FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested);
 
-// R8/R16 UNORM for integer noise (bit-exact), R32F for float noise.
-Result<Image> uploadNoise(const Context& context, const NoiseVolume& noise);
+// Fails with InvalidInput when the grid exceeds the device's 3D image limit or the noise is on
+// another grid than the field.
+Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
+                                     const NoiseVolume& noise, FieldPrecision precision);
 
 // Checks that the device can hold a 3D image of `dims`.
 Result<void> checkVolumeDims(const Context& context, Dims dims, const char* what);

@@ -13,15 +13,16 @@ layout(constant_id = 1) const uint KERNEL = 0;        // 0 box, 1 hann, 2 gauss
 layout(constant_id = 2) const uint NOISE_FILTER = 1;  // 0 nearest voxel, 1 trilinear
 layout(constant_id = 3) const uint DIRECTION = 0;     // 0 v/|v|, 1 v/max|v|
 
+// xyz = v / max|v|, w = noise (see engine/volume_textures.h)
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
-layout(set = 0, binding = kLicBindingNoise) uniform sampler3D noiseTexture;
 layout(set = 0, binding = kLicBindingOutput, r16) uniform writeonly image3D licImage;
 
 layout(push_constant) uniform Push { LicPushConstants pc; };
 
-// v / max|v| at continuous voxel position x (voxel centres at integers): hardware trilinear
-// interpolation with clamp-to-edge is exactly the edge-clamped trilinear field of the semantics.
-vec3 fieldAt(vec3 x) { return texture(fieldTexture, (x + 0.5) * pc.invDims.xyz).xyz; }
+// (v / max|v|, noise) at continuous voxel position x (voxel centres at integers): hardware
+// trilinear interpolation with clamp-to-edge is the edge-clamped trilinear field of the semantics.
+vec4 fieldAndNoiseAt(vec3 x) { return textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0); }
+vec3 fieldAt(vec3 x) { return fieldAndNoiseAt(x).xyz; }
 
 // Step direction from an interpolated vector; zero at (near) critical points.
 vec3 directionOf(vec3 v) {
@@ -30,9 +31,10 @@ vec3 directionOf(vec3 v) {
   return DIRECTION == 0 ? v / magnitude : v;
 }
 
-float noiseAt(vec3 x) {
-  if (NOISE_FILTER == 0) return texelFetch(noiseTexture, ivec3(floor(x + 0.5)), 0).r;
-  return texture(noiseTexture, (x + 0.5) * pc.invDims.xyz).r;
+// The noise at x given the interpolated texel there: trilinear noise comes with it for free.
+float noiseAt(vec3 x, vec4 texel) {
+  if (NOISE_FILTER == 0) return texelFetch(fieldTexture, ivec3(floor(x + 0.5)), 0).w;
+  return texel.w;
 }
 
 float weightOf(int i) {
@@ -60,16 +62,16 @@ void main() {
 
   vec3 start = vec3(voxel);
   vec3 upper = vec3(pc.dims.xyz - 1);
-  vec3 startVector = fieldAt(start);
+  vec4 startTexel = fieldAndNoiseAt(start);
   float w0 = weightOf(0);
-  float sum = w0 * noiseAt(start);
+  float sum = w0 * noiseAt(start, startTexel);
   float weights = w0;
 
   for (int direction = -1; direction <= 1; direction += 2) {
     int steps = direction < 0 ? pc.licLength - pc.bias : pc.licLength + pc.bias;
     float sh = float(direction) * pc.step;
     vec3 x = start;
-    vec3 v = startVector;
+    vec3 v = startTexel.xyz;
     for (int i = 1; i <= steps; ++i) {
       // A streamline ends at a critical point (the sample there was already taken) ...
       vec3 d = directionOf(v);
@@ -77,10 +79,12 @@ void main() {
       x = advance(x, d, sh);
       // ... or where it leaves the grid: outside samples are never clamped back in.
       if (any(lessThan(x, vec3(0.0))) || any(greaterThan(x, upper))) break;
+      // One fetch gives this sample's noise and the next step's vector.
+      vec4 texel = fieldAndNoiseAt(x);
       float w = weightOf(direction * i);
-      sum += w * noiseAt(x);
+      sum += w * noiseAt(x, texel);
       weights += w;
-      v = fieldAt(x);
+      v = texel.xyz;
     }
   }
   imageStore(licImage, voxel, vec4(sum / weights));

@@ -19,9 +19,8 @@ using mat4 = glm::mat4;
 #endif
 
 // ---- LIC compute pass -------------------------------------------------------------------------
-LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F, xyz = v / max|v|, trilinear, edge clamp
-LIC3D_CONST kLicBindingNoise = 1;   // sampler3D: R8/R16 UNORM or R32F noise, trilinear, edge clamp
-LIC3D_CONST kLicBindingOutput = 2;  // image3D r16: the LIC volume
+LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F/32F, xyz = v / max|v|, w = noise
+LIC3D_CONST kLicBindingOutput = 1;  // image3D r16: the LIC volume
 
 // Specialization constant ids of the LIC pipeline (see LicSpecialization in lic_pass.h).
 LIC3D_CONST kLicConstIntegrator = 0;

@@ -34,8 +34,7 @@ LicRenderer rendererWithVolume(const Context& context, Dims dims,
       for (int i = 0; i < dims.x; ++i) volume.values[voxelIndex(dims, i, j, k)] = value(i, j, k);
   Result<LicRenderer> renderer = LicRenderer::create(context);
   EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  EXPECT_TRUE(renderer->setField(field).ok());
-  EXPECT_TRUE(renderer->setNoise(makeWhiteNoise(dims, 1)).ok());
+  EXPECT_TRUE(renderer->setInputs(field, makeWhiteNoise(dims, 1)).ok());
   EXPECT_TRUE(renderer->setLicVolume(volume, LicParams{}).ok());
   return std::move(renderer).value();
 }
@@ -174,8 +173,7 @@ class LicPictureTest : public GpuTest {
     const VectorField field = makeAnalyticField(AnalyticField::Tornado, {32, 32, 32});
     Result<LicRenderer> r = LicRenderer::create(context());
     EXPECT_TRUE(r.ok());
-    EXPECT_TRUE(r->setField(field).ok());
-    EXPECT_TRUE(r->setNoise(makeWhiteNoise(field.dims, 1)).ok());
+    EXPECT_TRUE(r->setInputs(field, makeWhiteNoise(field.dims, 1)).ok());
     return std::move(r).value();
   }
 };
