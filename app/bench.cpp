@@ -107,7 +107,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
               options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
 
-  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, options.precision));
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
   const FieldPrecision precision = renderer.fieldPrecision();
   report["field_precision"] = precision == FieldPrecision::Half ? "half" : "float";
   report["lic"] = nlohmann::json::array();
@@ -142,32 +142,36 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   }
 
   const int n = options.frameVolume;
-  std::printf("\nFrame: %d^3 volume, %d view-aligned slices (one per voxel), default camera\n", n, n);
-  std::printf("%12s %12s %12s\n", "image", "median ms", "min ms");
+  std::printf("\nFrame: %d^3 volume, %d view-aligned slices (one per voxel), default camera\n", n,
+              n);
+  std::printf("%12s %10s %12s %12s\n", "image", "buffer", "median ms", "min ms");
   report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
   if (residentBytes(n, precision) > 0.8 * memory) {
     report["frame"]["skipped"] = "device memory";
   } else {
     LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));
-    LicParams params;
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(params));
-    for (const int size : frameSizes) {
-      ViewParams view;
-      view.width = view.height = size;
-      view.slices = n;
-      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
-                                               [&] { return renderer.timeFrame(view); }));
-      nlohmann::json row{{"image", size}};
-      if (t.measured) {
-        std::printf("%7d^2 px %12.3f %12.3f\n", size, t.medianMs, t.minMs);
-        row["median_ms"] = t.medianMs;
-        row["min_ms"] = t.minMs;
-      } else {
-        std::printf("%7d^2 px %12s (skipped: %s)\n", size, "-", t.skipped.c_str());
-        row["skipped"] = t.skipped;
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
+    for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm8}) {
+      LIC3D_TRY(renderer.setFramePrecision(frame));
+      const char* bufferName = frame == FramePrecision::Float16 ? "rgba16f" : "rgba8";
+      for (const int size : frameSizes) {
+        ViewParams view;
+        view.width = view.height = size;
+        view.slices = n;
+        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
+                                                 [&] { return renderer.timeFrame(view); }));
+        nlohmann::json row{{"image", size}, {"buffer", bufferName}};
+        if (t.measured) {
+          std::printf("%9d^2 %10s %12.3f %12.3f\n", size, bufferName, t.medianMs, t.minMs);
+          row["median_ms"] = t.medianMs;
+          row["min_ms"] = t.minMs;
+        } else {
+          std::printf("%9d^2 %10s %12s (skipped: %s)\n", size, bufferName, "-", t.skipped.c_str());
+          row["skipped"] = t.skipped;
+        }
+        std::fflush(stdout);
+        report["frame"]["rows"].push_back(row);
       }
-      std::fflush(stdout);
-      report["frame"]["rows"].push_back(row);
     }
   }
   return report;

@@ -189,7 +189,7 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
                  "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1")
       ->capture_default_str();
   app.add_option("--window", options.window,
-                 "Intensity window mapped to black..white: auto (the volume's 0.5 and 99.5 "
+                 "Intensity window mapped to black..white: auto (the volume's 3rd and 97th "
                  "percentiles) or LO,HI in 0..1")
       ->capture_default_str();
   app.add_option("--gain", view.contrast, "Contrast: scales grey values around mid-grey")

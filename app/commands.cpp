@@ -103,7 +103,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   if (!context) return reportError(context.error());
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context, options.precision);
+    Result<LicRenderer> renderer = LicRenderer::create(*context, {options.precision});
     Result<void> done = renderer ? prepareRenderer(global, options, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<ScalarVolume> volume = done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
@@ -127,7 +127,7 @@ int runRender(const GlobalOptions& global, const RenderOptions& options) {
 
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context, compute.precision);
+    Result<LicRenderer> renderer = LicRenderer::create(*context, {compute.precision});
     Result<void> done = renderer ? prepareRenderer(global, compute, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<RgbaImage> image =

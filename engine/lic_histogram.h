@@ -21,8 +21,8 @@ struct IntensityWindow {
 };
 
 // The window between the `lowFraction` and `highFraction` quantiles of a histogram over [0,1].
-IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, double lowFraction = 0.005,
-                                 double highFraction = 0.995);
+IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, double lowFraction = 0.03,
+                                 double highFraction = 0.97);
 
 class LicHistogramPass {
  public:

@@ -18,7 +18,7 @@ enum class NoiseFilter : std::uint32_t { Nearest = 0, Linear = 1 };
 enum class DirectionMode : std::uint32_t { Normalized = 0, Magnitude = 1 };
 
 struct LicParams {
-  int length = 10;      // L: steps each way (before bias)
+  int length = 20;      // L: steps each way (before bias); with h = 0.5, 10 voxels
   float step = 0.5f;    // h: step length in voxels
   int bias = 0;         // Lb = L - bias steps backward, Lf = L + bias forward; |bias| <= L
   Integrator integrator = Integrator::Rk2;

@@ -20,10 +20,11 @@ constexpr VkPipelineStageFlags2 kVolumeReaders =
 
 }  // namespace
 
-Result<LicRenderer> LicRenderer::create(const Context& context, FieldPrecision precision) {
+Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOptions& options) {
   LicRenderer renderer;
   renderer.context_ = &context;
-  renderer.precision_ = resolvePrecision(context, precision);
+  renderer.precision_ = resolvePrecision(context, options.fieldPrecision);
+  LIC3D_TRY(renderer.setFramePrecision(options.framePrecision));
   LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context));
@@ -35,10 +36,16 @@ Result<LicRenderer> LicRenderer::create(const Context& context, FieldPrecision p
                           VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
     return unsupportedError(context.deviceInfo().name +
                             " cannot use R16_UNORM as a filtered storage image");
-  if (!supportsFormat(context, kOffscreenColorFormat,
-                      VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT))
-    return unsupportedError(context.deviceInfo().name + " cannot blend into RGBA16F");
   return renderer;
+}
+
+Result<void> LicRenderer::setFramePrecision(FramePrecision precision) {
+  const VkFormat format = precision == FramePrecision::Float16 ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                               : VK_FORMAT_R8G8B8A8_UNORM;
+  if (!supportsFormat(*context_, format, VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT))
+    return unsupportedError(context_->deviceInfo().name + " cannot blend into the frame format");
+  frameFormat_ = format;
+  return {};
 }
 
 LicRenderer::~LicRenderer() {
@@ -144,14 +151,15 @@ Result<void> LicRenderer::ensureTarget(int width, int height) {
   if (static_cast<std::uint32_t>(std::max(width, height)) > limit)
     return inputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
                       " exceeds the device's limit of " + std::to_string(limit));
-  if (target_ && target_.extent().width == static_cast<std::uint32_t>(width) &&
+  if (target_ && target_.format() == frameFormat_ &&
+      target_.extent().width == static_cast<std::uint32_t>(width) &&
       target_.extent().height == static_cast<std::uint32_t>(height))
     return {};
   target_ = Image();
   targetReadback_ = Buffer();
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
-  desc.format = kOffscreenColorFormat;
+  desc.format = frameFormat_;
   desc.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), 1};
   desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   desc.name = "offscreen colour";
@@ -216,10 +224,14 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   image.width = view.width;
   image.height = view.height;
   image.pixels.resize(static_cast<std::size_t>(view.width) * view.height * 4);
-  const auto* halves = static_cast<const std::uint16_t*>(targetReadback_.mapped());
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    const float v = std::clamp(glm::unpackHalf1x16(halves[i]), 0.0f, 1.0f);
-    image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+  if (frameFormat_ == VK_FORMAT_R8G8B8A8_UNORM) {
+    std::memcpy(image.pixels.data(), targetReadback_.mapped(), image.pixels.size());
+  } else {
+    const auto* halves = static_cast<const std::uint16_t*>(targetReadback_.mapped());
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+      const float v = std::clamp(glm::unpackHalf1x16(halves[i]), 0.0f, 1.0f);
+      image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+    }
   }
   return image;
 }

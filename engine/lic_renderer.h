@@ -21,14 +21,19 @@
 
 namespace lic3d {
 
-// The offscreen colour format: 16-bit float keeps hundreds of faint slices from banding.
-inline constexpr VkFormat kOffscreenColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The offscreen colour buffer. 16-bit float (default) keeps hundreds of faint slices from
+// banding; 8-bit UNORM halves the blending bandwidth.
+enum class FramePrecision { Float16, Unorm8 };
+
+struct RendererOptions {
+  FieldPrecision fieldPrecision = FieldPrecision::Auto;
+  FramePrecision framePrecision = FramePrecision::Float16;
+};
 
 class LicRenderer {
  public:
   // `context` must outlive the renderer.
-  static Result<LicRenderer> create(const Context& context,
-                                    FieldPrecision precision = FieldPrecision::Auto);
+  static Result<LicRenderer> create(const Context& context, const RendererOptions& options = {});
   LicRenderer(LicRenderer&&) noexcept = default;
   LicRenderer& operator=(LicRenderer&&) noexcept = default;
   ~LicRenderer();
@@ -55,6 +60,9 @@ class LicRenderer {
   Result<double> timeLicDispatch(const LicParams& params);
   Result<double> timeFrame(const ViewParams& view);
 
+  // The colour buffer's format for the next frames (see FramePrecision).
+  Result<void> setFramePrecision(FramePrecision precision);
+
   std::uint64_t licDispatchCount() const { return licDispatches_; }
   IntensityWindow intensityWindow() const { return window_; }
   Dims dims() const { return field_.dims; }
@@ -78,6 +86,7 @@ class LicRenderer {
   SlicePass slicePass_;
   GpuTimer timer_;  // region 0: LIC dispatch, region 1: frame
   FieldPrecision precision_ = FieldPrecision::Auto;
+  VkFormat frameFormat_ = VK_FORMAT_R16G16B16A16_SFLOAT;
   FieldTexture field_;
   Image licVolume_;
   std::optional<LicParams> licParams_;  // what licVolume_ holds; empty when stale

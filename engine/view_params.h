@@ -25,12 +25,12 @@ struct ViewParams {
   Slicing slicing = Slicing::ViewAligned;
   int slices = 0;  // 0: one slice per voxel along the view direction
   CameraParams camera;
-  float alpha = 0.08f;  // opacity per voxel of distance, corrected for the slice spacing
+  float alpha = 0.3f;  // opacity per voxel of distance, corrected for the slice spacing
   OpacityMode opacityMode = OpacityMode::Intensity;
   VolumeFilter filter = VolumeFilter::Linear;
   glm::vec3 background{0.0f, 0.0f, 0.0f};  // linear RGB in [0,1]
   // Grey transfer: the intensity window [low, high] maps to [0,1] (auto: the LIC volume's
-  // 0.5 % and 99.5 % percentiles), then grey = 0.5 + contrast * (g - 0.5) + brightness.
+  // 3rd and 97th percentiles), then grey = 0.5 + contrast * (g - 0.5) + brightness.
   bool autoWindow = true;
   float windowLow = 0.0f;
   float windowHigh = 1.0f;

@@ -34,7 +34,7 @@ Comparison compareWithReference(const Context& context, const VectorField& field
                                 const LicParams& params,
                                 FieldPrecision precision = FieldPrecision::Float) {
   const NoiseVolume noise = makeWhiteNoise(field.dims, 7);
-  Result<LicRenderer> renderer = LicRenderer::create(context, precision);
+  Result<LicRenderer> renderer = LicRenderer::create(context, {precision});
   EXPECT_TRUE(renderer.ok()) << renderer.error().message;
   EXPECT_TRUE(renderer->setInputs(field, noise).ok());
   Result<bool> ran = renderer->updateLic(params);
@@ -208,7 +208,7 @@ TEST_F(GpuTest, ZeroFieldGivesTheNoiseItself) {
   field.dims = {9, 10, 11};
   field.vectors.assign(voxelCount(field.dims), glm::vec3(0.0f));
   const NoiseVolume noise = makeWhiteNoise(field.dims, 3);
-  Result<LicRenderer> renderer = LicRenderer::create(context(), FieldPrecision::Float);
+  Result<LicRenderer> renderer = LicRenderer::create(context(), {FieldPrecision::Float});
   ASSERT_TRUE(renderer.ok());
   ASSERT_TRUE(renderer->setInputs(field, noise).ok());
   ASSERT_TRUE(renderer->updateLic(LicParams{}).ok());

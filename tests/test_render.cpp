@@ -252,3 +252,22 @@ TEST_F(LicPictureTest, DefaultViewShowsTextureNotAFlatBlock) {
 
 }  // namespace
 }  // namespace lic3d
+
+namespace lic3d {
+namespace {
+
+TEST_F(LicPictureTest, EightBitFrameBufferGivesNearlyTheSamePicture) {
+  LicRenderer r = renderer();
+  ViewParams view;
+  view.width = view.height = 96;
+  const RgbaImage wide = *r.render(LicParams{}, view);
+  ASSERT_TRUE(r.setFramePrecision(FramePrecision::Unorm8).ok());
+  const RgbaImage narrow = *r.render(LicParams{}, view);
+  EXPECT_EQ(r.licDispatchCount(), 1u);
+  // Each of ~50 blended slices rounds to 1/255 in the 8-bit buffer.
+  EXPECT_LE(meanAbsoluteDifference(wide, narrow), 4.0 / 255.0);
+  EXPECT_GT(meanAbsoluteDifference(wide, narrow), 0.0) << "the buffer format must have changed";
+}
+
+}  // namespace
+}  // namespace lic3d
