@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
   app.fallthrough();
   app.footer("Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
              "files.");
+  const char* globalNote =
+      "Global options (--device, --validation, --quiet) may also follow the command. Exit "
+      "status: 0 success, 1 failure, 2 bad arguments or input files.";
 
   GlobalOptions global;
   addGlobalOptions(app, global);
@@ -26,12 +29,14 @@ int main(int argc, char** argv) {
   CLI::App* computeCommand =
       app.add_subcommand("compute", "Compute a LIC volume and write it as float32 NRRD");
   addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
+  computeCommand->footer(globalNote);
 
   RenderOptions render;
   CLI::App* renderCommand =
       app.add_subcommand("render", "Compute a LIC volume and render it to a PNG image");
   addComputeOptions(*renderCommand, render.compute, "lic3d.png");
   addViewOptions(*renderCommand, render);
+  renderCommand->footer(globalNote);
 
   BenchOptions bench;
   CLI::App* benchCommand = app.add_subcommand(
@@ -59,6 +64,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();
   benchCommand->add_option("--json", bench.json, "Also write the results as JSON");
+  benchCommand->footer(globalNote);
 
   try {
     app.parse(argc, argv);
