@@ -6,6 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "analytic_fields.h"
 #include "field_io.h"
 #include "noise.h"
@@ -256,9 +258,25 @@ Result<void> finishViewOptions(RenderOptions& options) {
   return {};
 }
 
+Result<void> checkHostMemory(Dims dims) {
+  // The field (12 bytes per voxel), the noise (1) and the packed texels with their staging copy
+  // (up to 32) live in host memory at once.
+  const double needed = static_cast<double>(voxelCount(dims)) * 45.0;
+  const double available = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+                           static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (available > 0.0 && needed > 0.9 * available)
+    return inputError("a " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                      std::to_string(dims.z) + " grid needs about " +
+                      std::to_string(static_cast<long long>(needed / (1 << 30))) +
+                      " GiB of memory; this machine has " +
+                      std::to_string(static_cast<long long>(available / (1 << 30))) + " GiB");
+  return {};
+}
+
 Result<VectorField> loadField(const FieldOptions& options) {
   if (const auto analytic = parseAnalyticField(options.field)) {
     LIC3D_TRY_ASSIGN(const Dims dims, parseGrid(options.grid));
+    LIC3D_TRY(checkHostMemory(dims));
     return makeAnalyticField(*analytic, dims);
   }
   if (options.gridOption && options.gridOption->count() > 0)

@@ -63,6 +63,8 @@ Result<std::vector<int>> parseIntList(const std::string& text, const char* flag,
 // Applies the string-valued view flags (--background, --window) to options.view.
 Result<void> finishViewOptions(RenderOptions& options);
 
+// Refuses grids whose host-side arrays would not fit this machine's memory.
+Result<void> checkHostMemory(Dims dims);
 Result<VectorField> loadField(const FieldOptions& options);
 Result<NoiseVolume> loadNoise(const FieldOptions& options, Dims dims);
 // The output must have `extension` and lie in an existing folder: checked before any work.

@@ -1,5 +1,6 @@
 // lic3d: 3D Line Integral Convolution of vector fields with Vulkan, from the command line.
 #include <cstdio>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -80,12 +81,18 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
-  if (devices->parsed()) return runDevices(global);
-  if (computeCommand->parsed()) return runCompute(global, compute);
-  if (renderCommand->parsed()) {
-    if (auto r = finishViewOptions(render); !r) return reportError(r.error());
-    return runRender(global, render);
+  try {
+    if (devices->parsed()) return runDevices(global);
+    if (computeCommand->parsed()) return runCompute(global, compute);
+    if (renderCommand->parsed()) {
+      if (auto r = finishViewOptions(render); !r) return reportError(r.error());
+      return runRender(global, render);
+    }
+    if (benchCommand->parsed()) return runBench(global, bench);
+  } catch (const std::bad_alloc&) {
+    // Output files are written under temporary names, so nothing partial is left behind.
+    std::fprintf(stderr, "lic3d: error: out of host memory\n");
+    return kExitFailure;
   }
-  if (benchCommand->parsed()) return runBench(global, bench);
   return kExitBadInput;
 }

@@ -49,6 +49,17 @@ FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested
 Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
                                      const NoiseVolume& noise, FieldPrecision precision) {
   LIC3D_TRY(checkVolumeDims(context, field.dims, "field"));
+  const FieldPrecision resolved = resolvePrecision(context, precision);
+  // The texture, its staging copy and the LIC volume must fit the device's largest heap; a CPU
+  // driver would otherwise accept the allocation and fail when the memory is first touched.
+  const double texelBytes = resolved == FieldPrecision::Half ? 8.0 : 16.0;
+  const double needed = static_cast<double>(voxelCount(field.dims)) * (2.0 * texelBytes + 2.0);
+  const double available = static_cast<double>(context.deviceInfo().deviceLocalBytes);
+  if (needed > available)
+    return inputError("a " + gridText(field.dims) + " volume needs " +
+                      std::to_string(static_cast<long long>(needed / (1 << 20))) + " MiB of " +
+                      context.deviceInfo().name + "'s memory, which has " +
+                      std::to_string(static_cast<long long>(available / (1 << 20))) + " MiB");
   if (noise.dims != field.dims)
     return inputError("the noise grid (" + gridText(noise.dims) + ") must match the field grid (" +
                       gridText(field.dims) + ")");
@@ -56,7 +67,7 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   texture.dims = field.dims;
   texture.geometry = field.geometry;
   texture.maxMagnitude = maxMagnitude(field);
-  texture.precision = resolvePrecision(context, precision);
+  texture.precision = resolved;
   const double scale = texture.maxMagnitude > 0.0 ? 1.0 / texture.maxMagnitude : 1.0;
 
   ImageDesc desc;

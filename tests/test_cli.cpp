@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "analytic_fields.h"
@@ -107,10 +108,24 @@ TEST_F(CliTest, EveryRenderFlagParses) {
       "--background 255,128,0 --window 0.2,0.8 --gain 1.2 --brightness 0.1 -o out.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("out.png")), std::make_pair(64, 48));
-  const CommandRun cpu = run("--device 0 render --cpu --grid 8 --width 32 --height 32 -q -o cpu.png");
+  const CommandRun cpu =
+      run("--device 0 --validation render --cpu --grid 8 --width 32 --height 32 -q -o cpu.png");
   ASSERT_EQ(cpu.status, 0) << cpu.output;
   EXPECT_TRUE(cpu.output.empty()) << "--quiet: " << cpu.output;
   EXPECT_EQ(pngSize(path("cpu.png")), std::make_pair(32, 32));
+}
+
+TEST_F(CliTest, BenchRunsAndWritesJson) {
+  const CommandRun r = run(
+      "bench --field vortex --sizes 8,12 --lengths 2 --frame-sizes 32 --frame-volume 8 "
+      "--repeats 5 --warmup 1 --budget 60 --field-precision half --json bench.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << "names the device";
+  EXPECT_NE(r.output.find("12^3"), std::string::npos) << r.output;
+  std::ifstream in(path("bench.json"));
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key : {"\"device\"", "\"lic\"", "\"frame\"", "\"median_ms\"", "\"rgba8\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
 }
 
 TEST_F(CliTest, ComputeWritesTheLicVolumeOnTheFieldGrid) {
@@ -154,6 +169,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --grid 8,8",
       "render --grid 8,x,8",
       "render --grid 5000",
+      "render --grid 2048",                       // more memory than any test machine has
       "render --width 0",
       "render --background 1,2",
       "render --background 300,0,0",
