@@ -40,44 +40,18 @@ IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, doubl
 Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   LicHistogramPass pass;
   pass.context_ = &context;
-  VkDevice device = context.device();
-
-  std::array<VkDescriptorSetLayoutBinding, 2> bindings{};
-  bindings[0] = {gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  bindings[1] = {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  setInfo.pBindings = bindings.data();
-  LIC3D_TRY(checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &pass.setLayout_),
-                    "vkCreateDescriptorSetLayout"));
-  context.setDebugName(pass.setLayout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT,
-                       "histogram set layout");
-
-  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::HistogramPushConstants)};
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.setLayoutCount = 1;
-  layoutInfo.pSetLayouts = &pass.setLayout_;
-  layoutInfo.pushConstantRangeCount = 1;
-  layoutInfo.pPushConstantRanges = &range;
-  LIC3D_TRY(checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &pass.layout_),
-                    "vkCreatePipelineLayout"));
-  context.setDebugName(pass.layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "histogram pipeline layout");
-
-  LIC3D_TRY_ASSIGN(VkShaderModule shader, createShaderModule(context, ShaderId::LicHistogram));
-  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  info.stage.module = shader;
-  info.stage.pName = "main";
-  info.layout = pass.layout_;
-  const VkResult created =
-      vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pass.pipeline_);
-  vkDestroyShaderModule(device, shader, nullptr);
-  LIC3D_TRY(checkVk(created, "vkCreateComputePipelines"));
-  context.setDebugName(pass.pipeline_, VK_OBJECT_TYPE_PIPELINE, "lic histogram");
+  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+      {gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+  }};
+  LIC3D_TRY_ASSIGN(pass.layout_,
+                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
+                                          sizeof(gpu::HistogramPushConstants), "histogram"));
+  LIC3D_TRY_ASSIGN(const ShaderModule shader, loadShader(context, ShaderId::LicHistogram));
+  LIC3D_TRY_ASSIGN(pass.pipeline_,
+                   createComputePipeline(context, shader, pass.layout_, nullptr, "lic histogram"));
 
   LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_NEAREST, "histogram sampler"));
   const VkDeviceSize bytes = gpu::kHistogramBins * sizeof(std::uint32_t);
@@ -92,36 +66,6 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   return pass;
 }
 
-LicHistogramPass::LicHistogramPass(LicHistogramPass&& other) noexcept { *this = std::move(other); }
-
-LicHistogramPass& LicHistogramPass::operator=(LicHistogramPass&& other) noexcept {
-  if (this != &other) {
-    release();
-    context_ = std::exchange(other.context_, nullptr);
-    setLayout_ = std::exchange(other.setLayout_, VK_NULL_HANDLE);
-    layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
-    pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
-    sampler_ = std::move(other.sampler_);
-    counts_ = std::move(other.counts_);
-    readback_ = std::move(other.readback_);
-  }
-  return *this;
-}
-
-LicHistogramPass::~LicHistogramPass() { release(); }
-
-void LicHistogramPass::release() {
-  if (!context_) return;
-  VkDevice device = context_->device();
-  if (pipeline_) vkDestroyPipeline(device, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  sampler_ = Sampler();
-  counts_ = Buffer();
-  readback_ = Buffer();
-  context_ = nullptr;
-}
-
 void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dims) {
   // The previous histogram's shader and copy must be done with the buffers before they are reused.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -134,25 +78,18 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   const VkDescriptorImageInfo volumeInfo{sampler_.handle(), volume.view(),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo countsInfo{counts_.handle(), 0, VK_WHOLE_SIZE};
-  std::array<VkWriteDescriptorSet, 2> writes{};
-  for (auto& w : writes) {
-    w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    w.descriptorCount = 1;
-  }
-  writes[0].dstBinding = gpu::kHistogramBindingVolume;
-  writes[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  writes[0].pImageInfo = &volumeInfo;
-  writes[1].dstBinding = gpu::kHistogramBindingCounts;
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writes[1].pBufferInfo = &countsInfo;
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0,
+  const std::array<VkWriteDescriptorSet, 2> writes{
+      descriptorWrite(gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      &volumeInfo),
+      descriptorWrite(gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &countsInfo)};
+  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
                                  static_cast<std::uint32_t>(writes.size()), writes.data());
   const gpu::HistogramPushConstants push{glm::ivec4(dims, 0)};
-  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);
 
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

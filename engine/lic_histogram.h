@@ -10,6 +10,7 @@
 
 #include "error.h"
 #include "gpu_resources.h"
+#include "pipelines.h"
 #include "volume.h"
 #include "vulkan_context.h"
 
@@ -28,10 +29,6 @@ class LicHistogramPass {
  public:
   // `context` must outlive the pass.
   static Result<LicHistogramPass> create(const Context& context);
-  LicHistogramPass() = default;
-  LicHistogramPass(LicHistogramPass&& other) noexcept;
-  LicHistogramPass& operator=(LicHistogramPass&& other) noexcept;
-  ~LicHistogramPass();
 
   // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
   // visible to compute shaders) and its copy to host-visible memory.
@@ -40,11 +37,9 @@ class LicHistogramPass {
   std::vector<std::uint32_t> counts() const;
 
  private:
-  void release();
   const Context* context_ = nullptr;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  PipelineLayout layout_;
+  Pipeline pipeline_;
   Sampler sampler_;
   Buffer counts_;
   Buffer readback_;

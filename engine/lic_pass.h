@@ -12,6 +12,7 @@
 #include "error.h"
 #include "gpu_resources.h"
 #include "lic_params.h"
+#include "pipelines.h"
 #include "volume_textures.h"
 #include "vulkan_context.h"
 
@@ -40,10 +41,6 @@ class LicPass {
  public:
   // `context` must outlive the pass.
   static Result<LicPass> create(const Context& context);
-  LicPass() = default;
-  LicPass(LicPass&& other) noexcept;
-  LicPass& operator=(LicPass&& other) noexcept;
-  ~LicPass();
 
   // Records the dispatch for z slices [zBegin, zEnd). `field` must be in
   // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's.
@@ -54,14 +51,12 @@ class LicPass {
 
  private:
   Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
-  void release();
 
   const Context* context_ = nullptr;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkShaderModule shader_ = VK_NULL_HANDLE;
+  PipelineLayout layout_;
+  ShaderModule shader_;
   Sampler sampler_;
-  std::vector<std::pair<LicSpecialization, VkPipeline>> pipelines_;
+  std::vector<std::pair<LicSpecialization, Pipeline>> pipelines_;
 };
 
 }  // namespace lic3d

@@ -34,85 +34,35 @@ SliceFrame makeSliceFrame(const ViewParams& view, Dims dims, const GridGeometry&
 Result<SlicePass> SlicePass::create(const Context& context) {
   SlicePass pass;
   pass.context_ = &context;
-  VkDevice device = context.device();
-
-  const VkDescriptorSetLayoutBinding binding{gpu::kSliceBindingVolume,
-                                             VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  setInfo.bindingCount = 1;
-  setInfo.pBindings = &binding;
-  LIC3D_TRY(checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &pass.setLayout_),
-                    "vkCreateDescriptorSetLayout"));
-  context.setDebugName(pass.setLayout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "slice set layout");
-
-  const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                  sizeof(gpu::SlicePushConstants)};
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.setLayoutCount = 1;
-  layoutInfo.pSetLayouts = &pass.setLayout_;
-  layoutInfo.pushConstantRangeCount = 1;
-  layoutInfo.pPushConstantRanges = &range;
-  LIC3D_TRY(checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &pass.layout_),
-                    "vkCreatePipelineLayout"));
-  context.setDebugName(pass.layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "slice pipeline layout");
-
-  LIC3D_TRY_ASSIGN(pass.vertexShader_, createShaderModule(context, ShaderId::SliceVertex));
-  LIC3D_TRY_ASSIGN(pass.fragmentShader_, createShaderModule(context, ShaderId::SliceFragment));
+  const std::array<VkDescriptorSetLayoutBinding, 1> bindings{{
+      {gpu::kSliceBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+  }};
+  LIC3D_TRY_ASSIGN(pass.layout_,
+                   PipelineLayout::create(context, bindings,
+                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                          sizeof(gpu::SlicePushConstants), "slice"));
+  LIC3D_TRY_ASSIGN(pass.vertexShader_, loadShader(context, ShaderId::SliceVertex));
+  LIC3D_TRY_ASSIGN(pass.fragmentShader_, loadShader(context, ShaderId::SliceFragment));
   LIC3D_TRY_ASSIGN(pass.nearest_, Sampler::create(context, VK_FILTER_NEAREST, "slice nearest sampler"));
   LIC3D_TRY_ASSIGN(pass.linear_, Sampler::create(context, VK_FILTER_LINEAR, "slice linear sampler"));
   return pass;
 }
 
-SlicePass::SlicePass(SlicePass&& other) noexcept { *this = std::move(other); }
-
-SlicePass& SlicePass::operator=(SlicePass&& other) noexcept {
-  if (this != &other) {
-    release();
-    context_ = std::exchange(other.context_, nullptr);
-    setLayout_ = std::exchange(other.setLayout_, VK_NULL_HANDLE);
-    layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
-    vertexShader_ = std::exchange(other.vertexShader_, VK_NULL_HANDLE);
-    fragmentShader_ = std::exchange(other.fragmentShader_, VK_NULL_HANDLE);
-    nearest_ = std::move(other.nearest_);
-    linear_ = std::move(other.linear_);
-    pipelines_ = std::move(other.pipelines_);
-    other.pipelines_.clear();
-  }
-  return *this;
-}
-
-SlicePass::~SlicePass() { release(); }
-
-void SlicePass::release() {
-  if (!context_) return;
-  VkDevice device = context_->device();
-  for (auto& [spec, format, pipeline] : pipelines_) vkDestroyPipeline(device, pipeline, nullptr);
-  pipelines_.clear();
-  if (vertexShader_) vkDestroyShaderModule(device, vertexShader_, nullptr);
-  if (fragmentShader_) vkDestroyShaderModule(device, fragmentShader_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
-  if (setLayout_) vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-  nearest_ = Sampler();
-  linear_ = Sampler();
-  context_ = nullptr;
-}
-
 Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specialization,
                                           VkFormat format) {
   for (const auto& [spec, f, pipeline] : pipelines_)
-    if (spec == specialization && f == format) return pipeline;
+    if (spec == specialization && f == format) return pipeline.get();
 
   const Specialization<SliceSpecialization> constants(specialization);
   std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
   stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vertexShader_;
+  stages[0].module = vertexShader_.get();
   stages[0].pName = "main";
   stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = fragmentShader_;
+  stages[1].module = fragmentShader_.get();
   stages[1].pName = "main";
   stages[1].pSpecializationInfo = constants.info();
 
@@ -168,7 +118,7 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specializat
   info.pDepthStencilState = &depth;
   info.pColorBlendState = &blend;
   info.pDynamicState = &dynamic;
-  info.layout = layout_;
+  info.layout = layout_.get();
   VkPipeline pipeline = VK_NULL_HANDLE;
   LIC3D_TRY(checkVk(vkCreateGraphicsPipelines(context_->device(), VK_NULL_HANDLE, 1, &info,
                                               nullptr, &pipeline),
@@ -177,7 +127,7 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specializat
                          std::string("slices ") +
                              (specialization.opacityMode ? "intensity-alpha" : "constant-alpha") +
                              (specialization.orthographic ? " ortho" : " perspective"));
-  pipelines_.emplace_back(specialization, format, pipeline);
+  pipelines_.emplace_back(specialization, format, Pipeline(context_->device(), pipeline));
   return pipeline;
 }
 
@@ -195,12 +145,9 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkExte
   const Sampler& sampler = frame.filter == VolumeFilter::Nearest ? nearest_ : linear_;
   const VkDescriptorImageInfo volumeInfo{sampler.handle(), volume.view(),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstBinding = gpu::kSliceBindingVolume;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  write.pImageInfo = &volumeInfo;
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &write);
+  const VkWriteDescriptorSet write = descriptorWrite(
+      gpu::kSliceBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &volumeInfo);
+  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &write);
 
   gpu::SlicePushConstants push{};
   push.viewProjection = frame.camera.viewProjection;
@@ -209,7 +156,7 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkExte
   const glm::vec3 eye = frame.specialization.orthographic ? frame.camera.toViewer : frame.camera.eye;
   push.eye = glm::vec4(eye, frame.plan.spacing);
   push.transfer = glm::vec4(frame.transferScale, frame.transferOffset, frame.plan.voxelSize, 0.0f);
-  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                      sizeof(push), &push);
   vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
   return {};

@@ -13,6 +13,7 @@
 #include "camera.h"
 #include "error.h"
 #include "gpu_resources.h"
+#include "pipelines.h"
 #include "slice_geometry.h"
 #include "view_params.h"
 #include "vulkan_context.h"
@@ -47,10 +48,6 @@ class SlicePass {
  public:
   // `context` must outlive the pass.
   static Result<SlicePass> create(const Context& context);
-  SlicePass() = default;
-  SlicePass(SlicePass&& other) noexcept;
-  SlicePass& operator=(SlicePass&& other) noexcept;
-  ~SlicePass();
 
   // Records the draw inside an open dynamic rendering of one `colorFormat` attachment of size
   // `extent`. `volume` must be in SHADER_READ_ONLY_OPTIMAL with its writes visible to fragment
@@ -62,16 +59,14 @@ class SlicePass {
 
  private:
   Result<VkPipeline> pipelineFor(const SliceSpecialization& specialization, VkFormat format);
-  void release();
 
   const Context* context_ = nullptr;
-  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkShaderModule vertexShader_ = VK_NULL_HANDLE;
-  VkShaderModule fragmentShader_ = VK_NULL_HANDLE;
+  PipelineLayout layout_;
+  ShaderModule vertexShader_;
+  ShaderModule fragmentShader_;
   Sampler nearest_;
   Sampler linear_;
-  std::vector<std::tuple<SliceSpecialization, VkFormat, VkPipeline>> pipelines_;
+  std::vector<std::tuple<SliceSpecialization, VkFormat, Pipeline>> pipelines_;
 };
 
 }  // namespace lic3d

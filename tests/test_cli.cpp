@@ -15,6 +15,7 @@
 #include "lic_reference.h"
 #include "nrrd.h"
 #include "noise.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -26,39 +27,22 @@ struct CommandRun {
   std::string output;  // stdout and stderr together
 };
 
-class CliTest : public ::testing::Test {
+class CliTest : public test::TempFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lic3d_cli_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   CommandRun run(const std::string& args, const std::string& environment = "") const {
-    const std::string command = "cd '" + dir_.string() + "' && " + environment + " '" +
+    const std::string command = "cd '" + folder().string() + "' && " + environment + " '" +
                                 LIC3D_EXECUTABLE + "' " + args + " 2>&1";
     CommandRun result;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return result;
     std::array<char, 4096> buffer;
     std::size_t n;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+      result.output.append(buffer.data(), n);
     const int raw = pclose(pipe);
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
     return result;
   }
-
-  fs::path path(const std::string& name) const { return dir_ / name; }
-  // Files in the work folder: a failed command must leave nothing behind, not even temporaries.
-  std::size_t fileCount() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
-
- private:
-  fs::path dir_;
 };
 
 // Width and height from a PNG's IHDR chunk.
@@ -122,8 +106,7 @@ TEST_F(CliTest, BenchRunsAndWritesJson) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << "names the device";
   EXPECT_NE(r.output.find("12^3"), std::string::npos) << r.output;
-  std::ifstream in(path("bench.json"));
-  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string json = test::readWhole(path("bench.json"));
   for (const char* key : {"\"device\"", "\"lic\"", "\"frame\"", "\"median_ms\"", "\"rgba8\""})
     EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
 }
@@ -192,7 +175,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
     const CommandRun r = run(args);
     EXPECT_EQ(r.status, 2) << "lic3d " << args << "\n" << r.output;
     EXPECT_NE(r.output.find("error"), std::string::npos) << "lic3d " << args << "\n" << r.output;
-    EXPECT_EQ(fileCount(), 0u) << "lic3d " << args << " left files behind";
+    EXPECT_EQ(listFolder().size(), 0u) << "lic3d " << args << " left files behind";
   }
 }
 
@@ -226,10 +209,8 @@ TEST_F(CliTest, BadFilesExitWithStatusTwoNamingTheFile) {
 }
 
 TEST_F(CliTest, RealFieldFromFile) {
-  const char* data = std::getenv("LIC3D_TEST_DATA");
-  ASSERT_NE(data, nullptr);
-  const CommandRun r = run(std::string("render --field '") + data +
-                    "/example-femm-3d.vtk' --width 64 --height 64 -o femm.png");
+  const CommandRun r = run("render --field '" + (test::dataFolder() / "example-femm-3d.vtk").string() +
+                           "' --width 64 --height 64 -o femm.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("femm.png")), std::make_pair(64, 64));
 }
@@ -238,7 +219,7 @@ TEST_F(CliTest, NoVulkanDriverIsAClearErrorNotACrash) {
   const CommandRun r = run("render --grid 8", "VK_DRIVER_FILES=/nonexistent/icd.json");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("no Vulkan"), std::string::npos) << r.output;
-  EXPECT_EQ(fileCount(), 0u);
+  EXPECT_EQ(listFolder().size(), 0u);
   const CommandRun devices = run("devices", "VK_DRIVER_FILES=/nonexistent/icd.json");
   EXPECT_EQ(devices.status, 1) << devices.output;
 }

@@ -14,6 +14,7 @@
 #include "lic_reference.h"
 #include "lic_renderer.h"
 #include "noise.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -181,9 +182,7 @@ TEST_F(GpuTest, GpuMatchesCpuReferenceOnSolenoidalWithRk4Gauss) {
 // the mean stays small, single voxels may differ a lot. We hold the mean to 5e-3 and 99 % of the
 // voxels to 2e-2.
 void expectCloseOnRealField(const Context& context, const char* file) {
-  const char* dir = std::getenv("LIC3D_TEST_DATA");
-  ASSERT_NE(dir, nullptr) << "LIC3D_TEST_DATA is not set";
-  Result<VectorField> field = readVectorField(std::filesystem::path(dir) / file);
+  Result<VectorField> field = readVectorField(test::dataFolder() / file);
   ASSERT_TRUE(field.ok()) << field.error().message;
   LicParams params;
   const Comparison c = compareWithReference(context, *field, params);

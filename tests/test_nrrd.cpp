@@ -22,53 +22,16 @@
 #include "field_io.h"
 #include "file_util.h"
 #include "nrrd.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Each test gets its own folder, so a failure leaves nothing that could confuse another test.
-class NrrdTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("lic3d_") + info->test_suite_name() + "_" + info->name();
-    for (char& c : name)
-      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
+using test::readWhole;
 
-  fs::path path(const std::string& name) const { return dir_ / name; }
-
-  fs::path writeBytes(const std::string& name, const std::string& bytes) const {
-    const fs::path target = path(name);
-    std::ofstream out(target, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return target;
-  }
-
-  std::vector<std::string> listFolder() const {
-    std::vector<std::string> names;
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir_))
-      names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-  fs::path dir_;
-};
-
-std::string readWhole(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+class NrrdTest : public test::TempFolderTest {};
 
 // Values as bytes in the given byte order.
 template <class T>

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "field_io.h"
+#include "test_support.h"
 #include "vtk_legacy.h"
 
 namespace lic3d {
@@ -28,42 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// ctest sets LIC3D_TEST_DATA; running the binary by hand falls back to the source tree.
-fs::path dataFolder() {
-  if (const char* folder = std::getenv("LIC3D_TEST_DATA"); folder && *folder) return folder;
-  return fs::path(__FILE__).parent_path().parent_path() / "assets" / "data";
-}
+using test::dataFolder;
+using test::readWhole;
 
-class VtkLegacyTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("lic3d_") + info->test_suite_name() + "_" + info->name();
-    for (char& c : name)
-      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-
-  fs::path writeBytes(const std::string& name, const std::string& bytes) const {
-    const fs::path target = dir_ / name;
-    std::ofstream out(target, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return target;
-  }
-
-  fs::path dir_;
-};
-
-std::string readWhole(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+class VtkLegacyTest : public test::TempFolderTest {};
 
 template <class T>
 std::string bigEndian(const std::vector<T>& values) {

@@ -1,0 +1,55 @@
+#include "test_support.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+namespace lic3d::test {
+
+namespace fs = std::filesystem;
+
+fs::path dataFolder() {
+  if (const char* folder = std::getenv("LIC3D_TEST_DATA"); folder && *folder) return folder;
+  return fs::path(__FILE__).parent_path().parent_path() / "assets" / "data";
+}
+
+std::string readWhole(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void TempFolderTest::SetUp() {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = std::string("lic3d_") + info->test_suite_name() + "_" + info->name();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  dir_ = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir_);
+  fs::create_directories(dir_);
+}
+
+void TempFolderTest::TearDown() {
+  std::error_code ignored;
+  fs::remove_all(dir_, ignored);
+}
+
+fs::path TempFolderTest::writeBytes(const std::string& name, const std::string& bytes) const {
+  const fs::path target = path(name);
+  std::ofstream out(target, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return target;
+}
+
+std::vector<std::string> TempFolderTest::listFolder() const {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace lic3d::test

@@ -1,0 +1,34 @@
+#pragma once
+// Shared by the test suites: the real-data folder and a fixture with a private scratch folder.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace lic3d::test {
+
+// assets/data: LIC3D_TEST_DATA (set by test_environment.cpp), else relative to this source file.
+std::filesystem::path dataFolder();
+
+std::string readWhole(const std::filesystem::path& file);
+
+// Each test gets its own folder, removed afterwards, so a failure leaves nothing that could
+// confuse another test.
+class TempFolderTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+
+  const std::filesystem::path& folder() const { return dir_; }
+  std::filesystem::path path(const std::string& name) const { return dir_ / name; }
+  std::filesystem::path writeBytes(const std::string& name, const std::string& bytes) const;
+  // The names in the folder, sorted: a failed write must leave nothing, not even a temporary.
+  std::vector<std::string> listFolder() const;
+
+ private:
+  std::filesystem::path dir_;
+};
+
+}  // namespace lic3d::test
