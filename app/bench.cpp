@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <cmath>
 #include <functional>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,8 @@
 #include "file_util.h"
 #include "lic_renderer.h"
 #include "noise.h"
+#include "shader_library.h"
+#include "sparsity.h"
 
 namespace lic3d::cli {
 namespace {
@@ -177,6 +180,200 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   return report;
 }
 
+struct Variant {
+  const char* name;
+  LicParams lic;
+  ViewParams view;
+};
+
+// The thesis' Table 6.1 today: frame time of specialized pipelines against one shader deciding
+// the same modes at run time.
+Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& options) {
+  if (!hasRuntimeModeShaders())
+    return unsupportedError("bench --variants needs a build configured with "
+                            "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
+  const auto fieldKind = parseAnalyticField(options.input.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+  LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
+                   parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
+  const int n = options.frameVolume;
+  const int size = frameSizes.front();
+
+  ViewParams base;
+  base.width = base.height = size;
+  base.slices = n;
+  LicParams plain;
+  LicParams sparse;
+  sparse.sparsity.distribution = SparsityDistribution::Halton;
+  std::vector<Variant> variants;
+  variants.push_back({"grey", plain, base});
+  Variant colour{"colour + magnitude opacity", plain, base};
+  colour.view.color = ColorMode::Magnitude;
+  colour.view.magnitudeOpacity = 1.0f;
+  variants.push_back(colour);
+  Variant sparseFog{"sparsity + fog", sparse, base};
+  sparseFog.view.fog = true;
+  variants.push_back(sparseFog);
+  Variant region{"sphere ROI + clip + nearest", plain, base};
+  region.view.roi = RoiShape::Sphere;
+  region.view.roiSize = 0.8f;
+  region.view.clipMax = glm::vec3(1.0f, 0.8f, 1.0f);
+  region.view.filter = VolumeFilter::Nearest;
+  variants.push_back(region);
+  Variant lit{"Phong lighting + colour", plain, base};
+  lit.view.lighting = Lighting::Phong;
+  lit.view.color = ColorMode::Magnitude;
+  variants.push_back(lit);
+  Variant all{"all of the above", sparse, base};
+  all.view.color = ColorMode::Magnitude;
+  all.view.magnitudeOpacity = 1.0f;
+  all.view.fog = true;
+  all.view.roi = RoiShape::Sphere;
+  all.view.roiSize = 0.8f;
+  all.view.lighting = Lighting::Phong;
+  variants.push_back(all);
+
+  const DeviceInfo& device = context.deviceInfo();
+  std::printf("lic3d bench --variants on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
+              today().c_str());
+  std::printf("Frame %d^2, %d^3 volume, %d slices; median of %d after %d warm-up (GPU timestamps)\n",
+              size, n, n, options.repeats, options.warmup);
+  std::printf("%-30s %15s %15s %8s\n", "modes", "specialized ms", "runtime ms", "ratio");
+
+  nlohmann::json report;
+  report["device"] = device.name;
+  report["driver"] = device.driver;
+  report["date"] = today();
+  report["image"] = size;
+  report["volume"] = n;
+  report["rows"] = nlohmann::json::array();
+  RendererOptions runtimeOptions;
+  runtimeOptions.fieldPrecision = options.precision;
+  runtimeOptions.runtimeModes = true;
+  LIC3D_TRY_ASSIGN(LicRenderer specialized, LicRenderer::create(context, {options.precision}));
+  LIC3D_TRY_ASSIGN(LicRenderer runtime, LicRenderer::create(context, runtimeOptions));
+  LIC3D_TRY(setVolume(specialized, *fieldKind, n, options.input.seed));
+  LIC3D_TRY(setVolume(runtime, *fieldKind, n, options.input.seed));
+  double budgetLeft = options.budgetSeconds;
+  for (const Variant& v : variants) {
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool a, specialized.updateLic(v.lic));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool b, runtime.updateLic(v.lic));
+    LIC3D_TRY_ASSIGN(const Timing fast,
+                     measure(options, budgetLeft, [&] { return specialized.timeFrame(v.view); }));
+    LIC3D_TRY_ASSIGN(const Timing slow,
+                     measure(options, budgetLeft, [&] { return runtime.timeFrame(v.view); }));
+    nlohmann::json row{{"modes", v.name}};
+    if (fast.measured && slow.measured) {
+      std::printf("%-30s %15.3f %15.3f %8.2f\n", v.name, fast.medianMs, slow.medianMs,
+                  slow.medianMs / fast.medianMs);
+      row["specialized_ms"] = fast.medianMs;
+      row["runtime_ms"] = slow.medianMs;
+    } else {
+      std::printf("%-30s %15s (skipped: over the time budget)\n", v.name, "-");
+      row["skipped"] = "over the time budget";
+    }
+    std::fflush(stdout);
+    report["rows"].push_back(row);
+  }
+  return report;
+}
+
+// Thesis Figure 6.4 today: how long each distribution takes to make its points (and mask), and
+// how long a sparsity change takes end to end (mask on the CPU, upload, LIC pass).
+Result<nlohmann::json> runDistributions(const Context& context, const BenchOptions& options) {
+  const int n = options.distributionVolume;
+  const Dims dims(n);
+  const double voxels = static_cast<double>(voxelCount(dims));
+  const DeviceInfo& device = context.deviceInfo();
+  nlohmann::json report;
+  report["device"] = device.name;
+  report["date"] = today();
+  report["volume"] = n;
+  report["generation"] = nlohmann::json::array();
+  std::printf("lic3d bench --distributions, %d^3 volume, %s\n", n, today().c_str());
+  std::printf("Mask generation on the CPU (wall clock, one run each):\n");
+  std::printf("%-16s %12s %14s %12s\n", "distribution", "requested", "black voxels", "ms");
+  double budgetLeft = options.budgetSeconds;
+  for (std::string_view name : sparsityDistributionNames()) {
+    const SparsityDistribution d = *parseSparsityDistribution(name);
+    if (d == SparsityDistribution::None) continue;
+    for (const double count : {1e3, 1e4, 1e5, 1e6}) {
+      SparsityParams p;
+      p.distribution = d;
+      switch (d) {
+        case SparsityDistribution::Checkerboard: p.ratio = static_cast<float>(count / voxels); break;
+        case SparsityDistribution::Jitter:
+          p.radius = static_cast<float>(std::cbrt(kJitterDensity * voxels / count));
+          break;
+        default: p.points = static_cast<int>(count); break;
+      }
+      nlohmann::json row{{"distribution", name}, {"requested", count}};
+      if (!validate(p, dims)) {
+        std::printf("%-16s %12.0f %14s %12s (outside its limits)\n", std::string(name).c_str(),
+                    count, "-", "-");
+        row["skipped"] = "outside its limits";
+        report["generation"].push_back(row);
+        continue;
+      }
+      if (budgetLeft <= 0.0) {
+        row["skipped"] = "over the time budget";
+        report["generation"].push_back(row);
+        continue;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      LIC3D_TRY_ASSIGN(const SparsityMask mask, makeSparsityMask(p, dims));
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      budgetLeft -= ms / 1000.0;
+      std::printf("%-16s %12.0f %14zu %12.1f\n", std::string(name).c_str(), count, mask.blackCount,
+                  ms);
+      std::fflush(stdout);
+      row["black"] = mask.blackCount;
+      row["ms"] = ms;
+      report["generation"].push_back(row);
+    }
+  }
+
+  std::printf("\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
+              "parameters, L = 20, median of %d\n",
+              device.name.c_str(), options.repeats);
+  std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
+  const auto fieldKind = parseAnalyticField(options.input.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+  LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));
+  report["recompute"] = nlohmann::json::array();
+  for (std::string_view name : sparsityDistributionNames()) {
+    const SparsityDistribution d = *parseSparsityDistribution(name);
+    if (d == SparsityDistribution::None) continue;
+    std::vector<double> wall, gpu;
+    for (int i = 0; i < options.repeats && budgetLeft > 0.0; ++i) {
+      LicParams lic;
+      lic.sparsity.distribution = d;
+      lic.sparsity.seed = static_cast<std::uint64_t>(i + 2);  // a new mask every time
+      const auto start = std::chrono::steady_clock::now();
+      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
+      wall.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      budgetLeft -= wall.back() / 1000.0;
+      lic.sparsity.seed = 1;
+      LIC3D_TRY_ASSIGN(const double ms, renderer.timeLicDispatch(lic));
+      gpu.push_back(ms);
+    }
+    nlohmann::json row{{"distribution", name}};
+    if (wall.empty()) {
+      row["skipped"] = "over the time budget";
+    } else {
+      std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), median(gpu));
+      row["wall_ms"] = median(wall);
+      row["lic_ms"] = median(gpu);
+    }
+    std::fflush(stdout);
+    report["recompute"].push_back(row);
+  }
+  return report;
+}
+
 }  // namespace
 
 int runBench(const GlobalOptions& global, const BenchOptions& options) {
@@ -188,7 +385,9 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
   contextOptions.device = global.device;
   Result<Context> context = Context::create(contextOptions);
   if (!context) return reportError(context.error());
-  const Result<nlohmann::json> report = runBenchmarks(*context, options);
+  const Result<nlohmann::json> report = options.variants        ? runVariants(*context, options)
+                                         : options.distributions ? runDistributions(*context, options)
+                                                                 : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {
     if (auto r = writeFileAtomically(options.json, report->dump(2) + "\n"); !r)

@@ -78,6 +78,11 @@ void addFieldOptions(CLI::App& app, FieldOptions& options) {
                  "Noise volume (.nrrd: uchar, ushort or float) on the field's grid (default: "
                  "seeded white noise)");
   app.add_option("--seed", options.seed, "Seed of the white noise")->capture_default_str();
+  app.add_option("--seed-noise", options.seedNoiseSpots,
+                 "Sparse seed noise instead of white noise: N bright spots on black, placed by "
+                 "Poisson-disk sampling (streamlines become distinct lines)")
+      ->check(CLI::Range(0, 1 << 30))
+      ->capture_default_str();
 }
 
 void addLicParamsOptions(CLI::App& app, LicParams& params) {
@@ -112,6 +117,34 @@ void addLicParamsOptions(CLI::App& app, LicParams& params) {
                  "streamlines where the flow is slow)")
       ->transform(CLI::CheckedTransformer(directions).description(""))
       ->default_str("normalized");
+
+  std::map<std::string, SparsityDistribution> distributions;
+  std::string distributionNames;
+  for (std::string_view name : sparsityDistributionNames()) {
+    distributions.emplace(std::string(name), *parseSparsityDistribution(name));
+    distributionNames += (distributionNames.empty() ? "" : "|") + std::string(name);
+  }
+  SparsityParams& sparsity = params.sparsity;
+  app.add_option("--sparsity", sparsity.distribution,
+                 "Sparsity mask (thesis 5.1.4): voxels whose streamline touches a black point are "
+                 "not drawn; points from " + distributionNames)
+      ->transform(CLI::CheckedTransformer(distributions).description(""))
+      ->default_str("none");
+  app.add_option("--sparsity-points", sparsity.points,
+                 "Black points for poisson, poisson-approx, halton, hammersley (0: automatic)")
+      ->check(CLI::Range(0, 1 << 30))
+      ->capture_default_str();
+  app.add_option("--sparsity-radius", sparsity.radius,
+                 "Minimum distance between black points in voxels, for poisson and jitter (0: "
+                 "automatic)")
+      ->check(CLI::Range(0.0, 4096.0))
+      ->capture_default_str();
+  app.add_option("--sparsity-ratio", sparsity.ratio,
+                 "Fraction of black voxels of the checkerboard, in (0,1)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--sparsity-seed", sparsity.seed, "Seed of the random sparsity distributions")
+      ->capture_default_str();
 }
 
 void addLicOptions(CLI::App& app, LicParams& params) { addLicParamsOptions(app, params); }
@@ -184,22 +217,111 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
       ->default_str("intensity");
   const std::map<std::string, VolumeFilter> filters{{"nearest", VolumeFilter::Nearest},
                                                     {"linear", VolumeFilter::Linear}};
-  app.add_option("--filter", view.filter, "Sampling of the LIC volume by the slices: nearest|linear")
+  app.add_option("--filter", view.filter,
+                 "Sampling of the LIC volume by the slices: nearest|linear (thesis 6.4)")
       ->transform(CLI::CheckedTransformer(filters).description(""))
       ->default_str("linear");
   app.add_option("--background", options.background,
                  "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1")
       ->capture_default_str();
-  app.add_option("--window", options.window,
-                 "Intensity window mapped to black..white: auto (the volume's 3rd and 97th "
-                 "percentiles) or LO,HI in 0..1")
+
+  app.add_option("--contrast", options.contrast,
+                 "on: stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25 (a "
+                 "histogram stretch); off: grey = LIC value")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  app.add_option("--gain", view.contrast, "Contrast: scales grey values around mid-grey")
+  app.add_option("--window", options.window,
+                 "Intensity window mapped to black..white instead of the contrast stretch: auto "
+                 "or LO,HI in 0..1")
+      ->capture_default_str();
+  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
       ->check(CLI::Range(-1.0, 1.0))
       ->capture_default_str();
+
+  const std::map<std::string, ColorMode> colors{{"none", ColorMode::None},
+                                                {"magnitude", ColorMode::Magnitude}};
+  app.add_option("--color", view.color,
+                 "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
+                 "modulating it (thesis 5.1.2)")
+      ->transform(CLI::CheckedTransformer(colors).description(""))
+      ->default_str("none");
+  std::map<std::string, Colormap> colormaps;
+  for (std::string_view name : colormapNames())
+    colormaps.emplace(std::string(name), *parseColormap(name));
+  app.add_option("--colormap", view.colormap,
+                 "thesis (blue-yellow-red), viridis or coolwarm")
+      ->transform(CLI::CheckedTransformer(colormaps).description(""))
+      ->default_str("thesis");
+  app.add_option("--color-range", options.colorRange,
+                 "|v| mapped to the ends of the colour map: auto (the field's min and max) or "
+                 "MIN,MAX")
+      ->capture_default_str();
+  app.add_flag("--legend", view.legend,
+               "Draw the colour legend into the image (with --color magnitude)");
+  app.add_option("--magnitude-opacity", view.magnitudeOpacity,
+                 "Opacity x (normalised |v|)^E so slow regions fade (thesis 5.1.3); 0 is off")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--magnitude-threshold", view.magnitudeThreshold,
+                 "Voxels whose normalised |v| is below this vanish")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+
+  app.add_option("--clip", options.clip,
+                 "Keep X0..X1, Y0..Y1, Z0..Z1 of the box, as fractions (thesis 5.2.1)")
+      ->capture_default_str();
+  const std::map<std::string, RoiShape> shapes{{"none", RoiShape::None},
+                                               {"sphere", RoiShape::Sphere},
+                                               {"cube", RoiShape::Cube},
+                                               {"cylinder", RoiShape::Cylinder}};
+  app.add_option("--roi", view.roi, "Region of interest: none|sphere|cube|cylinder (thesis 5.2.2)")
+      ->transform(CLI::CheckedTransformer(shapes).description(""))
+      ->default_str("none");
+  app.add_option("--roi-center", options.roiCenter, "Centre X,Y,Z as fractions of the box")
+      ->capture_default_str();
+  app.add_option("--roi-size", view.roiSize,
+                 "Diameter (sphere, cylinder) or side (cube) as a fraction of the longest box side")
+      ->check(CLI::Range(1e-3, 10.0))
+      ->capture_default_str();
+  app.add_option("--roi-rotate", options.roiRotate,
+                 "Rotation AX,AY,AZ in degrees (about x, then y, then z)")
+      ->capture_default_str();
+  app.add_flag("--roi-outside", view.roiOutside, "Keep the outside of the region instead");
+
+  app.add_option("--fog", options.fog,
+                 "Depth cueing START,END: fog grows linearly from START to END, fractions of the "
+                 "depth from the volume's nearest to its farthest point (thesis 5.3.1)");
+  app.add_option("--fog-color", options.fogColor, "Fog colour R,G,B (default: the background)");
+
+  const std::map<std::string, StereoMode> stereo{{"none", StereoMode::None},
+                                                 {"anaglyph", StereoMode::Anaglyph},
+                                                 {"side-by-side", StereoMode::SideBySide}};
+  app.add_option("--stereo", view.stereo,
+                 "none, anaglyph (red left, cyan right) or side-by-side (left|right, twice the "
+                 "width) with an off-axis frustum (thesis 5.3.2)")
+      ->transform(CLI::CheckedTransformer(stereo).description(""))
+      ->default_str("none");
+  app.add_option("--eye-separation", view.eyeSeparation,
+                 "Distance between the eyes in box units (0: zero-parallax distance / 30)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--zero-parallax", view.zeroParallax,
+                 "Distance from the eye of the plane that shows no disparity (0: the volume "
+                 "centre)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+
+  const std::map<std::string, Lighting> lighting{{"none", Lighting::None},
+                                                 {"phong", Lighting::Phong},
+                                                 {"lines", Lighting::Lines}};
+  app.add_option("--lighting", view.lighting,
+                 "none, phong (normals from the streamline's TNB frame, thesis 5.3.3) or lines "
+                 "(illuminated lines: lit from the tangent alone)")
+      ->transform(CLI::CheckedTransformer(lighting).description(""))
+      ->default_str("none");
 }
 
 Result<Dims> parseGrid(const std::string& text) {
@@ -241,21 +363,63 @@ Result<std::vector<int>> parseIntList(const std::string& text, const char* flag,
   return values;
 }
 
-Result<void> finishViewOptions(RenderOptions& options) {
-  LIC3D_TRY_ASSIGN(options.view.background, parseColor(options.background, "--background"));
-  if (options.window == "auto") {
-    options.view.autoWindow = true;
-  } else {
-    const std::vector<std::string_view> parts = splitCommas(options.window);
-    if (parts.size() != 2) return inputError("--window: expected auto or LO,HI, got '" + options.window + "'");
-    LIC3D_TRY_ASSIGN(options.view.windowLow, parseNumber<float>(parts[0], "--window"));
-    LIC3D_TRY_ASSIGN(options.view.windowHigh, parseNumber<float>(parts[1], "--window"));
-    if (!(options.view.windowLow >= 0.0f && options.view.windowHigh <= 1.0f &&
-          options.view.windowLow < options.view.windowHigh))
-      return inputError("--window: need 0 <= LO < HI <= 1, got '" + options.window + "'");
-    options.view.autoWindow = false;
+Result<std::vector<float>> parseFloatList(const std::string& text, const char* flag,
+                                          std::size_t count) {
+  const std::vector<std::string_view> parts = splitCommas(text);
+  if (parts.size() != count)
+    return inputError(std::string(flag) + ": expected " + std::to_string(count) +
+                      " comma-separated numbers, got '" + text + "'");
+  std::vector<float> values;
+  for (std::string_view part : parts) {
+    LIC3D_TRY_ASSIGN(const float v, parseNumber<float>(part, flag));
+    values.push_back(v);
   }
-  return {};
+  return values;
+}
+
+Result<void> finishViewOptions(RenderOptions& options) {
+  ViewParams& view = options.view;
+  LIC3D_TRY_ASSIGN(view.background, parseColor(options.background, "--background"));
+  view.contrast = options.contrast == "on";
+  if (options.window != "auto") {
+    LIC3D_TRY_ASSIGN(const std::vector<float> w, parseFloatList(options.window, "--window", 2));
+    if (!(w[0] >= 0.0f && w[1] <= 1.0f && w[0] < w[1]))
+      return inputError("--window: need 0 <= LO < HI <= 1, got '" + options.window + "'");
+    view.manualWindow = true;
+    view.windowLow = w[0];
+    view.windowHigh = w[1];
+  }
+  if (options.colorRange != "auto") {
+    LIC3D_TRY_ASSIGN(const std::vector<float> r,
+                     parseFloatList(options.colorRange, "--color-range", 2));
+    if (!(r[0] < r[1]))
+      return inputError("--color-range: need MIN < MAX, got '" + options.colorRange + "'");
+    view.autoColorRange = false;
+    view.colorLow = r[0];
+    view.colorHigh = r[1];
+  }
+  if (view.legend && view.color != ColorMode::Magnitude)
+    return inputError("--legend shows the colour map: use it with --color magnitude");
+  LIC3D_TRY_ASSIGN(const std::vector<float> clip, parseFloatList(options.clip, "--clip", 6));
+  view.clipMin = {clip[0], clip[2], clip[4]};
+  view.clipMax = {clip[1], clip[3], clip[5]};
+  LIC3D_TRY_ASSIGN(const std::vector<float> centre,
+                   parseFloatList(options.roiCenter, "--roi-center", 3));
+  view.roiCenter = {centre[0], centre[1], centre[2]};
+  LIC3D_TRY_ASSIGN(const std::vector<float> rotate,
+                   parseFloatList(options.roiRotate, "--roi-rotate", 3));
+  view.roiRotation = {rotate[0], rotate[1], rotate[2]};
+  if (!options.fog.empty()) {
+    LIC3D_TRY_ASSIGN(const std::vector<float> fog, parseFloatList(options.fog, "--fog", 2));
+    view.fog = true;
+    view.fogStart = fog[0];
+    view.fogEnd = fog[1];
+  }
+  if (!options.fogColor.empty()) {
+    LIC3D_TRY_ASSIGN(view.fogColor, parseColor(options.fogColor, "--fog-color"));
+    view.fogColorFromBackground = false;
+  }
+  return validate(view);
 }
 
 Result<void> checkHostMemory(Dims dims) {
@@ -290,6 +454,13 @@ Result<VectorField> loadField(const FieldOptions& options) {
 }
 
 Result<NoiseVolume> loadNoise(const FieldOptions& options, Dims dims) {
+  if (options.seedNoiseSpots > 0 && !options.noise.empty())
+    return inputError("--seed-noise and --noise both choose the noise: give one");
+  if (options.seedNoiseSpots > 0) {
+    if (static_cast<std::size_t>(options.seedNoiseSpots) > voxelCount(dims))
+      return inputError("--seed-noise: more spots than voxels");
+    return makeSeedNoise(dims, static_cast<std::size_t>(options.seedNoiseSpots), options.seed);
+  }
   if (options.noise.empty()) return makeWhiteNoise(dims, options.seed);
   LIC3D_TRY_ASSIGN(NoiseVolume noise, readNoise(options.noise));
   if (noise.dims != dims)

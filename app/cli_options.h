@@ -32,6 +32,7 @@ struct FieldOptions {
   std::string grid = "128";
   std::string noise;
   std::uint64_t seed = 1;
+  int seedNoiseSpots = 0;  // > 0: sparse seed noise with this many spots instead of white noise
   CLI::Option* gridOption = nullptr;
 };
 
@@ -43,11 +44,19 @@ struct ComputeOptions {
   std::string output;
 };
 
+// View flags whose text is parsed after CLI11 is done (lists, colours, on/off).
 struct RenderOptions {
   ComputeOptions compute;
   ViewParams view;
   std::string background = "0,0,0";
   std::string window = "auto";
+  std::string contrast = "on";
+  std::string colorRange = "auto";
+  std::string clip = "0,1,0,1,0,1";
+  std::string roiCenter = "0.5,0.5,0.5";
+  std::string roiRotate = "0,0,0";
+  std::string fog;
+  std::string fogColor;
 };
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
@@ -60,7 +69,9 @@ void addViewOptions(CLI::App& app, RenderOptions& options);
 Result<Dims> parseGrid(const std::string& text);
 Result<glm::vec3> parseColor(const std::string& text, const char* flag);
 Result<std::vector<int>> parseIntList(const std::string& text, const char* flag, int min, int max);
-// Applies the string-valued view flags (--background, --window) to options.view.
+Result<std::vector<float>> parseFloatList(const std::string& text, const char* flag,
+                                          std::size_t count);
+// Applies the text-valued view flags (colours, lists, on/off) to options.view and checks it.
 Result<void> finishViewOptions(RenderOptions& options);
 
 // Refuses grids whose host-side arrays would not fit this machine's memory.

@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <cstdio>
+#include <limits>
 
 #include "lic_reference.h"
 #include "lic_renderer.h"
@@ -41,6 +42,7 @@ Result<Inputs> loadInputs(const ComputeOptions& options) {
   LIC3D_TRY(validate(options.lic));
   Inputs inputs;
   LIC3D_TRY_ASSIGN(inputs.field, loadField(options.input));
+  LIC3D_TRY(validate(options.lic.sparsity, inputs.field.dims));
   LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(options.input, inputs.field.dims));
   return inputs;
 }
@@ -64,6 +66,15 @@ Result<void> prepareRenderer(const GlobalOptions& global, const ComputeOptions& 
   LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran,
                    renderer.updateLic(options.lic, [&](double f) { progress.update(f); }));
   return {};
+}
+
+// Voxels that sparsity hides are written as NaN: "no value" to ParaView and VisIt.
+Result<void> writeLicVolume(const std::string& path, const ScalarVolume& volume) {
+  if (volume.drawn.empty()) return writeScalarNrrd(path, volume);
+  ScalarVolume marked = volume;
+  for (std::size_t i = 0; i < marked.values.size(); ++i)
+    if (!marked.drawn[i]) marked.values[i] = std::numeric_limits<float>::quiet_NaN();
+  return writeScalarNrrd(path, marked);
 }
 
 }  // namespace
@@ -94,7 +105,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   if (options.cpu) {
     const Result<ScalarVolume> volume = computeOnCpu(global, *inputs, options.lic);
     if (!volume) return reportError(volume.error());
-    if (auto r = writeScalarNrrd(options.output, *volume); !r) return reportError(r.error());
+    if (auto r = writeLicVolume(options.output, *volume); !r) return reportError(r.error());
     if (!global.quiet) std::fprintf(stderr, "lic3d: wrote %s\n", options.output.c_str());
     return kExitOk;
   }
@@ -107,7 +118,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
     Result<void> done = renderer ? prepareRenderer(global, options, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<ScalarVolume> volume = done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
-    if (volume) done = writeScalarNrrd(options.output, *volume);
+    if (volume) done = writeLicVolume(options.output, *volume);
     else done = volume.error();
     if (!done) status = reportError(done.error());
     else if (!global.quiet)

@@ -18,6 +18,9 @@ struct BenchOptions {
   int warmup = 2;
   double budgetSeconds = 120.0;
   std::string json;
+  bool variants = false;       // specialized pipelines against runtime mode switches
+  bool distributions = false;  // sparsity point generation and mask + LIC recompute
+  int distributionVolume = 256;
 };
 
 int runDevices(const GlobalOptions& global);

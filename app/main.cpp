@@ -65,6 +65,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();
   benchCommand->add_option("--json", bench.json, "Also write the results as JSON");
+  benchCommand->add_flag("--variants", bench.variants,
+                         "Instead: frame time of specialized pipelines against one shader with "
+                         "runtime mode switches, for several display modes (thesis Table 6.1)");
+  benchCommand->add_flag("--distributions", bench.distributions,
+                         "Instead: time of each sparsity distribution for 1k..1M points, and of a "
+                         "sparsity change end to end (thesis Figure 6.4)");
+  benchCommand->add_option("--distribution-volume", bench.distributionVolume,
+                           "Volume size N (N^3) of --distributions")
+      ->check(CLI::Range(8, 1024))
+      ->capture_default_str();
   benchCommand->footer(globalNote);
 
   try {

@@ -7,7 +7,8 @@
 
 namespace lic3d {
 
-CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, float aspect) {
+CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, float aspect,
+                             float eyeOffset, float zeroParallax) {
   const float azimuth = glm::radians(params.azimuth);
   const float elevation = glm::radians(std::clamp(params.elevation, -89.9f, 89.9f));
   const float fovY = glm::radians(std::clamp(params.fovY, 1.0f, 170.0f));
@@ -20,8 +21,13 @@ CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, f
   m.toViewer = glm::vec3(std::cos(elevation) * std::cos(azimuth),
                          std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
   m.distance = params.distance > 0.0f ? params.distance : margin * radius / std::sin(halfFov);
-  m.eye = params.target + m.distance * m.toViewer;
-  m.view = glm::lookAt(m.eye, params.target, glm::vec3(0.0f, 0.0f, 1.0f));
+  const glm::vec3 worldUp(0.0f, 0.0f, 1.0f);
+  m.right = glm::normalize(glm::cross(-m.toViewer, worldUp));
+  m.up = glm::cross(m.right, -m.toViewer);
+  // Both eyes look parallel to the central view direction (no toe-in: no vertical parallax).
+  const glm::vec3 shift = eyeOffset * m.right;
+  m.eye = params.target + m.distance * m.toViewer + shift;
+  m.view = glm::lookAt(m.eye, params.target + shift, worldUp);
 
   if (params.orthographic) {
     // The visible height matches what the perspective view shows at the target's distance.
@@ -33,7 +39,12 @@ CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, f
     const float nearPlane =
         std::max(1e-3f * m.distance, m.distance - 2.0f * radius - glm::length(params.target));
     const float farPlane = m.distance + 2.0f * radius + glm::length(params.target);
-    m.projection = glm::perspective(fovY, aspect, nearPlane, farPlane);
+    const float top = nearPlane * std::tan(0.5f * fovY);
+    const float halfWidth = top * aspect;
+    const float parallaxDistance = zeroParallax > 0.0f ? zeroParallax : m.distance;
+    const float frustumShift = eyeOffset * nearPlane / parallaxDistance;
+    m.projection = glm::frustum(-halfWidth - frustumShift, halfWidth - frustumShift, -top, top,
+                                nearPlane, farPlane);
   }
   m.projection[1][1] *= -1.0f;  // Vulkan's clip space has y pointing down
   m.viewProjection = m.projection * m.view;

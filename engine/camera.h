@@ -21,13 +21,20 @@ struct CameraMatrices {
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};  // Vulkan clip space: y down, depth in [0,1]
   glm::mat4 viewProjection{1.0f};
-  glm::vec3 eye{0.0f};       // camera position
-  glm::vec3 toViewer{0.0f};  // unit vector from the target towards the eye
-  float distance = 0.0f;
+  glm::vec3 eye{0.0f};       // camera position (of this eye, for stereo)
+  glm::vec3 toViewer{0.0f};  // unit vector from the target towards the (central) eye
+  glm::vec3 right{0.0f};     // unit screen-right direction in world space
+  glm::vec3 up{0.0f};        // unit screen-up direction in world space
+  float distance = 0.0f;     // from the target to the central eye
 };
 
 // `halfExtent` is half the box size in world units; the whole box fits the view when
 // distance = 0 (its bounding sphere touches neither image edge).
-CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, float aspect);
+//
+// Stereo (thesis 5.3.2): `eyeOffset` moves the eye along screen-right (-E/2 left, +E/2 right)
+// and shifts the frustum off-axis so that points at `zeroParallax` from the eye (0: the target's
+// distance) project to the same pixel for both eyes. Perspective only.
+CameraMatrices computeCamera(const CameraParams& params, glm::vec3 halfExtent, float aspect,
+                             float eyeOffset = 0.0f, float zeroParallax = 0.0f);
 
 }  // namespace lic3d

@@ -2,7 +2,8 @@
 
 #include <array>
 #include <cstring>
-#include <numeric>
+#include <algorithm>
+#include <cmath>
 
 #include "gpu_submit.h"
 #include "shader_library.h"
@@ -11,30 +12,22 @@
 
 namespace lic3d {
 
-IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, double lowFraction,
-                                 double highFraction) {
-  const double total = std::accumulate(counts.begin(), counts.end(), 0.0);
-  if (counts.empty() || total <= 0.0) return {};
+IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts) {
+  IntensityStatistics stats;
+  double sum = 0.0, sumSquares = 0.0;
   const double bins = static_cast<double>(counts.size());
-  // Position of a quantile inside its bin, assuming values spread evenly across the bin.
-  auto quantile = [&](double fraction) {
-    const double target = fraction * total;
-    double below = 0.0;
-    for (std::size_t b = 0; b < counts.size(); ++b) {
-      if (below + counts[b] >= target && counts[b] > 0)
-        return (static_cast<double>(b) + (target - below) / counts[b]) / bins;
-      below += counts[b];
-    }
-    return 1.0;
-  };
-  IntensityWindow window{static_cast<float>(quantile(lowFraction)),
-                         static_cast<float>(quantile(highFraction))};
-  if (window.high - window.low < 1.0f / static_cast<float>(bins)) {
-    // A (nearly) constant volume: centre a one-bin window on it instead of dividing by zero.
-    const float centre = 0.5f * (window.low + window.high);
-    window = {centre - 0.5f / static_cast<float>(bins), centre + 0.5f / static_cast<float>(bins)};
+  for (std::size_t b = 0; b < counts.size(); ++b) {
+    const double value = (static_cast<double>(b) + 0.5) / bins;
+    stats.voxels += counts[b];
+    sum += counts[b] * value;
+    sumSquares += counts[b] * value * value;
   }
-  return window;
+  if (stats.voxels == 0) return stats;
+  const double n = static_cast<double>(stats.voxels);
+  const double mean = sum / n;
+  stats.mean = static_cast<float>(mean);
+  stats.deviation = static_cast<float>(std::sqrt(std::max(sumSquares / n - mean * mean, 0.0)));
+  return stats;
 }
 
 Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {

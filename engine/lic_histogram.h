@@ -1,7 +1,8 @@
 #pragma once
-// A histogram of the LIC volume on the GPU. LIC values crowd around the noise mean (their spread
-// shrinks like 1/sqrt(samples)), so the renderer stretches a window between two percentiles to
-// full grey; this pass supplies them without reading the volume back.
+// A histogram of the drawn voxels of the LIC volume on the GPU. LIC values crowd around the
+// noise mean (their spread shrinks like 1/sqrt(samples)), so the renderer stretches them to full
+// grey (ViewParams::contrast); this pass supplies their mean and spread without reading the
+// volume back.
 
 #include <cstdint>
 #include <vector>
@@ -16,14 +17,14 @@
 
 namespace lic3d {
 
-struct IntensityWindow {
-  float low = 0.0f;
-  float high = 1.0f;
+struct IntensityStatistics {
+  float mean = 0.5f;
+  float deviation = 0.0f;
+  std::uint64_t voxels = 0;  // drawn voxels counted
 };
 
-// The window between the `lowFraction` and `highFraction` quantiles of a histogram over [0,1].
-IntensityWindow percentileWindow(const std::vector<std::uint32_t>& counts, double lowFraction = 0.03,
-                                 double highFraction = 0.97);
+// Mean and standard deviation of a histogram over [0,1] (values at bin centres).
+IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts);
 
 class LicHistogramPass {
  public:

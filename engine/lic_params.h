@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "error.h"
+#include "sparsity.h"
 
 namespace lic3d {
 
@@ -25,6 +26,8 @@ struct LicParams {
   Kernel kernel = Kernel::Box;
   NoiseFilter noiseFilter = NoiseFilter::Linear;
   DirectionMode direction = DirectionMode::Normalized;
+  // Thesis 5.1.4: voxels whose streamline touches a black voxel of this mask are not drawn.
+  SparsityParams sparsity;
 
   bool operator==(const LicParams&) const = default;
 };

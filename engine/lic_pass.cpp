@@ -15,23 +15,28 @@ LicSpecialization licSpecialization(const LicParams& params) {
   s.kernel = static_cast<std::uint32_t>(params.kernel);
   s.noiseFilter = static_cast<std::uint32_t>(params.noiseFilter);
   s.direction = static_cast<std::uint32_t>(params.direction);
+  s.sparsity = params.sparsity.distribution == SparsityDistribution::None ? 0u : 1u;
   return s;
 }
 
 Result<LicPass> LicPass::create(const Context& context) {
   LicPass pass;
   pass.context_ = &context;
-  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+  const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
       {gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
        VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
        nullptr},
+      {gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
   }};
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::LicPushConstants), "lic"));
   LIC3D_TRY_ASSIGN(pass.shader_, loadShader(context, ShaderId::LicCompute));
   LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_LINEAR, "lic trilinear sampler"));
+  // Integer textures cannot be filtered linearly; the mask is only read with texelFetch.
+  LIC3D_TRY_ASSIGN(pass.maskSampler_, Sampler::create(context, VK_FILTER_NEAREST, "lic mask sampler"));
   return pass;
 }
 
@@ -44,7 +49,8 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
       "lic " + std::string(toString(static_cast<Integrator>(specialization.integrator))) + "/" +
       std::string(toString(static_cast<Kernel>(specialization.kernel))) + "/" +
       std::string(toString(static_cast<NoiseFilter>(specialization.noiseFilter))) + "/" +
-      std::string(toString(static_cast<DirectionMode>(specialization.direction)));
+      std::string(toString(static_cast<DirectionMode>(specialization.direction))) +
+      (specialization.sparsity ? "/sparse" : "");
   LIC3D_TRY_ASSIGN(Pipeline pipeline,
                    createComputePipeline(*context_, shader_, layout_, constants.info(), name));
   const VkPipeline handle = pipeline.get();
@@ -52,8 +58,8 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
   return handle;
 }
 
-Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& output,
-                             const LicParams& params, int zBegin, int zEnd) {
+Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                             const Image& output, const LicParams& params, int zBegin, int zEnd) {
   const LicSpecialization specialization = licSpecialization(params);
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -61,9 +67,12 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   const VkDescriptorImageInfo fieldInfo{sampler_.handle(), field.image.view(),
                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output.view(), VK_IMAGE_LAYOUT_GENERAL};
-  const std::array<VkWriteDescriptorSet, 2> writes{
+  const VkDescriptorImageInfo maskInfo{maskSampler_.handle(), mask.view(),
+                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const std::array<VkWriteDescriptorSet, 3> writes{
       descriptorWrite(gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &fieldInfo),
-      descriptorWrite(gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &outputInfo)};
+      descriptorWrite(gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &outputInfo),
+      descriptorWrite(gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &maskInfo)};
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
                                  static_cast<std::uint32_t>(writes.size()), writes.data());
 

@@ -27,25 +27,30 @@ struct LicSpecialization {
   std::uint32_t localSizeX = 8;  // 8x8x1 beats 4x4x4 on lavapipe and ties on discrete GPUs
   std::uint32_t localSizeY = 8;
   std::uint32_t localSizeZ = 1;
+  std::uint32_t sparsity = 0;
 
   bool operator==(const LicSpecialization&) const = default;
 };
-static_assert(sizeof(LicSpecialization) == 7 * 4);
+static_assert(sizeof(LicSpecialization) == 8 * 4);
 
 LicSpecialization licSpecialization(const LicParams& params);
 
-// The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding.
-inline constexpr VkFormat kLicVolumeFormat = VK_FORMAT_R16_UNORM;
+// The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding; the
+// second channel is 1 where the voxel is drawn and 0 where sparsity masks it.
+inline constexpr VkFormat kLicVolumeFormat = VK_FORMAT_R16G16_UNORM;
+// The sparsity mask: one byte per voxel, 1 = black.
+inline constexpr VkFormat kSparsityMaskFormat = VK_FORMAT_R8_UINT;
 
 class LicPass {
  public:
   // `context` must outlive the pass.
   static Result<LicPass> create(const Context& context);
 
-  // Records the dispatch for z slices [zBegin, zEnd). `field` must be in
-  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's.
-  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& output,
-                      const LicParams& params, int zBegin, int zEnd);
+  // Records the dispatch for z slices [zBegin, zEnd). `field` and `mask` must be in
+  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`
+  // is read only when params.sparsity has a distribution (any image will do otherwise).
+  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                      const Image& output, const LicParams& params, int zBegin, int zEnd);
 
   std::size_t variantCount() const { return pipelines_.size(); }
 
@@ -56,6 +61,7 @@ class LicPass {
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler sampler_;
+  Sampler maskSampler_;
   std::vector<std::pair<LicSpecialization, Pipeline>> pipelines_;
 };
 

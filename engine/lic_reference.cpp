@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include <glm/glm.hpp>
@@ -108,10 +109,27 @@ std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
   return samples;
 }
 
+namespace {
+
+bool inBlackVoxel(const SparsityMask& mask, glm::dvec3 x) {
+  glm::ivec3 v;
+  for (int a = 0; a < 3; ++a)
+    v[a] = std::clamp(static_cast<int>(std::floor(x[a] + 0.5)), 0, mask.dims[a] - 1);
+  return mask.black[voxelIndex(mask.dims, v.x, v.y, v.z)] != 0;
+}
+
+}  // namespace
+
 double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const LicParams& params,
                   glm::ivec3 voxel) {
+  return licSampleAtVoxel(sampler, noise, params, voxel).value;
+}
+
+LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,
+                           const LicParams& params, glm::ivec3 voxel, const SparsityMask* mask) {
   const glm::dvec3 start(voxel);
   double sum = 0.0, weights = 0.0;
+  bool drawn = true;
   for (int sign : {-1, 1}) {
     const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
     const std::vector<glm::dvec3> samples =
@@ -122,9 +140,10 @@ double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const L
                                     params.bias);
       sum += w * sampleNoise(noise, params.noiseFilter, samples[i]);
       weights += w;
+      if (mask && inBlackVoxel(*mask, samples[i])) drawn = false;
     }
   }
-  return sum / weights;
+  return {sum / weights, drawn};
 }
 
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
@@ -139,6 +158,11 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   out.geometry = field.geometry;
   out.values.resize(voxelCount(field.dims));
   const FieldSampler sampler(field);
+  std::optional<SparsityMask> mask;
+  if (params.sparsity.distribution != SparsityDistribution::None) {
+    LIC3D_TRY_ASSIGN(mask, makeSparsityMask(params.sparsity, field.dims));
+    out.drawn.resize(out.values.size());
+  }
 
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   const int slices = field.dims.z;
@@ -147,9 +171,13 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   auto work = [&](bool reports) {
     for (int k = next++; k < slices; k = next++) {
       for (int j = 0; j < field.dims.y; ++j)
-        for (int i = 0; i < field.dims.x; ++i)
-          out.values[voxelIndex(field.dims, i, j, k)] =
-              static_cast<float>(licAtVoxel(sampler, noise, params, {i, j, k}));
+        for (int i = 0; i < field.dims.x; ++i) {
+          const std::size_t index = voxelIndex(field.dims, i, j, k);
+          const LicSample sample =
+              licSampleAtVoxel(sampler, noise, params, {i, j, k}, mask ? &*mask : nullptr);
+          out.values[index] = static_cast<float>(sample.value);
+          if (mask) out.drawn[index] = sample.drawn ? 1 : 0;
+        }
       const int finished = ++done;
       if (reports && progress) progress(static_cast<double>(finished) / slices);
     }

@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "lic_params.h"
+#include "sparsity.h"
 #include "volume.h"
 
 namespace lic3d {
@@ -34,11 +35,21 @@ std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
                                         const LicParams& params, glm::dvec3 start, int sign,
                                         int steps);
 
-// The LIC value of voxel (i,j,k).
+// The LIC value of voxel (i,j,k), and whether it is drawn: with a sparsity mask, a voxel is
+// not drawn if any sample of its streamline lies in a black voxel (the voxel nearest to the
+// sample, as for nearest noise).
+struct LicSample {
+  double value = 0.0;
+  bool drawn = true;
+};
+LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,
+                           const LicParams& params, glm::ivec3 voxel,
+                           const SparsityMask* mask = nullptr);
 double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const LicParams& params,
                   glm::ivec3 voxel);
 
-// The whole LIC volume; `threads` = 0 uses every hardware thread.
+// The whole LIC volume (with `drawn` filled when params.sparsity has a distribution); `threads`
+// = 0 uses every hardware thread.
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
                                          const LicParams& params, unsigned threads = 0,
                                          const ProgressCallback& progress = {});

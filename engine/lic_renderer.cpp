@@ -7,6 +7,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gpu_submit.h"
+#include "legend.h"
 #include "vk_check.h"
 
 namespace lic3d {
@@ -27,10 +28,17 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   LIC3D_TRY(renderer.setFramePrecision(options.framePrecision));
   LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
-  LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context));
+  LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context, options.runtimeModes));
   if (context.supportsTimestamps()) {
     LIC3D_TRY_ASSIGN(renderer.timer_, GpuTimer::create(context, 2, "renderer timestamps"));
   }
+  ImageDesc maskDesc;
+  maskDesc.format = kSparsityMaskFormat;
+  maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  maskDesc.name = "empty sparsity mask";
+  LIC3D_TRY_ASSIGN(renderer.emptyMask_, Image::create(context, maskDesc));
+  const std::uint8_t white = 0;
+  LIC3D_TRY(uploadImage(context, renderer.emptyMask_, &white, 1));
   if (!supportsFormat(context, kLicVolumeFormat,
                       VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT |
                           VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
@@ -55,6 +63,7 @@ LicRenderer::~LicRenderer() {
 
 Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume& noise) {
   licParams_.reset();
+  if (field.dims != field_.dims) maskParams_.reset();  // the mask lives on the field's grid
   field_ = FieldTexture();  // free the old texture before allocating the new one
   LIC3D_TRY_ASSIGN(field_, uploadLicInputs(*context_, field, noise, precision_));
   return {};
@@ -82,17 +91,55 @@ Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicPara
   if (!field_.image || volume.dims != field_.dims)
     return inputError("the LIC volume's grid does not match the field's");
   LIC3D_TRY(ensureLicVolume());
-  std::vector<std::uint16_t> texels(volume.values.size());
-  for (std::size_t i = 0; i < texels.size(); ++i)
-    texels[i] = static_cast<std::uint16_t>(
+  // RG16: the value, and whether the voxel is drawn.
+  std::vector<std::uint16_t> texels(2 * volume.values.size());
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    texels[2 * i] = static_cast<std::uint16_t>(
         std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
+    texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
+  }
   LIC3D_TRY(uploadImage(*context_, licVolume_, texels.data(), texels.size() * sizeof(std::uint16_t)));
   LIC3D_TRY(submitAndWait(
       *context_, [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, licVolume_, field_.dims); },
       "lic histogram"));
-  window_ = percentileWindow(histogramPass_.counts());
+  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
   licParams_ = params;
   return {};
+}
+
+Result<void> LicRenderer::ensureMask(const SparsityParams& sparsity) {
+  if (sparsity.distribution == SparsityDistribution::None) return {};
+  if (maskParams_ && *maskParams_ == sparsity) return {};
+  LIC3D_TRY_ASSIGN(const SparsityMask mask, makeSparsityMask(sparsity, field_.dims));
+  ImageDesc desc;
+  desc.format = kSparsityMaskFormat;
+  desc.extent = licVolume_.extent();
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "sparsity mask";
+  maskParams_.reset();
+  mask_ = Image();
+  LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
+  LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
+  maskParams_ = sparsity;
+  ++maskBuilds_;
+  return {};
+}
+
+const Image& LicRenderer::maskFor(const LicParams& params) const {
+  return params.sparsity.distribution == SparsityDistribution::None ? emptyMask_ : mask_;
+}
+
+VolumeFacts LicRenderer::volumeFacts() const {
+  VolumeFacts facts;
+  facts.dims = field_.dims;
+  facts.geometry = field_.geometry;
+  facts.minMagnitude = static_cast<float>(field_.minMagnitude);
+  facts.maxMagnitude = static_cast<float>(field_.maxMagnitude);
+  facts.intensityMean = statistics_.mean;
+  facts.intensityDeviation = statistics_.deviation;
+  facts.sparsity =
+      licParams_ && licParams_->sparsity.distribution != SparsityDistribution::None;
+  return facts;
 }
 
 void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
@@ -106,7 +153,7 @@ void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, in
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
-  status = licPass_.record(cmd, field_, licVolume_, params, zBegin, zEnd);
+  status = licPass_.record(cmd, field_, maskFor(params), licVolume_, params, zBegin, zEnd);
   if (!status) return;
   if (last) {
     imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
@@ -122,6 +169,7 @@ Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallb
   if (licParams_ && *licParams_ == params) return false;
   LIC3D_TRY(ensureLicVolume());
   licParams_.reset();
+  LIC3D_TRY(ensureMask(params.sparsity));
 
   const Dims dims = field_.dims;
   const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
@@ -138,7 +186,7 @@ Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallb
     if (progress) progress(static_cast<double>(zEnd) / dims.z);
   }
   ++licDispatches_;
-  window_ = percentileWindow(histogramPass_.counts());
+  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
   licParams_ = params;
   return true;
 }
@@ -190,15 +238,39 @@ void LicRenderer::recordFrame(VkCommandBuffer cmd, const ViewParams& view, Resul
   rendering.colorAttachmentCount = 1;
   rendering.pColorAttachments = &color;
   vkCmdBeginRendering(cmd, &rendering);
-  const SliceFrame frame =
-      makeSliceFrame(view, field_.dims, field_.geometry, window_.low, window_.high);
-  status = slicePass_.record(cmd, target_.format(), extent, licVolume_, frame);
+
+  const VolumeFacts facts = volumeFacts();
+  const VkExtent2D eyeExtent{static_cast<std::uint32_t>(view.width),
+                             static_cast<std::uint32_t>(view.height)};
+  const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
+  struct Draw {
+    Eye eye;
+    VkRect2D viewport;
+  };
+  std::vector<Draw> draws;
+  switch (view.stereo) {
+    case StereoMode::None: draws = {{Eye::Mono, {{0, 0}, eyeExtent}}}; break;
+    case StereoMode::Anaglyph:
+      draws = {{Eye::Left, {{0, 0}, eyeExtent}}, {Eye::Right, {{0, 0}, eyeExtent}}};
+      break;
+    case StereoMode::SideBySide:
+      draws = {{Eye::Left, {{0, 0}, eyeExtent}},
+               {Eye::Right, {{static_cast<std::int32_t>(view.width), 0}, eyeExtent}}};
+      break;
+  }
+  for (std::uint32_t i = 0; i < draws.size() && status.ok(); ++i) {
+    const SliceFrame frame = makeSliceFrame(view, facts, draws[i].eye, aspect);
+    status = slicePass_.record(cmd, target_.format(), draws[i].viewport, licVolume_, field_, frame,
+                               i);
+  }
   vkCmdEndRendering(cmd);
 }
 
 Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams& view) {
+  LIC3D_TRY(validate(view));
   LIC3D_TRY_ASSIGN([[maybe_unused]] const bool recomputed, updateLic(params));
-  LIC3D_TRY(ensureTarget(view.width, view.height));
+  const int width = view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width;
+  LIC3D_TRY(ensureTarget(width, view.height));
   Result<void> status;
   LIC3D_TRY(submitAndWait(
       *context_,
@@ -221,9 +293,9 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   LIC3D_TRY(std::move(status));
 
   RgbaImage image;
-  image.width = view.width;
+  image.width = width;
   image.height = view.height;
-  image.pixels.resize(static_cast<std::size_t>(view.width) * view.height * 4);
+  image.pixels.resize(static_cast<std::size_t>(width) * view.height * 4);
   if (frameFormat_ == VK_FORMAT_R8G8B8A8_UNORM) {
     std::memcpy(image.pixels.data(), targetReadback_.mapped(), image.pixels.size());
   } else {
@@ -233,21 +305,30 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
       image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
     }
   }
+  if (view.legend && view.color == ColorMode::Magnitude) {
+    const VolumeFacts facts = volumeFacts();
+    const float low = view.autoColorRange ? facts.minMagnitude : view.colorLow;
+    const float high = view.autoColorRange ? facts.maxMagnitude : view.colorHigh;
+    drawLegend(image, view.colormap, low, high, "|v|", view.background);
+  }
   return image;
 }
 
 Result<ScalarVolume> LicRenderer::readLicVolume() const {
   if (!licParams_) return inputError("no LIC volume has been computed");
   LIC3D_TRY_ASSIGN(std::vector<std::byte> bytes,
-                   readImage(*context_, licVolume_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2));
+                   readImage(*context_, licVolume_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
   ScalarVolume volume;
   volume.dims = field_.dims;
   volume.geometry = field_.geometry;
   volume.values.resize(voxelCount(field_.dims));
+  const bool sparse = licParams_->sparsity.distribution != SparsityDistribution::None;
+  if (sparse) volume.drawn.resize(volume.values.size());
   for (std::size_t i = 0; i < volume.values.size(); ++i) {
-    std::uint16_t v;
-    std::memcpy(&v, bytes.data() + 2 * i, 2);
-    volume.values[i] = static_cast<float>(v) / 65535.0f;
+    std::uint16_t texel[2];
+    std::memcpy(texel, bytes.data() + 4 * i, 4);
+    volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
+    if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
   }
   return volume;
 }
@@ -257,6 +338,7 @@ Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
   if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
   LIC3D_TRY(ensureLicVolume());
   licParams_.reset();
+  LIC3D_TRY(ensureMask(params.sparsity));
   Result<void> status;
   LIC3D_TRY(submitAndWait(
       *context_,
@@ -266,7 +348,8 @@ Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
                      kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         timer_.begin(cmd, 0);
-        status = licPass_.record(cmd, field_, licVolume_, params, 0, field_.dims.z);
+        status = licPass_.record(cmd, field_, maskFor(params), licVolume_, params, 0,
+                                 field_.dims.z);
         timer_.end(cmd, 0);
         imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -278,7 +361,7 @@ Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
       "lic timing"));
   LIC3D_TRY(std::move(status));
   ++licDispatches_;
-  window_ = percentileWindow(histogramPass_.counts());
+  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
   licParams_ = params;
   return timer_.milliseconds(0);
 }
@@ -286,7 +369,9 @@ Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
 Result<double> LicRenderer::timeFrame(const ViewParams& view) {
   if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
   if (!licParams_) return inputError("no LIC volume has been computed");
-  LIC3D_TRY(ensureTarget(view.width, view.height));
+  LIC3D_TRY(validate(view));
+  LIC3D_TRY(ensureTarget(view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width,
+                         view.height));
   Result<void> status;
   LIC3D_TRY(submitAndWait(
       *context_,

@@ -28,6 +28,7 @@ enum class FramePrecision { Float16, Unorm8 };
 struct RendererOptions {
   FieldPrecision fieldPrecision = FieldPrecision::Auto;
   FramePrecision framePrecision = FramePrecision::Float16;
+  bool runtimeModes = false;  // benchmark builds only: see SlicePass::create
 };
 
 class LicRenderer {
@@ -50,8 +51,13 @@ class LicRenderer {
   // Returns whether the pass ran.
   Result<bool> updateLic(const LicParams& params, const ProgressCallback& progress = {});
 
-  // updateLic, then one frame into an offscreen image read back as 8-bit RGBA.
+  // updateLic, then one frame into an offscreen image read back as 8-bit RGBA. Side-by-side
+  // stereo gives an image twice as wide (left eye | right eye); with a legend requested, the
+  // colour legend is drawn into it.
   Result<RgbaImage> render(const LicParams& params, const ViewParams& view);
+
+  // What frames are drawn from, for the current LIC volume.
+  VolumeFacts volumeFacts() const;
 
   Result<ScalarVolume> readLicVolume() const;
 
@@ -64,7 +70,8 @@ class LicRenderer {
   Result<void> setFramePrecision(FramePrecision precision);
 
   std::uint64_t licDispatchCount() const { return licDispatches_; }
-  IntensityWindow intensityWindow() const { return window_; }
+  std::uint64_t maskBuildCount() const { return maskBuilds_; }
+  const IntensityStatistics& intensityStatistics() const { return statistics_; }
   Dims dims() const { return field_.dims; }
   const GridGeometry& geometry() const { return field_.geometry; }
   double fieldMaxMagnitude() const { return field_.maxMagnitude; }
@@ -75,10 +82,12 @@ class LicRenderer {
  private:
   LicRenderer() = default;
   Result<void> ensureLicVolume();
+  Result<void> ensureMask(const SparsityParams& sparsity);
   Result<void> ensureTarget(int width, int height);
   void recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
                      bool first, bool last, Result<void>& status);
   void recordFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status);
+  const Image& maskFor(const LicParams& params) const;
 
   const Context* context_ = nullptr;
   LicPass licPass_;
@@ -90,8 +99,12 @@ class LicRenderer {
   FieldTexture field_;
   Image licVolume_;
   std::optional<LicParams> licParams_;  // what licVolume_ holds; empty when stale
-  IntensityWindow window_;
+  IntensityStatistics statistics_;
   std::uint64_t licDispatches_ = 0;
+  Image mask_;           // the sparsity mask of maskParams_ on the field's grid
+  Image emptyMask_;      // 1x1x1, bound when sparsity is off
+  std::optional<SparsityParams> maskParams_;
+  std::uint64_t maskBuilds_ = 0;
   Image target_;
   Buffer targetReadback_;
 };

@@ -1,5 +1,12 @@
 #include "noise.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "sparsity.h"
+
 namespace lic3d {
 
 std::uint64_t noiseHash(std::uint64_t seed, std::uint64_t index) {
@@ -16,6 +23,18 @@ NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
   noise.bytes.resize(voxelCount(dims));
   for (std::size_t i = 0; i < noise.bytes.size(); ++i)
     noise.bytes[i] = static_cast<std::uint8_t>(noiseHash(seed, i) >> 56);
+  return noise;
+}
+
+NoiseVolume makeSeedNoise(Dims dims, std::size_t spots, std::uint64_t seed) {
+  NoiseVolume noise;
+  noise.dims = dims;
+  noise.type = NoiseType::UInt8;
+  noise.bytes.assign(voxelCount(dims), 0);
+  for (const glm::vec3& p : poissonDiskPointsByCount(dims, spots, seed)) {
+    const glm::ivec3 v = glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), dims - 1);
+    noise.bytes[voxelIndex(dims, v.x, v.y, v.z)] = 255;
+  }
   return noise;
 }
 

@@ -16,4 +16,9 @@ std::uint64_t noiseHash(std::uint64_t seed, std::uint64_t index);
 // Uniform 8-bit white noise: the top byte of noiseHash, read as [0,1] by value()/255.
 NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed);
 
+// Sparse seed noise (Helgeland & Andreassen's "seed LIC"; the alternative the thesis points to
+// for sparsity): black everywhere but about `spots` white voxels, spread evenly by Poisson-disk
+// sampling, so LIC turns each spot into one distinct streamline segment.
+NoiseVolume makeSeedNoise(Dims dims, std::size_t spots, std::uint64_t seed);
+
 }  // namespace lic3d

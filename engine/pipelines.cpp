@@ -30,7 +30,7 @@ Result<PipelineLayout> PipelineLayout::create(const Context& context,
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 1;
   layoutInfo.pSetLayouts = &setLayout;
-  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;
   layoutInfo.pPushConstantRanges = &range;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   LIC3D_TRY(checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout),

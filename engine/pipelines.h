@@ -50,7 +50,7 @@ using Pipeline = DeviceHandle<VkPipeline, vkDestroyPipeline>;
 
 Result<ShaderModule> loadShader(const Context& context, ShaderId id);
 
-// One push-descriptor set (the pass's bindings) and one push-constant range.
+// One push-descriptor set (the pass's bindings) and one push-constant range (none if 0 bytes).
 class PipelineLayout {
  public:
   PipelineLayout() = default;

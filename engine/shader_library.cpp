@@ -9,6 +9,9 @@
 #include "lic_histogram_comp_spv.h"
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
+#ifdef LIC3D_BENCH_RUNTIME_MODES
+#include "slice_runtime_frag_spv.h"
+#endif
 
 namespace lic3d {
 
@@ -18,8 +21,22 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
     case ShaderId::LicHistogram: return lic_histogram_comp_spv;
     case ShaderId::SliceVertex: return slice_vert_spv;
     case ShaderId::SliceFragment: return slice_frag_spv;
+    case ShaderId::SliceFragmentRuntimeModes:
+#ifdef LIC3D_BENCH_RUNTIME_MODES
+      return slice_runtime_frag_spv;
+#else
+      return {};
+#endif
   }
   return {};
+}
+
+bool hasRuntimeModeShaders() {
+#ifdef LIC3D_BENCH_RUNTIME_MODES
+  return true;
+#else
+  return false;
+#endif
 }
 
 const char* shaderName(ShaderId id) {
@@ -28,12 +45,16 @@ const char* shaderName(ShaderId id) {
     case ShaderId::LicHistogram: return "lic_histogram.comp";
     case ShaderId::SliceVertex: return "slice.vert";
     case ShaderId::SliceFragment: return "slice.frag";
+    case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";
   }
   return "?";
 }
 
 Result<VkShaderModule> createShaderModule(const Context& context, ShaderId id) {
   const std::span<const std::uint32_t> code = spirv(id);
+  if (code.empty())
+    return unsupportedError(std::string(shaderName(id)) +
+                            " is not in this build (configure with -DLIC3D_BENCH_RUNTIME_MODES=ON)");
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = code.size_bytes();
   info.pCode = code.data();

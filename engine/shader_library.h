@@ -16,7 +16,16 @@
 
 namespace lic3d {
 
-enum class ShaderId { LicCompute, LicHistogram, SliceVertex, SliceFragment };
+enum class ShaderId {
+  LicCompute,
+  LicHistogram,
+  SliceVertex,
+  SliceFragment,
+  SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES
+};
+
+// Whether this build embeds the slice shader with runtime mode switches.
+bool hasRuntimeModeShaders();
 
 std::span<const std::uint32_t> spirv(ShaderId id);
 const char* shaderName(ShaderId id);

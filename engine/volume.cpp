@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace lic3d {
 
@@ -13,6 +14,16 @@ double maxMagnitude(const VectorField& field) {
     largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
   }
   return largest;
+}
+
+double minMagnitude(const VectorField& field) {
+  if (field.vectors.empty()) return 0.0;
+  double smallest = std::numeric_limits<double>::max();
+  for (const glm::vec3& v : field.vectors) {
+    const double x = v.x, y = v.y, z = v.z;
+    smallest = std::min(smallest, std::sqrt(x * x + y * y + z * z));
+  }
+  return smallest;
 }
 
 std::size_t bytesPerValue(NoiseType type) {

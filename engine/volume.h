@@ -41,6 +41,7 @@ struct VectorField {
 
 // Largest |v| over the grid's voxels (the thesis' normalisation for velocity-scaled steps).
 double maxMagnitude(const VectorField& field);
+double minMagnitude(const VectorField& field);
 
 // The input texture of LIC. Integer noise keeps its type so the GPU gets it bit-exact
 // (UNORM textures); values read as [0,1] (integers scaled by their type's maximum).
@@ -61,6 +62,8 @@ struct ScalarVolume {
   Dims dims{0};
   GridGeometry geometry;
   std::vector<float> values;
+  // Per voxel 1 if drawn, 0 if sparsity masks it; empty when every voxel is drawn.
+  std::vector<std::uint8_t> drawn;
 
   float at(int i, int j, int k) const { return values[voxelIndex(dims, i, j, k)]; }
 };

@@ -67,6 +67,7 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   texture.dims = field.dims;
   texture.geometry = field.geometry;
   texture.maxMagnitude = maxMagnitude(field);
+  texture.minMagnitude = minMagnitude(field);
   texture.precision = resolved;
   const double scale = texture.maxMagnitude > 0.0 ? 1.0 / texture.maxMagnitude : 1.0;
 

@@ -22,6 +22,7 @@ struct FieldTexture {
   Image image;
   Dims dims{0};
   GridGeometry geometry;
+  double minMagnitude = 0.0;
   double maxMagnitude = 0.0;
   FieldPrecision precision = FieldPrecision::Half;
 };

@@ -6,16 +6,20 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
-layout(local_size_x_id = 4, local_size_y_id = 5, local_size_z_id = 6) in;
+layout(local_size_x_id = kLicConstLocalSizeX, local_size_y_id = kLicConstLocalSizeY,
+       local_size_z_id = kLicConstLocalSizeZ) in;
 
-layout(constant_id = 0) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2 (midpoint), 2 rk4
-layout(constant_id = 1) const uint KERNEL = 0;        // 0 box, 1 hann, 2 gauss
-layout(constant_id = 2) const uint NOISE_FILTER = 1;  // 0 nearest voxel, 1 trilinear
-layout(constant_id = 3) const uint DIRECTION = 0;     // 0 v/|v|, 1 v/max|v|
+layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2, 2 rk4
+layout(constant_id = kLicConstKernel) const uint KERNEL = 0;            // 0 box, 1 hann, 2 gauss
+layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nearest, 1 trilinear
+layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;      // 0 v/|v|, 1 v/max|v|
+// Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
+layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
 
 // xyz = v / max|v|, w = noise (see engine/volume_textures.h)
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
-layout(set = 0, binding = kLicBindingOutput, r16) uniform writeonly image3D licImage;
+layout(set = 0, binding = kLicBindingOutput, rg16) uniform writeonly image3D licImage;
+layout(set = 0, binding = kLicBindingMask) uniform usampler3D sparsityMask;
 
 layout(push_constant) uniform Push { LicPushConstants pc; };
 
@@ -35,6 +39,11 @@ vec3 directionOf(vec3 v) {
 float noiseAt(vec3 x, vec4 texel) {
   if (NOISE_FILTER == 0) return texelFetch(fieldTexture, ivec3(floor(x + 0.5)), 0).w;
   return texel.w;
+}
+
+// Whether the sample at x lies in a black voxel of the mask (the voxel nearest to x).
+bool touchesBlack(vec3 x) {
+  return SPARSITY != 0 && texelFetch(sparsityMask, ivec3(floor(x + 0.5)), 0).r != 0u;
 }
 
 float weightOf(int i) {
@@ -66,6 +75,7 @@ void main() {
   float w0 = weightOf(0);
   float sum = w0 * noiseAt(start, startTexel);
   float weights = w0;
+  bool masked = touchesBlack(start);
 
   for (int direction = -1; direction <= 1; direction += 2) {
     int steps = direction < 0 ? pc.licLength - pc.bias : pc.licLength + pc.bias;
@@ -84,8 +94,9 @@ void main() {
       float w = weightOf(direction * i);
       sum += w * noiseAt(x, texel);
       weights += w;
+      masked = masked || touchesBlack(x);
       v = texel.xyz;
     }
   }
-  imageStore(licImage, voxel, vec4(sum / weights));
+  imageStore(licImage, voxel, vec4(sum / weights, masked ? 0.0 : 1.0, 0.0, 0.0));
 }

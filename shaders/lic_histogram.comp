@@ -1,6 +1,6 @@
 #version 460
-// Histogram of the LIC volume: the renderer's automatic contrast window comes from its
-// percentiles. One workgroup per z slice, counts gathered in shared memory first so the global
+// Histogram of the drawn voxels of the LIC volume: the renderer's contrast stretch comes from
+// their mean and spread. One workgroup per z slice, counts gathered in shared memory first so the global
 // atomics stay few.
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
@@ -22,7 +22,9 @@ void main() {
   int sliceVoxels = pc.dims.x * pc.dims.y;
   for (int n = int(gl_LocalInvocationID.x); n < sliceVoxels; n += int(kHistogramLocalSize)) {
     ivec3 voxel = ivec3(n % pc.dims.x, n / pc.dims.x, z);
-    float value = clamp(texelFetch(licVolume, voxel, 0).r, 0.0, 1.0);
+    vec2 texel = texelFetch(licVolume, voxel, 0).rg;
+    if (texel.g < 0.5) continue;  // masked by sparsity: never drawn, so not in the statistics
+    float value = clamp(texel.r, 0.0, 1.0);
     uint bin = min(uint(value * float(kHistogramBins)), kHistogramBins - 1);
     atomicAdd(localCounts[bin], 1);
   }

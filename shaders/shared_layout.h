@@ -1,6 +1,6 @@
-// Shared by GLSL and C++: descriptor bindings, workgroup sizes and push-constant layouts.
-// Push-constant structs use only 4-byte scalars and 16-byte vectors/matrices in std430-compatible
-// order, so the C++ and GLSL layouts match without padding surprises (checked by static_assert).
+// Shared by GLSL and C++: descriptor bindings, specialization ids, workgroup sizes, push-constant
+// and uniform layouts. The structs use only 4-byte scalars and 16-byte vectors/matrices, in an
+// order where std140, std430 and C++ agree (checked by static_assert).
 #ifndef LIC3D_SHARED_LAYOUT_H
 #define LIC3D_SHARED_LAYOUT_H
 
@@ -11,6 +11,7 @@
 namespace lic3d::gpu {
 using uint = std::uint32_t;
 using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 #define LIC3D_CONST inline constexpr uint
@@ -20,7 +21,8 @@ using mat4 = glm::mat4;
 
 // ---- LIC compute pass -------------------------------------------------------------------------
 LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F/32F, xyz = v / max|v|, w = noise
-LIC3D_CONST kLicBindingOutput = 1;  // image3D r16: the LIC volume
+LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
+LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
 
 // Specialization constant ids of the LIC pipeline (see LicSpecialization in lic_pass.h).
 LIC3D_CONST kLicConstIntegrator = 0;
@@ -30,6 +32,7 @@ LIC3D_CONST kLicConstDirection = 3;
 LIC3D_CONST kLicConstLocalSizeX = 4;
 LIC3D_CONST kLicConstLocalSizeY = 5;
 LIC3D_CONST kLicConstLocalSizeZ = 6;
+LIC3D_CONST kLicConstSparsity = 7;
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch
@@ -55,28 +58,54 @@ struct HistogramPushConstants {
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
-LIC3D_CONST kSliceBindingVolume = 0;  // sampler3D: the LIC volume
+LIC3D_CONST kSliceBindingVolume = 0;    // sampler3D: the LIC volume (r = LIC, g = drawn)
+LIC3D_CONST kSliceBindingField = 1;     // sampler3D: the field texture (xyz = v / max|v|)
+LIC3D_CONST kSliceBindingColormap = 2;  // sampler2D: one row per colour map
+LIC3D_CONST kSliceBindingUniforms = 3;  // uniform SliceUniforms
 LIC3D_CONST kSliceVerticesPerSlice = 12;  // a convex polygon of up to 6 corners as 4 triangles
 
 // Specialization constant ids of the slice pipeline (see SliceSpecialization in slice_pass.h).
-LIC3D_CONST kSliceConstOpacityMode = 0;  // 0: constant alpha, 1: alpha weighted by intensity
-LIC3D_CONST kSliceConstOrthographic = 1;
+LIC3D_CONST kSliceConstOpacityMode = 0;       // 0 constant alpha, 1 alpha * grey
+LIC3D_CONST kSliceConstOrthographic = 1;      // 0 perspective, 1 orthographic
+LIC3D_CONST kSliceConstColorMode = 2;         // 0 grey, 1 colour by magnitude
+LIC3D_CONST kSliceConstColormap = 3;          // row of the colour map table
+LIC3D_CONST kSliceConstMagnitudeOpacity = 4;  // 0 off, 1 alpha * normalised magnitude ^ exponent
+LIC3D_CONST kSliceConstSparsity = 5;          // 0 off, 1 alpha * the LIC volume's mask channel
+LIC3D_CONST kSliceConstRoiShape = 6;          // 0 none, 1 sphere, 2 cube, 3 cylinder
+LIC3D_CONST kSliceConstRoiOutside = 7;        // 0 keep the inside, 1 keep the outside
+LIC3D_CONST kSliceConstFog = 8;               // 0 off, 1 linear depth cueing
+LIC3D_CONST kSliceConstLighting = 9;          // 0 none, 1 Phong with TNB normals, 2 lines
+LIC3D_CONST kSliceConstFilter = 10;           // 0 nearest voxel, 1 trilinear
+LIC3D_CONST kSliceConstAnaglyph = 11;         // 0 colour, 1 left eye (red), 2 right eye (cyan)
 
-// 128 bytes: the minimum maxPushConstantsSize every Vulkan device guarantees.
-struct SlicePushConstants {
-  mat4 viewProjection;  // world -> clip
-  vec4 halfExtent;      // xyz: half the box size in world units (box centred at the origin);
-                        // w: alpha per reference distance (one voxel)
-  vec4 planeNormal;     // xyz: unit normal of the slice planes, pointing towards the viewer;
-                        // w: plane offset of slice 0 (the farthest)
-  vec4 eye;             // xyz: camera position (perspective) or direction to the viewer
-                        // (orthographic); w: distance between slices
-  vec4 transfer;        // grey = clamp(x * intensity + y); z: reference distance; w: unused
+// One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
+struct SliceUniforms {
+  mat4 viewProjection;   // world -> clip
+  mat4 roiFromTexture;   // texture coordinates -> region-of-interest frame (unit size)
+  vec4 halfExtent;       // xyz: half the box size in world units (box centred at the origin);
+                         // w: alpha per reference distance (one voxel)
+  vec4 clipMin;          // xyz: corner of the clip box in world units; w: unused
+  vec4 clipMax;          // xyz: opposite corner
+  vec4 planeNormal;      // xyz: unit normal of the slice planes, pointing towards the viewer;
+                         // w: plane offset of slice 0 (the farthest)
+  vec4 eyePosition;      // xyz: the camera (this eye); w: distance between slices
+  vec4 toViewer;         // xyz: unit direction from the volume to the camera; w: unused
+  vec4 transfer;         // grey = clamp(x * intensity + y); z: reference distance; w: unused
+  vec4 magnitude;        // x: low end of the colour range, y: 1 / (high - low),
+                         // z: max|v| (the field texture's scale), w: unused
+  vec4 magnitudeOpacity; // x: exponent, y: threshold (normalised magnitude), zw: unused
+  vec4 fog;              // x: distance where fog starts, y: 1 / (end - start), zw: unused
+  vec4 fogColor;         // rgb
+  vec4 light;            // xyz: unit direction towards the light; w: specular exponent
+  vec4 lightTerms;       // x: ambient, y: diffuse, z: specular, w: unused
+  vec4 voxelSize;        // xyz: one voxel in world units (tangents to world space); w: unused
+  uvec4 modes[3];        // the 12 specialization constants in order, read only by the
+                         // benchmark's runtime-mode build of slice.frag
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(LicPushConstants) == 64);
-static_assert(sizeof(SlicePushConstants) == 128);
+static_assert(sizeof(SliceUniforms) == 2 * 64 + 17 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif

@@ -1,32 +1,32 @@
 #version 460
 // Proxy geometry for slice-based volume rendering: instance k is the k-th plane (back to front)
-// cut with the volume's box, a convex polygon of 3 to 6 corners emitted as a fan of 4 triangles.
-// Computing it here keeps the CPU out of the frame: one draw of 12 vertices x N instances.
+// cut with the clip box (the volume's box unless clip planes shrink it), a convex polygon of 3 to
+// 6 corners emitted as a fan of 4 triangles. Clipping here, rather than discarding fragments,
+// means clipped space costs nothing to draw.
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
-layout(push_constant) uniform Push { SlicePushConstants pc; };
+layout(set = 0, binding = kSliceBindingUniforms, std140) uniform Uniforms { SliceUniforms u; };
 
 layout(location = 0) out vec3 outTexCoord;
 layout(location = 1) out vec3 outWorld;
 
-// The 12 box edges as pairs of corner indices; corner bit 0/1/2 selects +x/+y/+z.
+// The 12 box edges as pairs of corner indices; corner bit 0/1/2 selects max x/y/z.
 const ivec2 kEdges[12] = ivec2[12](ivec2(0, 1), ivec2(2, 3), ivec2(4, 5), ivec2(6, 7),
                                    ivec2(0, 2), ivec2(1, 3), ivec2(4, 6), ivec2(5, 7),
                                    ivec2(0, 4), ivec2(1, 5), ivec2(2, 6), ivec2(3, 7));
 
 vec3 corner(int c) {
-  vec3 signs = vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1) * 2.0 - 1.0;
-  return signs * pc.halfExtent.xyz;
+  return mix(u.clipMin.xyz, u.clipMax.xyz, vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1));
 }
 
 void main() {
-  vec3 n = pc.planeNormal.xyz;
-  float offset = pc.planeNormal.w + float(gl_InstanceIndex) * pc.eye.w;
+  vec3 n = u.planeNormal.xyz;
+  float offset = u.planeNormal.w + float(gl_InstanceIndex) * u.eyePosition.w;
 
   vec3 points[6];
   int count = 0;
-  float tolerance = 1e-6 * length(pc.halfExtent.xyz);
+  float tolerance = 1e-6 * length(u.halfExtent.xyz);
   for (int e = 0; e < 12; ++e) {
     vec3 a = corner(kEdges[e].x);
     vec3 b = corner(kEdges[e].y);
@@ -40,16 +40,16 @@ void main() {
     if (!duplicate && count < 6) points[count++] = p;
   }
 
-  // Order the corners by angle around their center so the fan is convex.
+  // Order the corners by angle around their centre so the fan is convex.
   vec3 center = vec3(0.0);
   for (int i = 0; i < count; ++i) center += points[i];
   center /= float(max(count, 1));
-  vec3 u = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
-  vec3 v = cross(n, u);
+  vec3 axisU = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  vec3 axisV = cross(n, axisU);
   float angles[6];
   for (int i = 0; i < count; ++i) {
     vec3 r = points[i] - center;
-    angles[i] = atan(dot(r, v), dot(r, u));
+    angles[i] = atan(dot(r, axisV), dot(r, axisU));
   }
   for (int i = 1; i < count; ++i) {
     for (int j = i; j > 0 && angles[j - 1] > angles[j]; --j) {
@@ -66,6 +66,6 @@ void main() {
   vec3 world = count >= 3 ? points[min(index, count - 1)] : vec3(0.0);
 
   outWorld = world;
-  outTexCoord = world / (2.0 * pc.halfExtent.xyz) + 0.5;
-  gl_Position = pc.viewProjection * vec4(world, 1.0);
+  outTexCoord = world / (2.0 * u.halfExtent.xyz) + 0.5;
+  gl_Position = u.viewProjection * vec4(world, 1.0);
 }

@@ -2,10 +2,19 @@
 // A fixture for tests that use the GPU: a Vulkan context with validation and synchronization
 // validation on; any validation message fails the test.
 
+#include <functional>
 #include <optional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <gtest/gtest.h>
 
+#include "lic_renderer.h"
+#include "rgba_image.h"
+#include "view_params.h"
 #include "volume.h"
 #include "vulkan_context.h"
 
@@ -29,5 +38,27 @@ struct VolumeDifference {
 };
 
 VolumeDifference compareVolumes(const ScalarVolume& a, const ScalarVolume& b);
+
+// Pictures with known content: a renderer whose LIC volume is given directly (the field points
+// along +x unless one is passed), and a view that draws it opaque with grey = LIC value.
+inline constexpr glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
+inline constexpr glm::u8vec4 kBackground8{51, 102, 153, 255};
+LicRenderer rendererWithVolume(const Context& context, Dims dims,
+                               const std::function<float(int, int, int)>& value,
+                               const VectorField* field = nullptr);
+ViewParams opaqueView(int size);
+bool isBackground(glm::u8vec4 pixel);
+
+// The screen footprint of a box (fractions min..max of the volume's box) for a view: a convex
+// polygon in pixel coordinates.
+struct ProjectedBox {
+  std::vector<glm::vec2> hull;
+  // Distance in pixels from p to the polygon's edge, positive inside.
+  double signedDistance(glm::vec2 p) const;
+};
+ProjectedBox projectBox(const ViewParams& view, Dims dims, glm::vec3 min = glm::vec3(0.0f),
+                        glm::vec3 max = glm::vec3(1.0f));
+
+double meanAbsoluteDifference(const RgbaImage& a, const RgbaImage& b);
 
 }  // namespace lic3d::test

@@ -63,12 +63,19 @@ TEST_F(CliTest, HelpListsEveryOption) {
   for (const char* command : {"devices", "compute", "render", "bench", "--device", "--validation"})
     EXPECT_NE(top.output.find(command), std::string::npos) << command;
 
-  const char* shared[] = {"--field", "--grid", "--noise", "--seed", "--length", "--step",
-                          "--bias", "--integrator", "--kernel", "--noise-filter", "--direction",
-                          "--cpu", "--output"};
+  const char* shared[] = {"--field", "--grid", "--noise", "--seed", "--seed-noise", "--length",
+                          "--step", "--bias", "--integrator", "--kernel", "--noise-filter",
+                          "--direction", "--field-precision", "--sparsity", "--sparsity-points",
+                          "--sparsity-radius", "--sparsity-ratio", "--sparsity-seed", "--cpu",
+                          "--output"};
   const char* view[] = {"--width", "--height", "--slices", "--slicing", "--azimuth",
                         "--elevation", "--distance", "--fov", "--ortho", "--alpha", "--opacity",
-                        "--filter", "--background", "--window", "--gain", "--brightness"};
+                        "--filter", "--background", "--contrast", "--window", "--gain",
+                        "--brightness", "--color", "--colormap", "--color-range", "--legend",
+                        "--magnitude-opacity", "--magnitude-threshold", "--clip", "--roi",
+                        "--roi-center", "--roi-size", "--roi-rotate", "--roi-outside", "--fog",
+                        "--fog-color", "--stereo", "--eye-separation", "--zero-parallax",
+                        "--lighting"};
   const CommandRun compute = run("compute --help");
   EXPECT_EQ(compute.status, 0);
   for (const char* flag : shared) EXPECT_NE(compute.output.find(flag), std::string::npos) << flag;
@@ -92,6 +99,28 @@ TEST_F(CliTest, EveryRenderFlagParses) {
       "--background 255,128,0 --window 0.2,0.8 --gain 1.2 --brightness 0.1 -o out.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("out.png")), std::make_pair(64, 48));
+  const CommandRun clarity = run(
+      "render --grid 12 --width 64 --height 48 --sparsity poisson --sparsity-radius 2 "
+      "--sparsity-seed 4 --contrast off --color magnitude --colormap viridis "
+      "--color-range 0.1,0.4 --legend --magnitude-opacity 1.5 --magnitude-threshold 0.1 "
+      "--clip 0,1,0.2,0.9,0,0.7 --roi cylinder --roi-center 0.5,0.4,0.5 --roi-size 0.7 "
+      "--roi-rotate 10,20,30 --roi-outside --fog 0.1,0.9 --fog-color 20,20,40 "
+      "--stereo side-by-side --eye-separation 0.05 --zero-parallax 2.5 --lighting phong "
+      "-o clarity.png");
+  ASSERT_EQ(clarity.status, 0) << clarity.output;
+  EXPECT_EQ(pngSize(path("clarity.png")), std::make_pair(128, 48)) << "side by side: two eyes";
+  for (const char* variant :
+       {"--sparsity checkerboard --sparsity-ratio 0.1", "--sparsity poisson-approx --sparsity-points 50",
+        "--sparsity jitter --sparsity-radius 2", "--sparsity halton --sparsity-points 100",
+        "--sparsity hammersley --sparsity-points 100", "--seed-noise 40", "--stereo anaglyph",
+        "--lighting lines", "--roi sphere", "--roi cube", "--colormap coolwarm --color magnitude",
+        "--window 0.3,0.7", "--contrast on"}) {
+    const CommandRun v = run(std::string("render --grid 10 --width 32 --height 32 -q ") + variant +
+                             " -o variant.png");
+    EXPECT_EQ(v.status, 0) << variant << "\n" << v.output;
+  }
+  const CommandRun sparse = run("compute --grid 12 --sparsity hammersley --sparsity-points 40 -o s.nrrd");
+  ASSERT_EQ(sparse.status, 0) << sparse.output;
   const CommandRun cpu =
       run("--device 0 --validation render --cpu --grid 8 --width 32 --height 32 -q -o cpu.png");
   ASSERT_EQ(cpu.status, 0) << cpu.output;
@@ -167,6 +196,35 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --grid 8 -o picture.jpg",
       "render --grid 8 -o no/such/folder/out.png",
       "compute --grid 8 -o volume.png",
+      "render --sparsity spiral",
+      "render --sparsity checkerboard --sparsity-ratio 1.5",
+      "render --sparsity poisson --sparsity-radius -1",
+      "render --grid 8 --sparsity halton --sparsity-points 100000",  // more points than voxels
+      "render --seed-noise -5",
+      "render --grid 8 --seed-noise 4 --noise noise.nrrd",
+      "render --contrast maybe",
+      "render --color rainbow",
+      "render --colormap jet",
+      "render --color-range 1",
+      "render --color-range 0.5,0.2",
+      "render --legend",                          // a legend needs --color magnitude
+      "render --magnitude-opacity -1",
+      "render --magnitude-threshold 2",
+      "render --clip 0,1,0,1",
+      "render --clip 0.5,0.4,0,1,0,1",
+      "render --clip 0,1,0,1,0,2",
+      "render --roi torus",
+      "render --roi sphere --roi-size 0",
+      "render --roi-center 0.5,0.5",
+      "render --roi-rotate a,b,c",
+      "render --fog 0.8,0.2",
+      "render --fog 0.5",
+      "render --fog-color 1,1",
+      "render --stereo wobble",
+      "render --stereo anaglyph --ortho",
+      "render --eye-separation -0.1",
+      "render --lighting gouraud",
+      "render --filter cubic",
       "bench --sizes 64,abc",
       "bench --repeats 2",
       "--device no-such-device render --grid 8",

@@ -17,85 +17,12 @@ namespace {
 
 using test::GpuTest;
 
-constexpr glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
-const glm::u8vec4 kBackground8{51, 102, 153, 255};
-
-// A renderer whose LIC volume is given directly, so pictures have known content.
-LicRenderer rendererWithVolume(const Context& context, Dims dims,
-                               const std::function<float(int, int, int)>& value) {
-  VectorField field;
-  field.dims = dims;
-  field.vectors.assign(voxelCount(dims), glm::vec3(1.0f, 0.0f, 0.0f));
-  ScalarVolume volume;
-  volume.dims = dims;
-  volume.values.resize(voxelCount(dims));
-  for (int k = 0; k < dims.z; ++k)
-    for (int j = 0; j < dims.y; ++j)
-      for (int i = 0; i < dims.x; ++i) volume.values[voxelIndex(dims, i, j, k)] = value(i, j, k);
-  Result<LicRenderer> renderer = LicRenderer::create(context);
-  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  EXPECT_TRUE(renderer->setInputs(field, makeWhiteNoise(dims, 1)).ok());
-  EXPECT_TRUE(renderer->setLicVolume(volume, LicParams{}).ok());
-  return std::move(renderer).value();
-}
-
-ViewParams opaqueView(int size) {
-  ViewParams view;
-  view.width = view.height = size;
-  view.background = kBackground;
-  view.alpha = 1.0f;
-  view.opacityMode = OpacityMode::Constant;
-  view.autoWindow = false;  // grey = intensity
-  return view;
-}
-
-bool isBackground(glm::u8vec4 p) { return p == kBackground8; }
-
-// Signed distance in pixels from a pixel centre to the convex hull of the projected box corners
-// (positive inside).
-struct ProjectedBox {
-  std::vector<glm::vec2> hull;
-
-  double signedDistance(glm::vec2 p) const {
-    double inside = 1e30;
-    for (std::size_t i = 0; i < hull.size(); ++i) {
-      const glm::vec2 a = hull[i], b = hull[(i + 1) % hull.size()];
-      const glm::vec2 edge = glm::normalize(b - a);
-      // Hull is counter-clockwise in pixel coordinates with y down: inside is to the right.
-      const double d = edge.x * (p.y - a.y) - edge.y * (p.x - a.x);
-      inside = std::min(inside, d);
-    }
-    return inside;
-  }
-};
-
-ProjectedBox projectBox(const ViewParams& view, Dims dims) {
-  const SliceFrame frame = makeSliceFrame(view, dims, GridGeometry{}, 0.0f, 1.0f);
-  std::vector<glm::vec2> points;
-  for (int c = 0; c < 8; ++c) {
-    const glm::vec3 corner = frame.halfExtent * glm::vec3(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
-    const glm::vec4 clip = frame.camera.viewProjection * glm::vec4(corner, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    points.push_back({(ndc.x * 0.5f + 0.5f) * static_cast<float>(view.width),
-                      (ndc.y * 0.5f + 0.5f) * static_cast<float>(view.height)});
-  }
-  // Gift wrapping: the hull of 8 points.
-  std::size_t start = 0;
-  for (std::size_t i = 1; i < points.size(); ++i)
-    if (points[i].x < points[start].x) start = i;
-  ProjectedBox box;
-  std::size_t current = start;
-  do {
-    box.hull.push_back(points[current]);
-    std::size_t next = (current + 1) % points.size();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const glm::vec2 a = points[next] - points[current], b = points[i] - points[current];
-      if (a.x * b.y - a.y * b.x < 0.0f) next = i;
-    }
-    current = next;
-  } while (current != start && box.hull.size() <= points.size());
-  return box;
-}
+using test::isBackground;
+using test::kBackground;
+using test::opaqueView;
+using test::ProjectedBox;
+using test::projectBox;
+using test::rendererWithVolume;
 
 TEST_F(GpuTest, OpaqueVolumeCoversExactlyItsProjectedBox) {
   const Dims dims{20, 24, 28};
@@ -160,12 +87,7 @@ TEST_F(GpuTest, SlicesCompositeBackToFrontFromEitherSide) {
   }
 }
 
-double meanAbsoluteDifference(const RgbaImage& a, const RgbaImage& b) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i)
-    sum += std::abs(static_cast<int>(a.pixels[i]) - static_cast<int>(b.pixels[i]));
-  return sum / static_cast<double>(a.pixels.size()) / 255.0;
-}
+using test::meanAbsoluteDifference;
 
 class LicPictureTest : public GpuTest {
  protected:

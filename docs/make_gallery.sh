@@ -1,0 +1,101 @@
+#!/bin/sh
+# Renders every picture of docs/GALLERY.md with the lic3d CLI and writes the page, so each picture
+# sits beside the exact command that made it. Usage: docs/make_gallery.sh [path/to/lic3d]
+set -eu
+cd "$(dirname "$0")"
+LIC3D=${1:-../build/release/lic3d}
+OUT=images/gallery
+SIZE="--width 320 --height 320"
+mkdir -p "$OUT"
+page=GALLERY.md.tmp
+
+render() {  # name, arguments...
+  name=$1
+  shift
+  # shellcheck disable=SC2086
+  "$LIC3D" render -q $SIZE "$@" -o "$OUT/$name.png"
+}
+
+row() {  # title, before, after, arguments shown
+  printf '| %s | ![](%s) | ![](%s) | `%s` |\n' "$1" "$OUT/$2.png" "$OUT/$3.png" "$4" >> "$page"
+}
+
+cat > "$page" <<'EOF'
+# Gallery
+
+Every picture was made by `docs/make_gallery.sh`, which runs the command beside it
+(`lic3d render --width 320 --height 320 --field FIELD …`) and writes this page; lavapipe and the
+H100 give the same pictures. Defaults: 128³ grid, L = 20 steps of h = 0.5 voxel, RK2, box
+kernel, alpha 0.3 with intensity-weighted opacity, contrast stretch on.
+
+A dense 3D LIC volume is a solid block: its faces hide the inside (the "before" column). The
+thesis' chapter 5 techniques open it up. Each row shows one technique on one field; the field
+names the row's before picture.
+
+EOF
+
+for field in tornado corner solenoidal; do
+  render "$field" --field "$field"
+done
+
+section() {
+  printf '\n## %s\n\n| technique | before | after | flags |\n|---|---|---|---|\n' "$1" >> "$page"
+}
+
+technique() {  # title, field, name, flags...
+  title=$1 field=$2 name=$3
+  shift 3
+  render "$name" --field "$field" "$@"
+  row "$title ($field)" "$field" "$name" "$*"
+}
+
+section "Global view (thesis 5.1)"
+for f in tornado corner solenoidal; do
+  technique "Transparency: global alpha" $f "$f-alpha" --opacity constant --alpha 0.04
+done
+for f in tornado corner solenoidal; do
+  technique "Colour by magnitude, thesis ramp, legend" $f "$f-color" --color magnitude --legend
+done
+technique "Colour by magnitude, viridis" tornado tornado-viridis --color magnitude --colormap viridis --legend
+technique "Colour by magnitude, cool-warm" tornado tornado-coolwarm --color magnitude --colormap coolwarm --legend
+for f in tornado corner solenoidal; do
+  technique "Magnitude opacity" $f "$f-magopacity" --color magnitude --magnitude-opacity 2
+done
+for f in tornado corner solenoidal; do
+  technique "Sparsity + magnitude opacity" $f "$f-sparse" --sparsity poisson --alpha 0.6 \
+    --magnitude-opacity 1.5 --color magnitude
+done
+for d in checkerboard poisson poisson-approx jitter halton hammersley; do
+  technique "Sparsity: $d" solenoidal "solenoidal-$d" --sparsity $d --alpha 0.6
+done
+for f in tornado corner solenoidal; do
+  technique "Seed noise: 4000 spots instead of white noise" $f "$f-seeds" --seed-noise 4000 --alpha 0.8
+done
+technique "Contrast stretch off (grey = LIC value)" tornado tornado-contrast-off --contrast off
+
+section "Local view (thesis 5.2)"
+for f in tornado corner solenoidal; do
+  technique "Clip planes" $f "$f-clip" --clip 0,1,0,0.5,0,1
+done
+technique "Region of interest: sphere" tornado tornado-sphere --roi sphere --roi-size 0.7
+technique "Region of interest: cube, rotated" tornado tornado-cube --roi cube --roi-size 0.6 --roi-rotate 30,0,45
+technique "Region of interest: cylinder, rotated" corner corner-cylinder --roi cylinder --roi-size 0.7 --roi-rotate 60,0,0
+technique "Region of interest: outside of a sphere" solenoidal solenoidal-outside --roi sphere --roi-size 0.9 --roi-outside
+
+section "Depth (thesis 5.3)"
+for f in tornado corner solenoidal; do
+  technique "Fog (depth cueing)" $f "$f-fog" --fog 0,1
+done
+technique "Stereo: red/cyan anaglyph" tornado tornado-anaglyph --stereo anaglyph
+SIZE="--width 160 --height 320"  # per eye: the picture is 320 wide
+technique "Stereo: side by side (left, right)" solenoidal solenoidal-sbs --stereo side-by-side
+SIZE="--width 320 --height 320"
+for f in tornado solenoidal; do
+  technique "Lighting: Phong with TNB normals" $f "$f-phong" --lighting phong
+  technique "Lighting: illuminated lines" $f "$f-lines" --lighting lines
+done
+technique "Nearest filtering of the LIC volume, close up" tornado tornado-nearest --filter nearest --distance 0.7
+technique "Linear filtering of the LIC volume, close up" tornado tornado-linear --filter linear --distance 0.7
+
+mv "$page" GALLERY.md
+echo "wrote docs/GALLERY.md and $(ls "$OUT" | wc -l) pictures in docs/$OUT"
