@@ -16,6 +16,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -77,8 +78,8 @@ inline constexpr double kJitterDensity = 0.39;
 
 // k of Bridson 2007: candidates tried around an active sample before it is retired. Bridson
 // used 30; 10 leaves 1.2 % of the volume farther than r from every sample (30: 0.3 %) and 13 %
-// fewer points, in less than half the time (1M points in 256^3: 1.1 s on the 2-core build
-// machine, 2.4 s with k = 30). For a sparsity mask those small gaps do not show.
+// fewer points, in less than half the time (1M points in 256^3 on one thread of the 2-core build
+// machine: 1.1-1.5 s, 2.4 s with k = 30). For a sparsity mask those small gaps do not show.
 inline constexpr int kPoissonAttempts = 10;
 // m of Mitchell's best-candidate algorithm as the thesis used it (5.1.4.2.1): m * n candidates
 // for the (n+1)-th point.
@@ -118,13 +119,22 @@ std::vector<glm::vec3> hammersleyPoints(Dims dims, std::size_t count);
 // Exact Poisson disk sampling (Bridson 2007, "Fast Poisson disk sampling in arbitrary
 // dimensions"), O(n): background grid of cell r / sqrt(3), k = kPoissonAttempts candidates in the
 // annulus [r, 2r] around an active sample. Every pair is at least `radius` apart, and the set is
-// maximal up to the k-attempt criterion, or stops at maxPoints. The active sample is drawn from
-// the first grid tile that has one, for cache locality (see the .cpp), so the set grows along z
-// and one stopped by maxPoints lacks the top of the volume: for n even points, take a radius
-// whose maximal set is larger (about kPoissonDensity V / r^3 points) and a random subset.
-// radius is raised to kMinSparsityRadius. Memory: a grid of about 5.2 V / r^3 cells of 4 bytes.
+// maximal up to the k-attempt criterion, or stops at maxPoints. Volumes of many grid layers along
+// z are cut into 2 or 4 slabs, sampled on up to `threads` threads at once (0: one per hardware
+// thread), and then the thin bands between them (poissonDiskBands) are sampled from the slabs'
+// samples on either side (see the .cpp). The points depend on the arguments other than `threads`
+// only: never on the machine, the thread count or the timing. The active sample is drawn from
+// the first grid tile that has one, for cache locality (see the .cpp), so each slab grows along z,
+// and the points are listed in z order (slab, band, slab, ...): a set stopped by maxPoints lacks
+// the top of the volume. For n even points, take a radius whose maximal set is larger (about
+// kPoissonDensity V / r^3 points) and a random subset. radius is raised to kMinSparsityRadius.
+// Memory: grids of about 5.2 V / r^3 cells of 4 bytes in all, and 12 bytes per point.
 std::vector<glm::vec3> poissonDiskPoints(Dims dims, float radius, std::uint64_t seed,
-                                         std::size_t maxPoints);
+                                         std::size_t maxPoints, unsigned threads = 0);
+// The z ranges [z0, z1) in voxels of the bands between the slabs that poissonDiskPoints cuts
+// this volume into for this radius; none if it samples the volume whole. For tests and
+// measurements: a band is about 1.2 r thick.
+std::vector<std::pair<float, float>> poissonDiskBands(Dims dims, float radius);
 // About `count` points of an exact Poisson disk set, evenly over the whole volume: the radius
 // whose maximal set has a few more points than asked for, then a random subset of `count`.
 // Stopping the sampling at the count instead would leave the end of the volume empty.

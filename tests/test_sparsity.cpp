@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -90,6 +91,21 @@ std::vector<glm::vec3> uniformPoints(Dims dims, std::size_t count, std::uint64_t
     };
     points.emplace_back(unit(0) * static_cast<float>(dims.x), unit(1) * static_cast<float>(dims.y),
                         unit(2) * static_cast<float>(dims.z));
+  }
+  return points;
+}
+
+// Uniform test points in the box [lo, hi), from the project's own hash.
+std::vector<glm::vec3> uniformPointsIn(glm::vec3 lo, glm::vec3 hi, std::size_t count,
+                                       std::uint64_t seed) {
+  std::vector<glm::vec3> points;
+  for (std::size_t i = 0; i < count; ++i) {
+    glm::vec3 unit;
+    for (int axis = 0; axis < 3; ++axis)
+      unit[axis] = static_cast<float>(
+          static_cast<double>(noiseHash(seed, 3 * i + static_cast<std::uint64_t>(axis)) >> 11) *
+          0x1.0p-53);
+    points.push_back(lo + unit * (hi - lo));
   }
   return points;
 }
@@ -216,6 +232,123 @@ TEST(Sparsity, PoissonOnANonCubicGridAndStopsAtMaxPoints) {
   EXPECT_EQ(capped.size(), 100u);
 }
 
+// 64 x 64 x 320 with r = 2 has 278 grid layers along z: four slabs and three bands.
+constexpr Dims kSlabbedDims{64, 64, 320};
+
+TEST(Sparsity, PoissonCutsOnlyLargeVolumesIntoSlabs) {
+  EXPECT_TRUE(poissonDiskBands({32, 32, 32}, 2.5f).empty());
+  EXPECT_TRUE(poissonDiskBands({64, 64, 64}, 1.72f).empty());
+  EXPECT_EQ(poissonDiskBands({256, 256, 256}, 2.06f).size(), 1u);  // the 1M-point case
+  EXPECT_EQ(poissonDiskBands({256, 256, 512}, 2.06f).size(), 3u);
+  const auto bands = poissonDiskBands(kSlabbedDims, 2.0f);
+  ASSERT_EQ(bands.size(), 3u);
+  float previous = 0.0f;
+  for (const auto& [z0, z1] : bands) {
+    // At least r thick, so samples of two slabs are r apart; not much more, or it costs.
+    EXPECT_GE(z1 - z0, 2.0f);
+    EXPECT_LT(z1 - z0, 3.0f);
+    EXPECT_GT(z0, previous + 40.0f) << "slabs of similar size";
+    previous = z1;
+  }
+  EXPECT_LT(previous, 320.0f - 40.0f);
+}
+
+TEST(Sparsity, PoissonKeepsTheRadiusAcrossTheBands) {
+  struct Case {
+    Dims dims;
+    float radius;
+    std::uint64_t seed;
+  };
+  for (const auto& [dims, radius, seed] :
+       {Case{kSlabbedDims, 2.0f, 3}, Case{{40, 24, 200}, 1.0f, 8}, Case{{20, 36, 700}, 2.7f, 5}}) {
+    ASSERT_FALSE(poissonDiskBands(dims, radius).empty()) << dims.z;
+    const std::vector<glm::vec3> points =
+        poissonDiskPoints(dims, radius, seed, std::numeric_limits<std::size_t>::max());
+    for (const glm::vec3& p : points) ASSERT_TRUE(inside(dims, p));
+    EXPECT_GE(PointGrid(dims, radius, points).minimumPairDistance(), radius * (1.0 - 1e-6))
+        << dims.z;
+    EXPECT_NEAR(static_cast<double>(points.size()) * radius * radius * radius /
+                    (static_cast<double>(dims.x) * dims.y * dims.z),
+                kPoissonDensity, 0.05)
+        << dims.z;
+  }
+}
+
+TEST(Sparsity, PoissonBandsLeaveNoMoreRoomThanTheRestOfTheVolume) {
+  const float r = 2.0f;
+  const std::vector<glm::vec3> points =
+      poissonDiskPoints(kSlabbedDims, r, 3, std::numeric_limits<std::size_t>::max());
+  const auto bands = poissonDiskBands(kSlabbedDims, r);
+  ASSERT_EQ(bands.size(), 3u);
+  const PointGrid grid(kSlabbedDims, 2.0f * r, points);
+  // The fraction of probes at least r from every sample: room for one more. Probes stay 2r from
+  // the x and y faces, where every part of the volume has more room.
+  const glm::vec2 lo(2.0f * r), hi(64.0f - 2.0f * r);
+  const auto room = [&](float z0, float z1, std::size_t count, std::uint64_t seed) {
+    std::size_t free = 0;
+    for (const glm::vec3& q :
+         uniformPointsIn(glm::vec3(lo, z0), glm::vec3(hi, z1), count, seed)) {
+      const double d = grid.nearest(q);
+      EXPECT_LT(d, 2.0 * r) << q.x << " " << q.y << " " << q.z;
+      free += d >= r;
+    }
+    return static_cast<double>(free) / static_cast<double>(count);
+  };
+  // Inside the bands, next to them (2r either side: slab samples pressed against the band), and
+  // in the middle of the slabs, with about 500 free probes in each.
+  double inBands = 0.0, nextToBands = 0.0;
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const auto [z0, z1] = bands[b];
+    inBands += room(z0, z1, 20000, 10 + b) / 3.0;
+    nextToBands += (room(z0 - 2.0f * r, z0, 10000, 20 + b) + room(z1, z1 + 2.0f * r, 10000, 30 + b)) / 6.0;
+  }
+  const double inSlabs = room(20.0f, 60.0f, 30000, 40) / 2.0 + room(260.0f, 300.0f, 30000, 41) / 2.0;
+  EXPECT_GT(inSlabs, 0.003);
+  EXPECT_LT(inSlabs, 0.02);
+  // Without the band sampling pressing in from both sides (see sampleRegion), the bands had twice
+  // the room of the slabs.
+  EXPECT_LT(inBands, 1.25 * inSlabs) << inBands << " against " << inSlabs;
+  EXPECT_LT(nextToBands, 1.25 * inSlabs) << nextToBands << " against " << inSlabs;
+}
+
+TEST(Sparsity, PoissonIsTheSameOnAnyNumberOfThreads) {
+  const Dims dims{16, 16, 400};  // four slabs, as in the golden values below
+  const auto sample = [&](unsigned threads) {
+    return poissonDiskPoints(dims, 2.0f, 9, std::numeric_limits<std::size_t>::max(), threads);
+  };
+  ASSERT_EQ(poissonDiskBands(dims, 2.0f).size(), 3u);
+  const std::vector<glm::vec3> one = sample(1);
+  ASSERT_GT(one.size(), 5000u);
+  for (const unsigned threads : {0u, 2u, 3u, 4u, 16u}) EXPECT_EQ(sample(threads), one) << threads;
+  // Several at once, so the threads of each run in another order and at other times.
+  std::vector<std::vector<glm::vec3>> concurrent(3);
+  std::vector<std::thread> callers;
+  for (std::size_t i = 0; i < concurrent.size(); ++i)
+    callers.emplace_back([&, i] { concurrent[i] = sample(static_cast<unsigned>(i + 2)); });
+  for (std::thread& caller : callers) caller.join();
+  for (const std::vector<glm::vec3>& points : concurrent) EXPECT_EQ(points, one);
+}
+
+TEST(Sparsity, PoissonStopsAtMaxPointsInZOrder) {
+  const std::vector<glm::vec3> all =
+      poissonDiskPoints(kSlabbedDims, 2.0f, 4, std::numeric_limits<std::size_t>::max());
+  const float firstBand = poissonDiskBands(kSlabbedDims, 2.0f).front().first;
+  // Fewer than the first slab holds: its first samples, all below the first band.
+  const std::vector<glm::vec3> few = poissonDiskPoints(kSlabbedDims, 2.0f, 4, 1000);
+  ASSERT_EQ(few.size(), 1000u);
+  EXPECT_TRUE(std::equal(few.begin(), few.end(), all.begin()));
+  for (const glm::vec3& p : few) ASSERT_LT(p.z, firstBand);
+  // All but one: the same points, less the last.
+  const std::vector<glm::vec3> most = poissonDiskPoints(kSlabbedDims, 2.0f, 4, all.size() - 1);
+  ASSERT_EQ(most.size(), all.size() - 1);
+  EXPECT_TRUE(std::equal(most.begin(), most.end(), all.begin()));
+  // Half: still exact, and lacking the top of the volume.
+  const std::vector<glm::vec3> half = poissonDiskPoints(kSlabbedDims, 2.0f, 4, all.size() / 2);
+  ASSERT_EQ(half.size(), all.size() / 2);
+  EXPECT_GE(PointGrid(kSlabbedDims, 2.0f, half).minimumPairDistance(), 2.0 * (1.0 - 1e-6));
+  for (const glm::vec3& p : half) ASSERT_LT(p.z, 240.0f);
+}
+
 TEST(Sparsity, BestCandidateSpreadsPointsBetterThanUniform) {
   const Dims dims{48, 40, 32};
   const std::size_t count = 600;
@@ -295,6 +428,14 @@ TEST(Sparsity, SameSeedSamePointsOnEveryMachine) {
   EXPECT_EQ(best[19], glm::vec3(2.33203125f, 0.4580078125f, 8.4833984375f));
   EXPECT_EQ(jitter.size(), 911u);
   EXPECT_EQ(jitter[1], glm::vec3(4.734375f, 2.3203125f, 0.2265625f));
+
+  // Four slabs and three bands, whatever the number of threads.
+  const std::vector<glm::vec3> slabbed =
+      poissonDiskPoints({16, 16, 400}, 2.0f, 1, std::numeric_limits<std::size_t>::max());
+  ASSERT_EQ(slabbed.size(), 7080u);
+  EXPECT_EQ(slabbed[1], glm::vec3(5.7119140625f, 0.240234375f, 48.328125f));
+  EXPECT_EQ(slabbed[3540], glm::vec3(10.83203125f, 10.7705078125f, 198.8515625f));
+  EXPECT_EQ(slabbed[7079], glm::vec3(0.103515625f, 7.45703125f, 392.845703125f));
 }
 
 TEST(Sparsity, NoneIsAllWhite) {
