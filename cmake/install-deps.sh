@@ -8,7 +8,8 @@ packages="
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev
   libglm-dev libglfw3-dev libimgui-dev libstb-dev
-  libcli11-dev nlohmann-json3-dev zlib1g-dev libgtest-dev
+  libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libpugixml-dev libgtest-dev
+  xvfb xauth
 "
 
 missing=""

@@ -5,10 +5,14 @@
 
 #include "file_util.h"
 #include "nrrd.h"
+#include "raw_volume.h"
+#include "vti.h"
 #include "vtk_legacy.h"
 
 namespace lic3d {
 namespace {
+
+constexpr char kVectorExtensions[] = ".vtk, .vti, .nrrd, .nhdr, .raw";
 
 // The readers would say much the same, but this wording is what a user needs for a mistyped path.
 Result<void> checkRegularFile(const std::filesystem::path& path) {
@@ -34,26 +38,32 @@ std::string describeExtension(const std::string& extension) {
 
 }  // namespace
 
-Result<VectorField> readVectorField(const std::filesystem::path& path, std::string_view arrayName) {
+Result<VectorField> readVectorField(const std::filesystem::path& path, std::string_view arrayName,
+                                    FieldReadInfo* info) {
   const std::string extension = lowerCaseExtension(path);
-  if (extension == ".nhdr")
-    return fileError(path, "detached NRRD headers (.nhdr) are not supported yet; use a .nrrd file");
-  if (extension != ".nrrd" && extension != ".vtk")
+  const bool named = extension == ".vtk" || extension == ".vti";
+  const bool single = extension == ".nrrd" || extension == ".nhdr" || extension == ".raw";
+  if (!named && !single)
     return fileError(path, "cannot read a vector field from a file with " +
-                               describeExtension(extension) + " (supported: .nrrd, .vtk)");
+                               describeExtension(extension) + " (supported: " + kVectorExtensions +
+                               ")");
   LIC3D_TRY(checkRegularFile(path));
-  if (extension == ".vtk") return readVectorFieldVtk(path, arrayName);
+  if (extension == ".vtk") return readVectorFieldVtk(path, arrayName, info);
+  if (extension == ".vti") return readVectorFieldVti(path, arrayName, info);
   if (!arrayName.empty())
     return fileError(path, "an array name (" + quoteForMessage(arrayName) +
-                               ") applies only to .vtk files; a NRRD file holds one array");
-  return readVectorFieldNrrd(path);
+                               ") applies only to .vtk and .vti files; a " +
+                               (extension == ".raw" ? "raw" : "NRRD") +
+                               " file holds one unnamed array");
+  if (extension == ".raw") return readVectorFieldRaw(path, info);
+  return readVectorFieldNrrd(path, info);
 }
 
 Result<NoiseVolume> readNoise(const std::filesystem::path& path) {
   const std::string extension = lowerCaseExtension(path);
-  if (extension != ".nrrd")
+  if (extension != ".nrrd" && extension != ".nhdr")
     return fileError(path, "cannot read noise from a file with " + describeExtension(extension) +
-                               " (supported: .nrrd)");
+                               " (supported: .nrrd, .nhdr)");
   LIC3D_TRY(checkRegularFile(path));
   return readNoiseNrrd(path);
 }

@@ -36,6 +36,9 @@ bool parseUnsigned(std::string_view text, std::uint64_t& value);
 bool parseDouble(std::string_view text, double& value);
 bool parseFloat(std::string_view text, float& value);
 
+// The shortest text that parseDouble reads back as the same double ("0.1", "1e-07", "nan").
+std::string formatDouble(double value);
+
 // ASCII text helpers for the parsers, independent of the locale.
 bool isAsciiSpace(int c);
 std::string asciiLowerCase(std::string_view text);

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "file_util.h"
+#include "volume_io.h"
 
 namespace lic3d {
 namespace {
@@ -25,10 +25,6 @@ namespace {
 constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
 // A multiple of every value size, so chunks never split a value.
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
-// deflate cannot compress better than about 1032:1, so a gzip payload that would have to inflate
-// further is corrupt and is refused before its output is allocated.
-constexpr std::uint64_t kMaxDeflateRatio = 1032;
-
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are written as packed floats");
 
 enum class ValueType {
@@ -126,20 +122,28 @@ using HeaderFields = std::map<std::string, HeaderField>;
 // What the header says about the payload, after every check.
 struct Layout {
   ValueType type = ValueType::Float;
-  std::size_t components = 1;  // values per voxel: 3 for vector fields, 1 for noise
+  std::size_t components = 1;  // values per voxel: 3 for vector fields, 4 for RGBA, 1 for scalars
   Dims dims{0};
   std::uint64_t voxels = 0;
   Encoding encoding = Encoding::Raw;
   std::endian order = std::endian::little;
   GridGeometry geometry;
+  // Detached headers name the file holding the data; empty when it follows the header.
+  std::filesystem::path dataFile;
+  std::uint64_t lineSkip = 0;
+  // Bytes skipped before the data (in the file for raw, in the decompressed stream for gzip);
+  // -1 (raw only) puts the data at the end of the file.
+  std::int64_t byteSkip = 0;
 
   std::uint64_t payloadBytes() const { return voxels * components * valueBytes(type); }
 };
 
 // What one reader accepts.
 struct Expectation {
-  std::size_t dimension;
+  std::size_t dimension;  // 3, or 4 with the components on the first axis
+  std::size_t components;  // the size of that first axis
   std::string_view dimensionMeaning;
+  std::string_view componentsMeaning;
   std::vector<ValueType> types;
   std::string_view typesText;
 };
@@ -184,20 +188,15 @@ std::optional<glm::dvec3> parseVector(std::string_view text) {
   return vector;
 }
 
-std::string formatNumber(double value) {
-  std::array<char, 32> text{};
-  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() ? std::string(text.data(), end) : std::string("nan");
-}
 
 // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
 std::string formatVector(const glm::dvec3& v) {
   std::string text = "(";
-  text += formatNumber(v.x);
+  text += formatDouble(v.x);
   text += ',';
-  text += formatNumber(v.y);
+  text += formatDouble(v.y);
   text += ',';
-  text += formatNumber(v.z);
+  text += formatDouble(v.z);
   text += ')';
   return text;
 }
@@ -223,7 +222,7 @@ LineStatus readHeaderLine(FileReader& reader, std::string& line, std::size_t& bu
 }
 
 // Reads from the magic line to the blank line that ends the header; the reader is then at the
-// first payload byte.
+// first payload byte. A detached header (one with a `data file` field) may also end with the file.
 Result<HeaderFields> readHeader(FileReader& reader) {
   const std::filesystem::path& path = reader.path();
   std::string line;
@@ -246,6 +245,8 @@ Result<HeaderFields> readHeader(FileReader& reader) {
     if (status == LineStatus::TooLong)
       return fileError(path,
                        "the header is longer than 64 KiB (or lacks the blank line that ends it)");
+    if (status == LineStatus::End && fields.contains("datafile") && reader.remaining() == 0)
+      return fields;
     if (status == LineStatus::End) {
       std::string problem = "the header ends without the blank line that must precede the data";
       problem +=
@@ -282,16 +283,7 @@ class HeaderInterpreter {
 
   Result<Layout> interpret() {
     Layout layout;
-    if (find("datafile"))
-      return fileError(path_,
-                       "detached NRRD ('data file' field) is not supported yet; put the data in "
-                       "the same file, after the header");
-    for (const std::string_view name : {"line skip", "byte skip"}) {
-      const HeaderField* skip = find(name);
-      if (skip && skip->value != "0")
-        return fail(name, quoteForMessage(skip->value) +
-                              " is not supported (the data must follow the header directly)");
-    }
+    LIC3D_TRY(readDataFile(layout));
     LIC3D_TRY(readGrid(layout));
     LIC3D_TRY(readValues(layout));
     LIC3D_TRY(readGeometry(layout));
@@ -314,6 +306,41 @@ class HeaderInterpreter {
     return where == fields_.end() ? nullptr : &where->second;
   }
   std::size_t firstSpatialAxis() const { return expected_.dimension - 3; }
+
+  // data file, line skip, byte skip
+  Result<void> readDataFile(Layout& layout) const {
+    if (const HeaderField* dataFile = find("data file")) {
+      const std::vector<std::string_view> words = splitWords(dataFile->value);
+      if (words.empty()) return fail("data file", "no file name");
+      // The multi-file forms: "LIST" followed by one name per line, or "name%03d.raw min max
+      // step [subdim]". lic3d volumes are single files.
+      if (asciiLowerCase(words[0]) == "list" ||
+          (words.size() >= 4 && words[0].find('%') != std::string_view::npos))
+        return fail("data file", quoteForMessage(dataFile->value) +
+                                     " names several files, which is not supported (expected "
+                                     "one data file)");
+      const std::filesystem::path name(std::string(trim(dataFile->value)));
+      layout.dataFile = name.is_absolute() ? name : path_.parent_path() / name;
+    }
+    if (const HeaderField* lineSkip = find("line skip")) {
+      if (!parseUnsigned(lineSkip->value, layout.lineSkip))
+        return fail("line skip", "expected a whole number, found " +
+                                     quoteForMessage(lineSkip->value));
+    }
+    if (const HeaderField* byteSkip = find("byte skip")) {
+      std::uint64_t value = 0;
+      if (byteSkip->value == "-1") {
+        layout.byteSkip = -1;
+      } else if (parseUnsigned(byteSkip->value, value) &&
+                 value <= static_cast<std::uint64_t>(INT64_MAX)) {
+        layout.byteSkip = static_cast<std::int64_t>(value);
+      } else {
+        return fail("byte skip", "expected -1 or a whole number, found " +
+                                     quoteForMessage(byteSkip->value));
+      }
+    }
+    return {};
+  }
 
   // dimension and sizes
   Result<void> readGrid(Layout& layout) const {
@@ -344,12 +371,12 @@ class HeaderInterpreter {
       values.push_back(value);
     }
     const std::size_t first = firstSpatialAxis();
-    if (first == 1 && values[0] != 3)
-      return fail("sizes",
-                  "the first axis holds the vector components and must have size 3, "
-                  "found " +
-                      std::to_string(values[0]));
-    layout.components = first == 1 ? 3 : 1;
+    if (first == 1 && values[0] != expected_.components)
+      return fail("sizes", "the first axis holds the " +
+                               std::string(expected_.componentsMeaning) + " and must have size " +
+                               std::to_string(expected_.components) + ", found " +
+                               std::to_string(values[0]));
+    layout.components = first == 1 ? expected_.components : 1;
     layout.dims = Dims(static_cast<int>(values[first]), static_cast<int>(values[first + 1]),
                        static_cast<int>(values[first + 2]));
     layout.voxels = values[first] * values[first + 1] * values[first + 2];
@@ -396,6 +423,9 @@ class HeaderInterpreter {
                   (known ? quoted + " is not supported" : "unknown encoding " + quoted) +
                       " (expected raw or gzip)");
     }
+
+    if (layout.encoding == Encoding::Gzip && layout.byteSkip < 0)
+      return fail("byte skip", "-1 (data at the end of the file) needs raw encoding, not gzip");
 
     const HeaderField* endian = find("endian");
     if (!endian) {
@@ -474,6 +504,30 @@ class HeaderInterpreter {
   const Expectation& expected_;
 };
 
+// Moves `reader` past `line skip` lines and, for raw data, `byte skip` bytes.
+Result<void> skipToPayload(FileReader& reader, const Layout& layout) {
+  for (std::uint64_t line = 0; line < layout.lineSkip; ++line) {
+    int c = reader.get();
+    while (c >= 0 && c != '\n') c = reader.get();
+    if (c < 0)
+      return fileError(reader.path(), "line skip: the data ends after " + std::to_string(line) +
+                                          " of the " + std::to_string(layout.lineSkip) +
+                                          " lines to skip");
+  }
+  if (layout.encoding != Encoding::Raw || layout.byteSkip == 0) return {};
+  const std::uint64_t needed = layout.payloadBytes();
+  // -1: the data is the last bytes of the file, whatever precedes it.
+  const std::uint64_t skip = layout.byteSkip > 0 ? static_cast<std::uint64_t>(layout.byteSkip)
+                             : reader.remaining() >= needed ? reader.remaining() - needed
+                                                            : 0;
+  if (skip > reader.remaining())
+    return fileError(reader.path(), "byte skip: " + std::to_string(skip) + " bytes to skip, only " +
+                                        std::to_string(reader.remaining()) + " left in the file");
+  if (reader.skip(skip) != skip)
+    return fileError(reader.path(), "cannot read: " + reader.failureReason());
+  return {};
+}
+
 // Refuses a payload that the file cannot hold, before the caller allocates the volume.
 Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
   const std::uint64_t needed = layout.payloadBytes();
@@ -482,12 +536,14 @@ Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
     if (available < needed)
       return fileError(reader.path(), "data is truncated: the header promises " +
                                           std::to_string(needed) + " bytes, the file holds " +
-                                          std::to_string(available) + " after the header");
+                                          std::to_string(available) + " where the data starts");
     return {};
   }
-  if (available == 0)
-    return fileError(reader.path(), "gzip data is missing: nothing follows the header");
-  if (needed / kMaxDeflateRatio > available)
+  if (available == 0) return fileError(reader.path(), "gzip data is missing: the data is empty");
+  // A gzip byte skip counts decompressed bytes, which the stream must hold as well.
+  const std::uint64_t inflated = needed + static_cast<std::uint64_t>(std::max<std::int64_t>(
+                                              layout.byteSkip, 0));
+  if (inflated < needed || inflated / kMaxDeflateRatio > available)
     return fileError(reader.path(), "gzip data of " + std::to_string(available) +
                                         " bytes cannot inflate to the " + std::to_string(needed) +
                                         " bytes the header promises (truncated?)");
@@ -495,6 +551,24 @@ Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
 }
 
 using ChunkSink = std::function<void(const char* data, std::size_t bytes)>;
+
+// Calls `use` with each float or double of a chunk in native byte order.
+template <class Use>
+void forEachValue(ValueType type, const char* data, std::size_t bytes, Use&& use) {
+  if (type == ValueType::Double) {
+    for (std::size_t offset = 0; offset + 8 <= bytes; offset += 8) {
+      double value;
+      std::memcpy(&value, data + offset, 8);
+      use(value);
+    }
+  } else {
+    for (std::size_t offset = 0; offset + 4 <= bytes; offset += 4) {
+      float value;
+      std::memcpy(&value, data + offset, 4);
+      use(static_cast<double>(value));
+    }
+  }
+}
 
 // Hands the payload to `sink` in native byte order, in chunks of whole values.
 Result<void> readRaw(FileReader& reader, const Layout& layout, const ChunkSink& sink) {
@@ -541,10 +615,14 @@ Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink&
   InflateStream inflater;
   if (!inflater.init()) return runtimeError("zlib: cannot initialise inflate for " + path.string());
   z_stream& zs = inflater.stream();
-  std::vector<unsigned char> input(kChunkBytes);
+  // Small files get a small buffer: the data's size bounds what can be read.
+  std::vector<unsigned char> input(
+      static_cast<std::size_t>(std::clamp<std::uint64_t>(reader.remaining(), 1, kChunkBytes)));
   std::vector<char> output(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, total)));
   std::uint64_t produced = 0;
   bool ended = false;
+  // teem applies a gzip byte skip to the decompressed stream.
+  std::uint64_t toSkip = static_cast<std::uint64_t>(std::max<std::int64_t>(layout.byteSkip, 0));
 
   // Inflates into [out, out + capacity) until it is full or the stream ends.
   const auto inflateInto = [&](char* out, std::size_t capacity) -> Result<std::size_t> {
@@ -554,6 +632,9 @@ Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink&
       if (zs.avail_in == 0) {
         const std::size_t got = reader.read(input.data(), input.size());
         if (got == 0) {
+          if (toSkip > 0)
+            return fileError(path, "gzip data is truncated within the " +
+                                       std::to_string(layout.byteSkip) + " bytes of 'byte skip'");
           const std::uint64_t done = produced + capacity - zs.avail_out;
           if (done >= total)
             return fileError(path, "gzip data is truncated: the stream lacks its end and checksum");
@@ -578,6 +659,15 @@ Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink&
     return capacity - zs.avail_out;
   };
 
+  while (toSkip > 0) {
+    const std::size_t capacity =
+        static_cast<std::size_t>(std::min<std::uint64_t>(output.size(), toSkip));
+    LIC3D_TRY_ASSIGN(const std::size_t got, inflateInto(output.data(), capacity));
+    if (got < capacity)
+      return fileError(path, "gzip data ends within the " + std::to_string(layout.byteSkip) +
+                                 " bytes of 'byte skip'");
+    toSkip -= got;
+  }
   while (produced < total) {
     const std::size_t capacity =
         static_cast<std::size_t>(std::min<std::uint64_t>(output.size(), total - produced));
@@ -603,16 +693,38 @@ Result<void> readPayload(FileReader& reader, const Layout& layout, const ChunkSi
 }
 
 struct Opened {
-  FileReader reader;
+  std::filesystem::path header;
+  FileReader reader;  // at the first payload byte, in the header's file or its data file
   Layout layout;
 };
+
+// An error about a detached header's data file names both files.
+Error inDataFile(const std::filesystem::path& header, Error error) {
+  error.message = header.string() + ": data file " + error.message;
+  return error;
+}
 
 Result<Opened> openNrrd(const std::filesystem::path& path, const Expectation& expected) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   LIC3D_TRY_ASSIGN(const HeaderFields fields, readHeader(reader));
   LIC3D_TRY_ASSIGN(const Layout layout, HeaderInterpreter(path, fields, expected).interpret());
-  LIC3D_TRY(checkPayloadFits(reader, layout));
-  return Opened{std::move(reader), layout};
+  if (!layout.dataFile.empty()) {
+    Result<FileReader> data = FileReader::open(layout.dataFile);
+    if (!data.ok()) return inDataFile(path, std::move(data).error());
+    reader = std::move(data).value();
+  }
+  Result<void> positioned = skipToPayload(reader, layout);
+  if (positioned.ok()) positioned = checkPayloadFits(reader, layout);
+  if (!positioned.ok())
+    return layout.dataFile.empty() ? std::move(positioned).error()
+                                   : inDataFile(path, std::move(positioned).error());
+  return Opened{path, std::move(reader), layout};
+}
+
+Result<void> readPayload(Opened& opened, const ChunkSink& sink) {
+  Result<void> read = readPayload(opened.reader, opened.layout, sink);
+  if (read.ok() || opened.layout.dataFile.empty()) return read;
+  return inDataFile(opened.header, std::move(read).error());
 }
 
 // Writes `count` values of `bytesPerValue` bytes, stored in native order, as little endian.
@@ -632,28 +744,6 @@ bool writeLittleEndian(std::ostream& out, const void* data, std::size_t count,
   return static_cast<bool>(out);
 }
 
-Result<void> checkGrid(const std::filesystem::path& path, Dims dims, std::size_t valueCount,
-                       const GridGeometry* geometry) {
-  if (dims.x < 1 || dims.y < 1 || dims.z < 1)
-    return inputError("cannot write '" + path.string() + "': the grid " + std::to_string(dims.x) +
-                      "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " is empty");
-  if (valueCount != voxelCount(dims))
-    return inputError("cannot write '" + path.string() + "': the volume holds " +
-                      std::to_string(valueCount) + " values, its " + std::to_string(dims.x) + "x" +
-                      std::to_string(dims.y) + "x" + std::to_string(dims.z) + " grid needs " +
-                      std::to_string(voxelCount(dims)));
-  if (geometry) {
-    for (glm::length_t axis = 0; axis < 3; ++axis) {
-      if (!std::isfinite(geometry->spacing[axis]) || !(geometry->spacing[axis] > 0.0) ||
-          !std::isfinite(geometry->origin[axis]))
-        return inputError(
-            "cannot write '" + path.string() +
-            "': the grid's spacing must be positive and finite and its origin finite");
-    }
-  }
-  return {};
-}
-
 std::string sizesText(Dims dims) {
   return std::to_string(dims.x) + " " + std::to_string(dims.y) + " " + std::to_string(dims.z);
 }
@@ -666,9 +756,11 @@ std::string directionsText(const GridGeometry& geometry) {
 
 }  // namespace
 
-Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path) {
+Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, FieldReadInfo* info) {
   const Expectation expected{4,
+                             3,
                              "3 vector components on a 3D grid",
+                             "vector components",
                              {ValueType::Float, ValueType::Double},
                              "float or double"};
   LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
@@ -679,44 +771,62 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path) {
   field.vectors.resize(static_cast<std::size_t>(layout.voxels));
 
   std::uint64_t next = 0;  // index of the next component, over all voxels
-  std::optional<std::uint64_t> firstBad;
   const auto store = [&](double value) {
-    float stored = 0.0f;
-    if (std::isfinite(value) && std::abs(value) <= FLT_MAX) {
-      stored = static_cast<float>(value);
-    } else if (!firstBad) {
-      firstBad = next;
-    }
     field.vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
-        stored;
+        vectorComponent(value);
     ++next;
   };
-  const bool isDouble = layout.type == ValueType::Double;
-  LIC3D_TRY(readPayload(opened.reader, layout, [&](const char* data, std::size_t bytes) {
-    if (isDouble) {
-      for (std::size_t offset = 0; offset < bytes; offset += 8) {
-        double value;
-        std::memcpy(&value, data + offset, 8);
-        store(value);
-      }
-    } else {
-      for (std::size_t offset = 0; offset < bytes; offset += 4) {
-        float value;
-        std::memcpy(&value, data + offset, 4);
-        store(value);
-      }
-    }
+  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    forEachValue(layout.type, data, bytes, store);
   }));
-  if (firstBad)
-    return fileError(path, "component " + std::to_string(*firstBad % 3) +
-                               " of the vector at voxel " + voxelText(layout.dims, *firstBad / 3) +
-                               " is NaN, infinite or outside the float range");
+  if (info) *info = FieldReadInfo{};
+  LIC3D_TRY(finishVectorField(path, field, info));
   return field;
+}
+
+Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path) {
+  const Expectation expected{3,
+                             1,
+                             "a 3D grid of scalars",
+                             "",
+                             {ValueType::Float, ValueType::Double},
+                             "float or double"};
+  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  const Layout& layout = opened.layout;
+  ScalarVolume volume;
+  volume.dims = layout.dims;
+  volume.geometry = layout.geometry;
+  volume.values.resize(static_cast<std::size_t>(layout.voxels));
+  std::size_t next = 0;
+  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    forEachValue(layout.type, data, bytes,
+                 [&](double value) { volume.values[next++] = vectorComponent(value); });
+  }));
+  return volume;
+}
+
+Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path) {
+  const Expectation expected{
+      4, 4, "4 colour channels on a 3D grid", "RGBA channels", {ValueType::UInt8}, "uchar"};
+  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  const Layout& layout = opened.layout;
+  RgbaVolume volume;
+  volume.dims = layout.dims;
+  volume.geometry = layout.geometry;
+  volume.rgba.resize(static_cast<std::size_t>(layout.payloadBytes()));
+  std::size_t offset = 0;
+  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    std::memcpy(volume.rgba.data() + offset, data, bytes);
+    offset += bytes;
+  }));
+  return volume;
 }
 
 Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
   const Expectation expected{3,
+                             1,
                              "a 3D grid of scalars",
+                             "",
                              {ValueType::UInt8, ValueType::UInt16, ValueType::Float},
                              "uchar, ushort or float"};
   LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
@@ -728,7 +838,7 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
                                                   : NoiseType::Float32;
   noise.bytes.resize(static_cast<std::size_t>(layout.payloadBytes()));
   std::size_t offset = 0;
-  LIC3D_TRY(readPayload(opened.reader, layout, [&](const char* data, std::size_t bytes) {
+  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
     std::memcpy(noise.bytes.data() + offset, data, bytes);
     offset += bytes;
   }));
@@ -748,7 +858,7 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
   }
   if (low >= 0.0f && high <= 1.0f) return noise;
   if (low == high)
-    return fileError(path, "float noise is the constant " + formatNumber(low) +
+    return fileError(path, "float noise is the constant " + formatDouble(low) +
                                ", outside [0,1], and cannot be rescaled to [0,1]");
   const double range = static_cast<double>(high) - static_cast<double>(low);
   for (std::size_t i = 0; i < count; ++i) {
@@ -762,7 +872,7 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
 }
 
 Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume) {
-  LIC3D_TRY(checkGrid(path, volume.dims, volume.values.size(), &volume.geometry));
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
   const std::string header =
       "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nspace dimension: 3\n"
       "sizes: " +
@@ -776,7 +886,7 @@ Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolu
 }
 
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field) {
-  LIC3D_TRY(checkGrid(path, field.dims, field.vectors.size(), &field.geometry));
+  LIC3D_TRY(checkVolumeForWriting(path, field.dims, field.vectors.size(), 1, &field.geometry));
   const std::string header =
       "NRRD0004\n# written by lic3d\ntype: float\ndimension: 4\nspace dimension: 3\n"
       "sizes: 3 " +
@@ -795,7 +905,8 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
   if (noise.bytes.size() % bytesPerValue != 0)
     return inputError("cannot write '" + path.string() + "': the noise holds " +
                       std::to_string(noise.bytes.size()) + " bytes, not a whole number of values");
-  LIC3D_TRY(checkGrid(path, noise.dims, noise.bytes.size() / bytesPerValue, nullptr));
+  LIC3D_TRY(checkVolumeForWriting(path, noise.dims, noise.bytes.size() / bytesPerValue, 1,
+                                  nullptr));
   const char* type = noise.type == NoiseType::UInt8    ? "uchar"
                      : noise.type == NoiseType::UInt16 ? "ushort"
                                                        : "float";
@@ -807,6 +918,22 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
     out << header;
     return writeLittleEndian(out, noise.bytes.data(), noise.bytes.size() / bytesPerValue,
                              bytesPerValue);
+  });
+}
+
+Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& volume) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
+  const std::string header =
+      "NRRD0004\n# written by lic3d\ntype: uchar\ndimension: 4\nspace dimension: 3\n"
+      "sizes: 4 " +
+      sizesText(volume.dims) + "\nspace directions: none " + directionsText(volume.geometry) +
+      "\nkinds: RGBA-color domain domain domain\nencoding: raw\nspace origin: " +
+      formatVector(volume.geometry.origin) + "\n\n";
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    return static_cast<bool>(
+        out.write(reinterpret_cast<const char*>(volume.rgba.data()),
+                  static_cast<std::streamsize>(volume.rgba.size())));
   });
 }
 

@@ -1,32 +1,46 @@
 #pragma once
-// NRRD files (teem.sourceforge.net/nrrd/format.html) with attached headers: vector fields and
-// noise in, vector fields, noise and LIC results out.
+// NRRD files (teem.sourceforge.net/nrrd/format.html): vector fields, noise and scalar volumes in;
+// vector fields, noise, LIC results and RGBA volumes out.
 //
 // Readers accept NRRD0001..NRRD0005, `raw` and `gzip` encodings, either byte order, every NRRD
-// spelling of the types they take, comments, `key:=value` lines and unknown fields. Detached
-// headers (`data file`) are refused with an error that says so. Inputs are untrusted: header
+// spelling of the types they take, comments, `key:=value` lines and unknown fields. A detached
+// header (`.nhdr`) names its data file in `data file` (relative to the header's folder, or
+// absolute); `line skip` and `byte skip` (-1: the data ends the file; for gzip the skip counts
+// decompressed bytes, as teem reads it) apply to attached and detached data alike. The multi-file
+// forms of `data file` (LIST, or a numbered pattern) are refused. Inputs are untrusted: header
 // numbers are checked against limits (header <= 64 KiB, each size in [1, 16384], at most 2^31
 // voxels) and the payload against the bytes in the file before anything is allocated. Every error
-// is InvalidInput and its message names the file and the field.
+// is InvalidInput and its message names the file (and a detached header's data file) and the
+// field.
 
 #include <filesystem>
 
 #include "error.h"
 #include "volume.h"
+#include "volume_io.h"
 
 namespace lic3d {
 
 // `dimension: 4`, `sizes: 3 NX NY NZ`, type float or double (converted to float). The grid comes
 // from `space directions` (the length of each axis vector is its spacing: lic3d grids are axis
-// aligned, so a rotation is dropped) or else from `spacings`; `space origin` sets the origin.
-// Every component must be finite (NaN, Inf, or a double beyond the float range is an error).
-Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path);
+// aligned, so a rotation or flip is dropped) or else from `spacings`; `space origin` sets the
+// origin. Vectors with a NaN or infinite component become zero and are counted (finishVectorField).
+Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path,
+                                        FieldReadInfo* info = nullptr);
 
 // `dimension: 3`, `sizes: NX NY NZ`, type uchar, ushort or float; integer noise keeps its type.
 // Float noise must be finite. Float values that stray outside [0,1] are mapped linearly onto
 // [0,1] through the volume's own min and max (a constant volume outside [0,1] is an error);
 // float values already inside [0,1] are kept exactly.
 Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path);
+
+// `dimension: 3`, type float or double (converted to float; NaN is kept: lic3d writes it for
+// voxels hidden by sparsity), with the geometry read as for vector fields. Reads what
+// writeScalarNrrd writes.
+Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path);
+
+// `dimension: 4`, `sizes: 4 NX NY NZ`, type uchar: what writeRgbaNrrd writes.
+Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path);
 
 // Float32, raw, little endian, with `space directions` and `space origin` from the geometry.
 // All writers go through writeFileAtomically, so a failed write leaves no partial file.
@@ -35,5 +49,8 @@ Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolu
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field);
 // Keeps the noise's type (uchar, ushort or float); raw, little endian.
 Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume& noise);
+// uchar, `sizes: 4 NX NY NZ`, `kinds: RGBA-color domain domain domain`, with the geometry: 3D
+// Slicer and ParaView show it as a colour volume.
+Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& volume);
 
 }  // namespace lic3d

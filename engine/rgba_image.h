@@ -1,8 +1,10 @@
 #pragma once
-// An 8-bit RGBA picture in memory (rows top to bottom) and its PNG file.
+// An 8-bit RGBA picture in memory (rows top to bottom) and its PNG files.
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -22,7 +24,19 @@ struct RgbaImage {
   }
 };
 
-// Writes through a temporary file renamed on success, so a failure never leaves a partial PNG.
-Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image);
+// Key/value pairs stored in the PNG as text chunks (the parameters that made the picture): tEXt
+// for ASCII values, iTXt (UTF-8) for others. Keys are PNG keywords: 1 to 79 printable ASCII
+// characters, no leading, trailing or double spaces; values hold no NUL byte.
+using PngText = std::vector<std::pair<std::string, std::string>>;
+
+// 8-bit RGBA, encoded by libpng in memory and written through writeFileAtomically, so a failure
+// never leaves a partial PNG. A bad image or text is InvalidInput; an encoder failure is Runtime.
+Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
+                      const PngText& text = {});
+
+// 16-bit grey (the LIC slice at full precision), `values` row by row from the top, stored big
+// endian as PNG requires.
+Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
+                            const std::vector<std::uint16_t>& values, const PngText& text = {});
 
 }  // namespace lic3d

@@ -1,7 +1,6 @@
 #include "vtk_legacy.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -9,6 +8,7 @@
 #include <vector>
 
 #include "file_util.h"
+#include "volume_io.h"
 
 namespace lic3d {
 namespace {
@@ -19,20 +19,47 @@ constexpr std::size_t kMaxTokenBytes = 256;
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
 enum class Format { Ascii, Binary };
+enum class Dataset { StructuredPoints, RectilinearGrid };
+enum class NumberKind { Signed, Unsigned, Real };
 
 struct DataType {
   std::string_view name;  // lower case, as VTK compares them
   std::size_t binaryBytes;
+  NumberKind kind;
 };
 
 // The sizes in BINARY files. `long` is 8 bytes because VTK writes sizeof(long), and legacy files
 // come from LP64 systems; vtkIdType is always written as a 32-bit int.
 constexpr DataType kDataTypes[] = {
-    {"unsigned_char", 1}, {"char", 1},          {"unsigned_short", 2}, {"short", 2},
-    {"unsigned_int", 4},  {"int", 4},           {"unsigned_long", 8},  {"long", 8},
-    {"vtktypeint64", 8},  {"vtktypeuint64", 8}, {"float", 4},          {"double", 8},
-    {"vtkidtype", 4},
+    {"unsigned_char", 1, NumberKind::Unsigned}, {"char", 1, NumberKind::Signed},
+    {"unsigned_short", 2, NumberKind::Unsigned}, {"short", 2, NumberKind::Signed},
+    {"unsigned_int", 4, NumberKind::Unsigned},   {"int", 4, NumberKind::Signed},
+    {"unsigned_long", 8, NumberKind::Unsigned},  {"long", 8, NumberKind::Signed},
+    {"vtktypeint64", 8, NumberKind::Signed},     {"vtktypeuint64", 8, NumberKind::Unsigned},
+    {"float", 4, NumberKind::Real},              {"double", 8, NumberKind::Real},
+    {"vtkidtype", 4, NumberKind::Signed},
 };
+
+// One BINARY value in native byte order, as a double.
+double binaryValue(const char* data, const DataType& type) {
+  if (type.kind == NumberKind::Real) {
+    if (type.binaryBytes == 4) {
+      float value;
+      std::memcpy(&value, data, 4);
+      return value;
+    }
+    double value;
+    std::memcpy(&value, data, 8);
+    return value;
+  }
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, data, type.binaryBytes);
+  // On a big-endian host the value's bytes landed in the high end.
+  if (std::endian::native == std::endian::big) bits >>= 8 * (8 - type.binaryBytes);
+  if (type.kind == NumberKind::Unsigned) return static_cast<double>(bits);
+  const unsigned shift = static_cast<unsigned>(64 - 8 * type.binaryBytes);
+  return static_cast<double>(static_cast<std::int64_t>(bits << shift) >> shift);
+}
 
 std::string upperCase(std::string_view text) {
   std::string raised(text);
@@ -63,13 +90,6 @@ std::string decodeName(std::string_view name) {
   return decoded;
 }
 
-std::string joinQuoted(const std::vector<std::string>& names) {
-  std::string joined;
-  for (const std::string& name : names)
-    joined += (joined.empty() ? "" : ", ") + quoteForMessage(name);
-  return joined;
-}
-
 using Words = std::vector<std::string>;
 
 Words wordsOf(std::string_view text) {
@@ -83,6 +103,7 @@ class Parser {
 
   Error fail(const std::string& problem) const { return fileError(reader_.path(), problem); }
   void setFormat(Format format) { format_ = format; }
+  Format format() const { return format_; }
 
   // One line without its "\n" or "\r\n"; nullopt at the end of the file.
   Result<std::optional<std::string>> readLine() {
@@ -146,18 +167,49 @@ class Parser {
   }
 
   Result<std::size_t> binarySize(std::string_view typeName, const std::string& what) const {
+    LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+    return type->binaryBytes;
+  }
+
+  Result<const DataType*> dataType(std::string_view typeName, const std::string& what) const {
     const std::string key = asciiLowerCase(typeName);
     if (key == "bit") return fail(what + ": bit arrays are not supported");
     if (key == "string" || key == "utf8_string" || key == "variant")
       return fail(what + ": " + quoteForMessage(typeName) + " arrays are not supported");
     for (const DataType& type : kDataTypes)
-      if (type.name == key) return type.binaryBytes;
+      if (type.name == key) return &type;
     return fail(what + ": unknown data type " + quoteForMessage(typeName));
+  }
+
+  // Reads `count` numbers of any VTK type as doubles; the caller bounds `count`.
+  Result<std::vector<double>> readNumbers(std::uint64_t count, std::string_view typeName,
+                                          const std::string& what) {
+    LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+    std::vector<double> numbers;
+    if (format_ == Format::Binary) {
+      const std::uint64_t bytes = count * type->binaryBytes;
+      if (bytes > reader_.remaining()) return truncated(what, count, type->binaryBytes);
+      std::vector<char> data(static_cast<std::size_t>(bytes));
+      if (reader_.read(data.data(), data.size()) != data.size())
+        return fail(what + ": cannot read: " + reader_.failureReason());
+      toNativeOrder(data.data(), static_cast<std::size_t>(count), type->binaryBytes,
+                    std::endian::big);
+      for (std::size_t i = 0; i < count; ++i)
+        numbers.push_back(binaryValue(data.data() + i * type->binaryBytes, *type));
+      return numbers;
+    }
+    LIC3D_TRY(checkAsciiFits(count, what));
+    for (std::uint64_t i = 0; i < count; ++i) {
+      double value = 0.0;
+      LIC3D_TRY(readAsciiNumber(value, count, i, what));
+      numbers.push_back(value);
+    }
+    return numbers;
   }
 
   // Reads `count` float or double vectors into `vectors`, checked against the file first.
   Result<void> readVectors(std::uint64_t count, std::string_view typeName, const std::string& what,
-                           Dims dims, std::vector<glm::vec3>& vectors) {
+                           std::vector<glm::vec3>& vectors) {
     const std::string key = asciiLowerCase(typeName);
     if (key != "float" && key != "double")
       return fail(what + ": type " + quoteForMessage(typeName) +
@@ -173,16 +225,10 @@ class Parser {
     }
     vectors.assign(static_cast<std::size_t>(count), glm::vec3(0.0f));
 
-    std::optional<std::uint64_t> firstBad;
     std::uint64_t next = 0;
     const auto store = [&](double value) {
-      float stored = 0.0f;
-      if (std::isfinite(value) && std::abs(value) <= FLT_MAX) {
-        stored = static_cast<float>(value);
-      } else if (!firstBad) {
-        firstBad = next;
-      }
-      vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] = stored;
+      vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
+          vectorComponent(value);
       ++next;
     };
 
@@ -215,10 +261,6 @@ class Parser {
         store(value);
       }
     }
-    if (firstBad)
-      return fail(what + ": component " + std::to_string(*firstBad % 3) +
-                  " of the vector at point " + voxelText(dims, *firstBad / 3) +
-                  " is NaN, infinite or outside the float range");
     return {};
   }
 
@@ -238,7 +280,9 @@ class Parser {
     return {};
   }
 
-  // Float arrays parse as float directly: going through double could round differently.
+  // Float arrays parse as float directly: going through double could round differently. A
+  // number beyond the float range is still a number: it is read as a double, becomes infinity
+  // and then a zero vector (finishVectorField), like NaN.
   Result<void> readAsciiNumber(double& value, std::uint64_t count, std::uint64_t index,
                                const std::string& what, bool asFloat = false) {
     LIC3D_TRY_ASSIGN(const std::string token, readToken());
@@ -250,6 +294,7 @@ class Parser {
       float single = 0.0f;
       parsed = parseFloat(token, single);
       value = single;
+      if (!parsed) parsed = parseDouble(token, value);
     } else {
       parsed = parseDouble(token, value);
     }
@@ -323,6 +368,7 @@ Result<void> skipFieldData(Parser& parser, const Words& words) {
 struct Geometry {
   std::optional<Dims> dims;
   GridGeometry grid;
+  int coordinateAxes = 0;  // RECTILINEAR_GRID: a bit per axis whose coordinates were read
 };
 
 Result<glm::dvec3> parseTriple(const Parser& parser, const Words& words, bool positive) {
@@ -339,18 +385,68 @@ Result<glm::dvec3> parseTriple(const Parser& parser, const Words& words, bool po
   return value;
 }
 
+// lic3d grids are uniform, so a rectilinear grid is read only when its coordinates are evenly
+// spaced: each within 1e-6 of the spacing of where a uniform axis from the first to the last
+// coordinate puts it. Float coordinates may also be off by their own rounding (2^-24 relative),
+// since a uniform grid written as float cannot be closer than that.
+Result<void> readUniformCoordinates(Parser& parser, const Words& words, Geometry& geometry) {
+  const std::string key = upperCase(words[0]);
+  LIC3D_TRY(checkWords(parser, words, 3, 3, key + " count type"));
+  if (!geometry.dims) return parser.fail("missing DIMENSIONS before " + key);
+  const glm::length_t axis = key[0] == 'X' ? 0 : key[0] == 'Y' ? 1 : 2;
+  if (geometry.coordinateAxes & (1 << axis)) return parser.fail(key + " appears twice");
+  LIC3D_TRY_ASSIGN(const std::uint64_t count, parseCount(parser, words[1], key));
+  const int points = (*geometry.dims)[axis];
+  if (count != static_cast<std::uint64_t>(points))
+    return parser.fail(key + " " + words[1] + " does not match DIMENSIONS, which gives " +
+                       std::to_string(points) + " points along this axis");
+  LIC3D_TRY_ASSIGN(const std::vector<double> coordinates,
+                   parser.readNumbers(count, words[2], key));
+  const double first = coordinates.front();
+  const double last = coordinates.back();
+  if (!std::isfinite(first) || !std::isfinite(last))
+    return parser.fail(key + ": the coordinates must be finite numbers");
+  geometry.coordinateAxes |= 1 << axis;
+  geometry.grid.origin[axis] = first;
+  if (points == 1) return {};
+  const double spacing = (last - first) / static_cast<double>(points - 1);
+  if (!(spacing > 0.0) || !std::isfinite(spacing))
+    return parser.fail(key + ": the coordinates must increase, found " + formatDouble(first) +
+                       " first and " + formatDouble(last) + " last");
+  const bool isFloat = asciiLowerCase(words[2]) == "float";
+  for (std::size_t i = 0; i < coordinates.size(); ++i) {
+    const double uniform = first + spacing * static_cast<double>(i);
+    const double tolerance =
+        1e-6 * spacing + (isFloat ? std::abs(uniform) * 0x1p-24 : 0.0);
+    if (!(std::abs(coordinates[i] - uniform) <= tolerance))
+      return parser.fail(key + ": the coordinates are not uniform: coordinate " +
+                         std::to_string(i) + " is " + formatDouble(coordinates[i]) +
+                         ", a uniform axis from " + formatDouble(first) + " to " +
+                         formatDouble(last) + " puts it at " + formatDouble(uniform) +
+                         " (lic3d needs evenly spaced coordinates)");
+  }
+  geometry.grid.spacing[axis] = spacing;
+  return {};
+}
+
 // The lines between DATASET and the first POINT_DATA or CELL_DATA, which is returned.
-Result<Words> readGeometry(Parser& parser, Geometry& geometry) {
+Result<Words> readGeometry(Parser& parser, Dataset dataset, Geometry& geometry) {
+  const bool rectilinear = dataset == Dataset::RectilinearGrid;
   for (;;) {
     LIC3D_TRY_ASSIGN(const std::optional<Words> words, parser.nextKeywordLine());
-    if (!words) return parser.fail("the file ends before POINT_DATA");
+    if (!words) return parser.fail("the file ends before POINT_DATA or CELL_DATA");
     const std::string key = upperCase(words->front());
     if (key == "POINT_DATA" || key == "CELL_DATA") {
       if (!geometry.dims) return parser.fail("missing DIMENSIONS before " + key);
+      for (int axis = 0; rectilinear && axis < 3; ++axis)
+        if (!(geometry.coordinateAxes & (1 << axis)))
+          return parser.fail(std::string(1, static_cast<char>('X' + axis)) +
+                             "_COORDINATES missing before " + key);
       return *words;
     }
     if (key == "DIMENSIONS") {
       LIC3D_TRY(checkWords(parser, *words, 4, 4, "DIMENSIONS nx ny nz"));
+      if (geometry.dims) return parser.fail("DIMENSIONS appears twice");
       Dims dims{0};
       for (glm::length_t axis = 0; axis < 3; ++axis) {
         const std::string& word = words->at(static_cast<std::size_t>(axis) + 1);
@@ -364,33 +460,34 @@ Result<Words> readGeometry(Parser& parser, Geometry& geometry) {
         return parser.fail("DIMENSIONS: " + std::to_string(voxelCount(dims)) +
                            " points exceed the limit of " + std::to_string(kMaxVoxels));
       geometry.dims = dims;
-    } else if (key == "SPACING" || key == "ASPECT_RATIO") {
+    } else if (!rectilinear && (key == "SPACING" || key == "ASPECT_RATIO")) {
       LIC3D_TRY(checkWords(parser, *words, 4, 4, key + " sx sy sz"));
       LIC3D_TRY_ASSIGN(geometry.grid.spacing, parseTriple(parser, *words, true));
-    } else if (key == "ORIGIN") {
+    } else if (!rectilinear && key == "ORIGIN") {
       LIC3D_TRY(checkWords(parser, *words, 4, 4, "ORIGIN x y z"));
       LIC3D_TRY_ASSIGN(geometry.grid.origin, parseTriple(parser, *words, false));
+    } else if (rectilinear &&
+               (key == "X_COORDINATES" || key == "Y_COORDINATES" || key == "Z_COORDINATES")) {
+      LIC3D_TRY(readUniformCoordinates(parser, *words, geometry));
     } else if (key == "FIELD") {
       LIC3D_TRY(skipFieldData(parser, *words));
     } else if (key == "METADATA") {
       LIC3D_TRY(skipMetadata(parser));
     } else {
       return parser.fail("unexpected " + quoteForMessage(words->front()) +
-                         " in the STRUCTURED_POINTS geometry (expected DIMENSIONS, SPACING, ORIGIN "
-                         "or POINT_DATA)");
+                         (rectilinear ? " in the RECTILINEAR_GRID geometry (expected DIMENSIONS, "
+                                        "X_COORDINATES, Y_COORDINATES, Z_COORDINATES"
+                                      : " in the STRUCTURED_POINTS geometry (expected "
+                                        "DIMENSIONS, SPACING, ORIGIN") +
+                         std::string(", POINT_DATA or CELL_DATA)"));
     }
   }
 }
 
-std::uint64_t cellCount(Dims dims) {
-  std::uint64_t cells = 1;
-  for (glm::length_t axis = 0; axis < 3; ++axis)
-    cells *= static_cast<std::uint64_t>(std::max(dims[axis] - 1, 1));
-  return cells;
-}
+std::uint64_t cellCount(Dims dims) { return voxelCount(cellCentredGrid(dims, {}).dims); }
 
 // The first three lines and the DATASET line.
-Result<void> readPreamble(Parser& parser) {
+Result<Dataset> readPreamble(Parser& parser) {
   LIC3D_TRY_ASSIGN(const std::optional<std::string> version, parser.readLine());
   if (!version) return parser.fail("empty file (expected '# vtk DataFile Version x.y')");
   if (!asciiLowerCase(*version).starts_with("# vtk datafile version"))
@@ -409,13 +506,13 @@ Result<void> readPreamble(Parser& parser) {
   LIC3D_TRY_ASSIGN(const std::optional<Words> dataset, parser.nextKeywordLine());
   if (!dataset || upperCase(dataset->front()) != "DATASET")
     return parser.fail(
-        "expected 'DATASET STRUCTURED_POINTS' after line 3, found " +
+        "expected 'DATASET STRUCTURED_POINTS' or 'DATASET RECTILINEAR_GRID' after line 3, found " +
         (dataset ? quoteForMessage(dataset->front()) : std::string("the end of the file")));
-  if (dataset->size() != 2 || upperCase(dataset->at(1)) != "STRUCTURED_POINTS")
-    return parser.fail("dataset type " +
-                       quoteForMessage(dataset->size() > 1 ? dataset->at(1) : "") +
-                       " is not supported (expected STRUCTURED_POINTS)");
-  return {};
+  const std::string type = dataset->size() == 2 ? upperCase(dataset->at(1)) : std::string();
+  if (type == "STRUCTURED_POINTS") return Dataset::StructuredPoints;
+  if (type == "RECTILINEAR_GRID") return Dataset::RectilinearGrid;
+  return parser.fail("dataset type " + quoteForMessage(dataset->size() > 1 ? dataset->at(1) : "") +
+                     " is not supported (expected STRUCTURED_POINTS or RECTILINEAR_GRID)");
 }
 
 // Skips one attribute other than VECTORS, whose data holds `tuples` tuples.
@@ -476,83 +573,137 @@ Result<void> skipAttribute(Parser& parser, const Words& line, std::uint64_t tupl
                      "COLOR_SCALARS, LOOKUP_TABLE, FIELD, POINT_DATA or CELL_DATA)");
 }
 
-// VECTORS arrays passed over while looking for the requested one.
+// The VECTORS arrays of a file, in file order.
 struct VectorsSeen {
-  Words pointData;
-  Words cellData;
-  bool anyPointData = false;
+  std::vector<std::string> names;
+  std::vector<bool> cellData;  // per name
+  bool anyData = false;        // any POINT_DATA or CELL_DATA section
 };
 
-Error vectorsNotFound(const Parser& parser, std::string_view arrayName, const VectorsSeen& seen) {
-  const std::string pointList = seen.pointData.empty() ? "none" : joinQuoted(seen.pointData);
-  if (!arrayName.empty()) {
-    const std::string wanted(arrayName);
-    if (std::find(seen.cellData.begin(), seen.cellData.end(), wanted) != seen.cellData.end())
-      return parser.fail("VECTORS " + quoteForMessage(wanted) +
-                         " is cell data, which is not supported yet (lic3d needs point data); "
-                         "point-data VECTORS found: " +
-                         pointList);
-    std::string message =
-        "no point-data VECTORS named " + quoteForMessage(wanted) + "; found: " + pointList;
-    if (!seen.cellData.empty())
-      message += " (cell data, not supported yet: " + joinQuoted(seen.cellData) + ")";
-    return parser.fail(message);
-  }
-  if (!seen.cellData.empty())
-    return parser.fail("VECTORS " + joinQuoted(seen.cellData) +
-                       " are cell data, which is not supported yet (lic3d needs point data)");
-  if (!seen.anyPointData)
-    return parser.fail("the file holds only CELL_DATA; cell data is not supported yet");
-  return parser.fail("no VECTORS in POINT_DATA");
+std::string listVectors(const VectorsSeen& seen) {
+  if (seen.names.empty()) return "none";
+  std::string list;
+  for (std::size_t i = 0; i < seen.names.size(); ++i)
+    list += (i == 0 ? "" : ", ") + quoteForMessage(seen.names[i]) +
+            (seen.cellData[i] ? " (cell data)" : "");
+  return list;
 }
+
+Error vectorsNotFound(const Parser& parser, std::string_view arrayName, const VectorsSeen& seen) {
+  if (!arrayName.empty())
+    return parser.fail("no VECTORS named " + quoteForMessage(arrayName) +
+                       "; found: " + listVectors(seen));
+  if (!seen.anyData) return parser.fail("no POINT_DATA or CELL_DATA section holds VECTORS");
+  return parser.fail("no VECTORS in POINT_DATA or CELL_DATA");
+}
+
+// Where the data of a cell-data VECTORS array starts, to come back to it when no point-data
+// array is chosen.
+struct CellVectors {
+  std::string name;
+  std::string type;
+  std::uint64_t tuples = 0;
+  std::uint64_t offset = 0;
+};
 
 }  // namespace
 
 Result<VectorField> readVectorFieldVtk(const std::filesystem::path& path,
-                                       std::string_view arrayName) {
+                                       std::string_view arrayName, FieldReadInfo* info) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   Parser parser(reader);
-  LIC3D_TRY(readPreamble(parser));
+  LIC3D_TRY_ASSIGN(const Dataset dataset, readPreamble(parser));
+  const Format format = parser.format();
   Geometry geometry;
-  LIC3D_TRY_ASSIGN(std::optional<Words> words, readGeometry(parser, geometry));
+  LIC3D_TRY_ASSIGN(std::optional<Words> words, readGeometry(parser, dataset, geometry));
   const Dims dims = *geometry.dims;
+  const CellCentredGrid cells = cellCentredGrid(dims, geometry.grid);
 
   bool inPointData = false;
   std::uint64_t tuples = 0;  // in the current POINT_DATA or CELL_DATA section
   VectorsSeen seen;
-  while (words) {
-    const Words& line = *words;
+  std::optional<VectorField> chosen;  // point data is preferred: it is what lic3d samples
+  std::string chosenName;
+  std::optional<CellVectors> cellVectors;
+
+  // One keyword line and its data.
+  const auto readSection = [&](const Words& line) -> Result<void> {
     const std::string key = upperCase(line.front());
     const std::string_view section = inPointData ? "POINT_DATA" : "CELL_DATA";
     if (key == "POINT_DATA" || key == "CELL_DATA") {
       LIC3D_TRY(checkWords(parser, line, 2, 2, key + " count"));
       LIC3D_TRY_ASSIGN(tuples, parseCount(parser, line[1], key));
       inPointData = key == "POINT_DATA";
-      seen.anyPointData = seen.anyPointData || inPointData;
+      seen.anyData = true;
       const std::uint64_t expected = inPointData ? voxelCount(dims) : cellCount(dims);
       if (tuples != expected)
         return parser.fail(key + " " + line[1] + " does not match the " + std::to_string(expected) +
                            (inPointData ? " points" : " cells") + " of the " +
                            std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                            std::to_string(dims.z) + " grid");
-    } else if (key == "VECTORS" && line.size() == 3) {
-      const std::string name = decodeName(line[1]);
-      (inPointData ? seen.pointData : seen.cellData).push_back(name);
-      if (inPointData && (arrayName.empty() || name == arrayName)) {
-        VectorField field;
-        field.dims = dims;
-        field.geometry = geometry.grid;
-        LIC3D_TRY(parser.readVectors(tuples, line[2], "VECTORS " + quoteForMessage(name), dims,
-                                     field.vectors));
-        return field;
-      }
-      LIC3D_TRY(skipAttribute(parser, line, tuples, section));
-    } else {
-      LIC3D_TRY(skipAttribute(parser, line, tuples, section));
+      return {};
     }
-    LIC3D_TRY_ASSIGN(words, parser.nextKeywordLine());
+    if (key != "VECTORS" || line.size() != 3) return skipAttribute(parser, line, tuples, section);
+    const std::string name = decodeName(line[1]);
+    seen.names.push_back(name);
+    seen.cellData.push_back(!inPointData);
+    const bool wanted = !chosen && (arrayName.empty() || name == arrayName);
+    if (wanted && inPointData) {
+      VectorField field;
+      field.dims = dims;
+      field.geometry = geometry.grid;
+      LIC3D_TRY(
+          parser.readVectors(tuples, line[2], "VECTORS " + quoteForMessage(name), field.vectors));
+      chosen = std::move(field);
+      chosenName = name;
+      return {};
+    }
+    if (wanted && !cellVectors)
+      cellVectors = CellVectors{name, line[2], tuples, reader.position()};
+    return skipAttribute(parser, line, tuples, section);
+  };
+
+  while (words) {
+    Result<void> read = readSection(*words);
+    if (read.ok()) {
+      // Without `info` nothing after the chosen array matters; with it, the scan goes on only
+      // to list the other arrays, so the result never depends on whether `info` was given.
+      if (chosen && !info) break;
+      Result<std::optional<Words>> next = parser.nextKeywordLine();
+      if (next.ok()) {
+        words = std::move(next).value();
+        continue;
+      }
+      read = std::move(next).error();
+    }
+    if (chosen) break;
+    return std::move(read).error();
   }
-  return vectorsNotFound(parser, arrayName, seen);
+
+  VectorField field;
+  if (chosen) {
+    field = std::move(*chosen);
+  } else if (cellVectors) {
+    // Cell-centred vectors on an N-cell grid become a field of N voxels at the cell centres: the
+    // origin moves by half a spacing (cellCentredGrid). Their data is read from where it starts.
+    LIC3D_TRY_ASSIGN(FileReader again, FileReader::open(path));
+    if (again.skip(cellVectors->offset) != cellVectors->offset)
+      return fileError(path, "cannot read: " + again.failureReason());
+    Parser cellParser(again);
+    cellParser.setFormat(format);
+    field.dims = cells.dims;
+    field.geometry = cells.geometry;
+    LIC3D_TRY(cellParser.readVectors(cellVectors->tuples, cellVectors->type,
+                                     "VECTORS " + quoteForMessage(cellVectors->name) +
+                                         " (cell data)",
+                                     field.vectors));
+    chosenName = cellVectors->name;
+  } else {
+    return vectorsNotFound(parser, arrayName, seen);
+  }
+  if (info) *info = FieldReadInfo{0, chosenName, seen.names};
+  LIC3D_TRY(finishVectorField(path, field, info));
+  return field;
 }
 
 }  // namespace lic3d

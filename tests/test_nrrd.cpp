@@ -474,12 +474,28 @@ TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
       {"no payload", fieldFile(kGoodFields, ""), "truncated"},
       {"no blank line", "NRRD0004\n" + kGoodFields, "blank line"},
       {"huge header", "NRRD0004\n" + std::string(70000, '#') + "\n" + kGoodFields + "\n", "64 KiB"},
-      {"detached", fieldFile(kGoodFields + "data file: field.raw\n"), "detached NRRD"},
-      {"detached old spelling", fieldFile(kGoodFields + "datafile: field.raw\n"), "detached NRRD"},
+      {"missing data file", fieldFile(kGoodFields + "data file: field.raw\n"),
+       "data file " /* then the data file's path */},
+      {"missing data file, old spelling", fieldFile(kGoodFields + "datafile: field.raw\n"),
+       "field.raw: cannot open"},
+      {"data file list", fieldFile(kGoodFields + "data file: LIST\n"), "names several files"},
+      {"data file pattern", fieldFile(kGoodFields + "data file: slice%03d.raw 1 10 1\n"),
+       "names several files"},
+      {"empty data file", fieldFile(kGoodFields + "data file:\n"), "data file: no file name"},
       {"duplicate field", fieldFile(kGoodFields + "type: double\n"), "appears twice"},
       {"no colon", fieldFile(kGoodFields + "what is this\n"), "expected 'field: value'"},
-      {"line skip", fieldFile(kGoodFields + "line skip: 2\n"), "line skip"},
-      {"byte skip", fieldFile(kGoodFields + "byte skip: -1\n"), "byte skip"},
+      {"line skip past the end", fieldFile(kGoodFields + "line skip: 2\n"),
+       "line skip: the data ends after 0 of the 2 lines"},
+      {"negative line skip", fieldFile(kGoodFields + "line skip: -1\n"),
+       "line skip: expected a whole number"},
+      {"byte skip", fieldFile(kGoodFields + "byte skip: -2\n"),
+       "byte skip: expected -1 or a whole number, found '-2'"},
+      {"byte skip past the end", fieldFile(kGoodFields + "byte skip: 40\n"), "truncated"},
+      {"byte skip beyond the file", fieldFile(kGoodFields + "byte skip: 4000\n"),
+       "byte skip: 4000 bytes to skip"},
+      {"byte skip -1 with gzip",
+       fieldFile(replaced(kGoodFields, "encoding: raw", "encoding: gzip") + "byte skip: -1\n"),
+       "needs raw encoding"},
       {"nan spacing", fieldFile(kGoodFields + "spacings: nan nan 1 1\n"), "spacings: axis 1"},
       {"zero spacing", fieldFile(kGoodFields + "spacings: nan 1 0 1\n"), "spacings: axis 2"},
       {"spacings count", fieldFile(kGoodFields + "spacings: 1 1 1\n"),
@@ -502,10 +518,12 @@ TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
        "space origin"},
       {"space dimension", fieldFile(kGoodFields + "space dimension: 2\n"),
        "space dimension: expected 3"},
-      {"nan vector", fieldFile(kGoodFields, nanBytes), "vector at voxel (1,0,0) is NaN"},
-      {"double beyond float",
+      {"only zero vectors", fieldFile(kGoodFields), "every vector of the field is zero"},
+      {"nan and zero vectors", fieldFile(kGoodFields, nanBytes),
+       "every vector of the field is zero (1 of the 4 were NaN or infinite)"},
+      {"double beyond float and zero vectors",
        fieldFile(replaced(kGoodFields, "type: float", "type: double"), hugeDouble),
-       "outside the float range"},
+       "(1 of the 4 were NaN or infinite)"},
       {"gzip cannot hold",
        fieldFile(replaced(replaced(kGoodFields, "encoding: raw", "encoding: gzip"),
                           "sizes: 3 2 2 1", "sizes: 3 512 512 512"),
@@ -584,6 +602,199 @@ TEST_F(NrrdTest, CorruptedFilesNeverCrashTheReaders) {
       }
     }
   }
+}
+
+// --- Detached headers ----------------------------------------------------------------------------
+
+TEST_F(NrrdTest, ReadsDetachedHeaderWithRelativeDataFile) {
+  const VectorField field = makeField({4, 3, 2}, {{0.5, 0.25, 2.0}, {1.0, -2.0, 3.0}});
+  fs::create_directory(path("data"));
+  writeBytes("data/field.raw", bytesOf(componentsOf(field), std::endian::big));
+  // No blank line at the end: a detached header may end with its file.
+  const fs::path header =
+      writeBytes("field.nhdr",
+                 "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 4 3 2\nspace dimension: 3\n"
+                 "space directions: none (0.5,0,0) (0,0.25,0) (0,0,2)\nspace origin: (1,-2,3)\n"
+                 "endian: big\nencoding: raw\ndata file: data/field.raw");
+  const Result<VectorField> read = readVectorFieldNrrd(header);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  expectSameField(*read, field);
+  // The dispatcher takes .nhdr, and the same header with an absolute data-file path.
+  const Result<VectorField> dispatched = readVectorField(header);
+  ASSERT_TRUE(dispatched.ok()) << dispatched.error().message;
+  expectSameField(*dispatched, field);
+  const fs::path absolute = writeBytes(
+      "absolute.nhdr", "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 4 3 2\nendian: big\n"
+                       "encoding: raw\nspacings: nan 0.5 0.25 2\nspace origin: (1,-2,3)\n"
+                       "data file: " + path("data/field.raw").string() + "\n\n");
+  const Result<VectorField> fromAbsolute = readVectorFieldNrrd(absolute);
+  ASSERT_TRUE(fromAbsolute.ok()) << fromAbsolute.error().message;
+  expectSameField(*fromAbsolute, field);
+}
+
+TEST_F(NrrdTest, ReadsDetachedGzipDataAndSkips) {
+  const VectorField field = makeField({3, 3, 3}, {});
+  const std::string payload = bytesOf(componentsOf(field), std::endian::little);
+  const std::string fields = "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 3 3\n"
+                             "endian: little\n";
+  struct Case {
+    const char* label;
+    std::string headerFields;
+    std::string data;
+  };
+  const Case cases[] = {
+      {"gzip", "encoding: gzip\n", gzipCompress(payload)},
+      {"gzip with a decompressed byte skip", "encoding: gzip\nbyte skip: 5\n",
+       gzipCompress("12345" + payload)},
+      {"line skip", "encoding: raw\nline skip: 2\n", "a text header\nsecond line\n" + payload},
+      {"byte skip", "encoding: raw\nbyte skip: 7\n", "skipped" + payload},
+      {"byte skip -1", "encoding: raw\nbyte skip: -1\n", std::string(100, 'x') + payload},
+      {"line and byte skip", "encoding: raw\nline skip: 1\nbyte skip: 3\n",
+       "line\nabc" + payload},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.label);
+    writeBytes("field.data", c.data);
+    const fs::path header =
+        writeBytes("field.nhdr", fields + c.headerFields + "data file: ./field.data\n");
+    const Result<VectorField> read = readVectorFieldNrrd(header);
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    expectSameField(*read, field);
+  }
+  // Skips work in attached files too.
+  const fs::path attached =
+      writeBytes("attached.nrrd", fields + "encoding: raw\nline skip: 1\n\nskipped line\n" + payload);
+  const Result<VectorField> read = readVectorFieldNrrd(attached);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  expectSameField(*read, field);
+}
+
+TEST_F(NrrdTest, DetachedDataErrorsNameHeaderAndDataFile) {
+  const std::string fields = "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\n"
+                             "endian: little\n";
+  fs::path header = writeBytes("field.nhdr", fields + "encoding: raw\ndata file: missing.raw\n");
+  expectInputError(readVectorFieldNrrd(header), header, "missing.raw: cannot open");
+  writeBytes("short.raw", std::string(47, '\1'));
+  header = writeBytes("field.nhdr", fields + "encoding: raw\ndata file: short.raw\n");
+  Result<VectorField> read = readVectorFieldNrrd(header);
+  expectInputError(read, header, "short.raw: data is truncated");
+  writeBytes("bad.gz", "not gzip at all, not at all");
+  header = writeBytes("field.nhdr", fields + "encoding: gzip\ndata file: bad.gz\n");
+  read = readVectorFieldNrrd(header);
+  expectInputError(read, header, "bad.gz: gzip data is corrupt");
+  fs::create_directory(path("folder.raw"));
+  header = writeBytes("field.nhdr", fields + "encoding: raw\ndata file: folder.raw\n");
+  expectInputError(readVectorFieldNrrd(header), header, "not a regular file");
+  // Without a data file, a header must end with a blank line and hold its data.
+  header = writeBytes("field.nhdr", fields + "encoding: raw\n");
+  expectInputError(readVectorFieldNrrd(header), header, "without the blank line");
+}
+
+TEST_F(NrrdTest, ReadsDetachedNoise) {
+  NoiseVolume noise;
+  noise.dims = {3, 2, 2};
+  noise.bytes = {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110};
+  writeBytes("noise.bin", std::string(noise.bytes.begin(), noise.bytes.end()));
+  const fs::path header = writeBytes(
+      "noise.nhdr", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 2 2\nencoding: raw\n"
+                    "data file: noise.bin\n");
+  const Result<NoiseVolume> read = readNoise(header);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->bytes, noise.bytes);
+}
+
+// --- NaN and Inf, all-zero fields ------------------------------------------------------------------
+
+TEST_F(NrrdTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
+  VectorField field = makeField({3, 2, 1}, {});
+  std::vector<float> values = componentsOf(field);
+  values[1] = std::numeric_limits<float>::quiet_NaN();          // voxel 0
+  values[3 * 2 + 2] = std::numeric_limits<float>::infinity();   // voxel 2
+  values[3 * 4 + 0] = -std::numeric_limits<float>::infinity();  // voxel 4
+  values[3 * 4 + 1] = std::numeric_limits<float>::quiet_NaN();  // voxel 4 again: one vector
+  const fs::path file =
+      writeBytes("nan.nrrd", "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 2 1\n"
+                             "endian: little\nencoding: raw\n\n" +
+                                 bytesOf(values, std::endian::little));
+  FieldReadInfo info;
+  info.arrayName = "stale";
+  const Result<VectorField> read = readVectorField(file, {}, &info);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(info.nonFiniteVectors, 3u);
+  EXPECT_TRUE(info.arrayName.empty());
+  EXPECT_TRUE(info.arrayNames.empty());
+  for (const std::size_t voxel : {0u, 2u, 4u}) EXPECT_EQ(read->vectors[voxel], glm::vec3(0.0f));
+  for (const std::size_t voxel : {1u, 3u, 5u}) EXPECT_EQ(read->vectors[voxel], field.vectors[voxel]);
+
+  // Doubles beyond the float range count the same way; the call without info gives the same field.
+  std::vector<double> doubles(values.begin(), values.end());
+  doubles[3 * 5] = 1e300;
+  const fs::path doubleFile =
+      writeBytes("big.nrrd", "NRRD0004\ntype: double\ndimension: 4\nsizes: 3 3 2 1\n"
+                             "endian: little\nencoding: raw\n\n" +
+                                 bytesOf(doubles, std::endian::little));
+  ASSERT_TRUE(readVectorFieldNrrd(doubleFile, &info).ok());
+  EXPECT_EQ(info.nonFiniteVectors, 4u);
+  const Result<VectorField> again = readVectorFieldNrrd(doubleFile);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->vectors[5], glm::vec3(0.0f));
+}
+
+// --- Scalar and RGBA volumes --------------------------------------------------------------------
+
+TEST_F(NrrdTest, ScalarVolumeRoundTripKeepsNaN) {
+  ScalarVolume volume;
+  volume.dims = {4, 3, 2};
+  volume.geometry = {{0.1, 0.2, 0.3}, {-5.0, 1.0 / 3.0, 7.0}};
+  for (int i = 0; i < 24; ++i) volume.values.push_back(static_cast<float>(i) * 0.37f - 2.0f);
+  volume.values[5] = std::numeric_limits<float>::quiet_NaN();
+  const fs::path file = path("lic.nrrd");
+  ASSERT_TRUE(writeScalarNrrd(file, volume).ok());
+  const Result<ScalarVolume> read = readScalarNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->dims, volume.dims);
+  EXPECT_EQ(read->geometry, volume.geometry);
+  ASSERT_EQ(read->values.size(), volume.values.size());
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    if (i == 5) {
+      EXPECT_TRUE(std::isnan(read->values[i]));
+    } else {
+      EXPECT_EQ(read->values[i], volume.values[i]) << i;
+    }
+  }
+  // Double volumes are read too; vector fields are not scalar volumes.
+  const fs::path doubles = writeBytes(
+      "d.nrrd", "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 1 1\nendian: big\n"
+                "encoding: raw\n\n" +
+                    bytesOf(std::vector<double>{0.25, -8.5}, std::endian::big));
+  const Result<ScalarVolume> doubleRead = readScalarNrrd(doubles);
+  ASSERT_TRUE(doubleRead.ok()) << doubleRead.error().message;
+  EXPECT_EQ(doubleRead->values, (std::vector<float>{0.25f, -8.5f}));
+  ASSERT_TRUE(writeVectorFieldNrrd(path("v.nrrd"), makeField({2, 2, 2}, {})).ok());
+  expectInputError(readScalarNrrd(path("v.nrrd")), path("v.nrrd"), "dimension: expected 3");
+}
+
+TEST_F(NrrdTest, RgbaVolumeRoundTripAndHeader) {
+  RgbaVolume volume;
+  volume.dims = {3, 2, 2};
+  volume.geometry = {{0.5, 1.5, 2.5}, {1.0, 2.0, -3.0}};
+  for (std::size_t i = 0; i < 48; ++i) volume.rgba.push_back(static_cast<std::uint8_t>(i * 5));
+  const fs::path file = path("colour.nrrd");
+  ASSERT_TRUE(writeRgbaNrrd(file, volume).ok());
+  const std::string bytes = readWhole(file);
+  for (const char* line : {"type: uchar\n", "dimension: 4\n", "sizes: 4 3 2 2\n",
+                           "kinds: RGBA-color domain domain domain\n",
+                           "space directions: none (0.5,0,0) (0,1.5,0) (0,0,2.5)\n",
+                           "space origin: (1,2,-3)\n"})
+    EXPECT_NE(bytes.find(line), std::string::npos) << line;
+  const Result<RgbaVolume> read = readRgbaNrrd(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->dims, volume.dims);
+  EXPECT_EQ(read->geometry, volume.geometry);
+  EXPECT_EQ(read->rgba, volume.rgba);
+  volume.rgba.pop_back();
+  expectInputError(writeRgbaNrrd(path("bad.nrrd"), volume), path("bad.nrrd"), "needs 48");
+  EXPECT_FALSE(fs::exists(path("bad.nrrd")));
 }
 
 // --- File helpers -------------------------------------------------------------------------------
@@ -672,10 +883,11 @@ TEST_F(NrrdTest, ReadVectorFieldDispatchesByExtension) {
   const Result<VectorField> read = readVectorField(file);
   ASSERT_TRUE(read.ok()) << read.error().message;
   expectSameField(*read, field);
-  expectInputError(readVectorField(file, "velocity"), file, "applies only to .vtk files");
+  expectInputError(readVectorField(file, "velocity"), file, "applies only to .vtk and .vti files");
 
-  const fs::path raw = writeBytes("field.raw", "whatever");
-  expectInputError(readVectorField(raw), raw, "supported: .nrrd, .vtk");
+  const fs::path unknown = writeBytes("field.xyz", "whatever");
+  expectInputError(readVectorField(unknown), unknown,
+                   "unsupported extension '.xyz' (supported: .vtk, .vti, .nrrd, .nhdr, .raw)");
   const fs::path noExtension = writeBytes("field", "whatever");
   expectInputError(readVectorField(noExtension), noExtension, "no extension");
   expectInputError(readVectorField(path("missing.nrrd")), path("missing.nrrd"), "no such file");
@@ -683,7 +895,7 @@ TEST_F(NrrdTest, ReadVectorFieldDispatchesByExtension) {
   fs::create_directory(path("folder.nrrd"));
   expectInputError(readVectorField(path("folder.nrrd")), path("folder.nrrd"), "directory");
   const fs::path detached = writeBytes("field.nhdr", "NRRD0004\n");
-  expectInputError(readVectorField(detached), detached, "not supported yet");
+  expectInputError(readVectorField(detached), detached, "without the blank line");
 }
 
 TEST_F(NrrdTest, ReadNoiseTakesOnlyNrrd) {

@@ -143,10 +143,26 @@ TEST_F(VtkLegacyTest, ReadsFemmMagneticFieldWithAnisotropicSpacing) {
         ASSERT_EQ(field->at(i, j, k).z, field->at(46 - i, j, k).z) << i << "," << j << "," << k;
 }
 
+TEST_F(VtkLegacyTest, BothDataSetsReadThroughTheDispatcher) {
+  FieldReadInfo info;
+  const Result<VectorField> carotid = readVectorField(dataFolder() / "carotid.vtk", {}, &info);
+  ASSERT_TRUE(carotid.ok()) << carotid.error().message;
+  EXPECT_EQ(carotid->dims, Dims(76, 49, 45));
+  EXPECT_EQ(info.nonFiniteVectors, 0u);
+  EXPECT_EQ(info.arrayName, "vectors");
+  EXPECT_EQ(info.arrayNames, std::vector<std::string>{"vectors"});
+  const Result<VectorField> femm = readVectorField(dataFolder() / "example-femm-3d.vtk", {}, &info);
+  ASSERT_TRUE(femm.ok()) << femm.error().message;
+  EXPECT_EQ(femm->dims, Dims(47, 47, 47));
+  EXPECT_EQ(femm->geometry.spacing, glm::dvec3(0.05, 0.05, 0.125));
+  EXPECT_EQ(info.arrayName, "B");
+  EXPECT_EQ(info.arrayNames, std::vector<std::string>{"B"});
+}
+
 TEST_F(VtkLegacyTest, MissingArrayNameListsTheNamesFound) {
   const fs::path file = dataFolder() / "carotid.vtk";
   expectInputError(readVectorFieldVtk(file, "velocity"), file,
-                   "no point-data VECTORS named 'velocity'; found: 'vectors'");
+                   "no VECTORS named 'velocity'; found: 'vectors'");
 }
 
 TEST_F(VtkLegacyTest, TruncatedCarotidIsAnErrorWhereverItIsCut) {
@@ -262,10 +278,14 @@ TEST_F(VtkLegacyTest, ReadsBinaryFileSkippingEveryOtherAttribute) {
               static_cast<float>(vectors[i]))
         << i;
 
-  expectInputError(readVectorFieldVtk(path, "cellv"), path,
-                   "cell data, which is not supported yet");
+  // The cell-data array comes first in the file, but point data is the default.
+  const Result<VectorField> cells = readVectorFieldVtk(path, "cellv");
+  ASSERT_TRUE(cells.ok()) << cells.error().message;
+  EXPECT_EQ(cells->dims, Dims(2, 1, 1));
+  EXPECT_EQ(cells->geometry.origin, glm::dvec3(1.0));
+  EXPECT_EQ(cells->vectors, std::vector<glm::vec3>(2, glm::vec3(1.0f)));
   expectInputError(readVectorFieldVtk(path, "n"), path,
-                   "found: 'velocity' (cell data, not supported yet: 'cellv')");
+                   "no VECTORS named 'n'; found: 'cellv' (cell data), 'velocity'");
 
   // The file ends right after the vectors' data, without the usual newline: still fine.
   const fs::path noNewline = writeBytes("no newline.vtk", file.substr(0, file.size() - 1));
@@ -359,23 +379,32 @@ TEST_F(VtkLegacyTest, MalformedFilesAreInputErrorsNamingFileAndProblem) {
        "no VECTORS in POINT_DATA"},
       {"unknown attribute", points("BANANAS b float\n"), "unexpected 'BANANAS' in POINT_DATA"},
       {"bad number", points("VECTORS v float\n1 2 three 4 5 6\n"), "found 'three' after 2"},
-      {"out of float range", points("VECTORS v float\n1 2 3 4 1e39 6\n"), "found '1e39'"},
+      {"two exponents", points("VECTORS v float\n1 2 3 4 1e3e9 6\n"), "found '1e3e9'"},
       {"few numbers", points("VECTORS v float\n1 2 3 4\n"), "truncated"},
       {"skipped few numbers", points("NORMALS n float\n1 2 3 4\n"), "truncated"},
-      {"nan vector", points("VECTORS v float\n1 2 3 4 nan 6\n"),
-       "component 1 of the vector at point (1,0,0) is NaN"},
-      {"double beyond float", points("VECTORS v double\n1 2 3 4 1e300 6\n"),
-       "outside the float range"},
+      {"zero vectors", points("VECTORS v float\n0 0 0 0 -0 0\n"),
+       "every vector of the field is zero"},
+      {"zero and nan vectors", points("VECTORS v double\n0 0 0 4 1e300 6\n"),
+       "every vector of the field is zero (1 of the 2 were NaN or infinite)"},
       {"long line", "# vtk DataFile Version 3.0\n" + std::string(5000, 't') + "\n",
        "longer than 4096"},
       {"long value", points("VECTORS v float\n" + std::string(300, '1') + " 2 3 4 5 6\n"),
        "longer than 256"},
-      {"cell vectors only", vtk(kGeometry, "CELL_DATA 1\nVECTORS cv float\n1 2 3\n"),
-       "VECTORS 'cv' are cell data, which is not supported yet"},
-      {"cell data only", vtk(kGeometry, "CELL_DATA 1\nSCALARS s float\nLOOKUP_TABLE default\n1\n"),
-       "only CELL_DATA; cell data is not supported yet"},
+      {"cell data without vectors",
+       vtk(kGeometry, "CELL_DATA 1\nSCALARS s float\nLOOKUP_TABLE default\n1\n"),
+       "no VECTORS in POINT_DATA or CELL_DATA"},
+      {"cell vectors truncated", vtk(kGeometry, "CELL_DATA 1\nVECTORS cv float\n1 2\n"),
+       "VECTORS 'cv': the data is truncated"},
+      {"int cell vectors", vtk(kGeometry, "CELL_DATA 1\nVECTORS cv int\n1 2 3\n"),
+       "type 'int' is not supported"},
+      {"spacing in a rectilinear grid",
+       "# vtk DataFile Version 3.0\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 1 1\n"
+       "SPACING 1 1 1\n",
+       "unexpected 'SPACING' in the RECTILINEAR_GRID geometry"},
+      {"coordinates in structured points", vtk(kGeometry, "X_COORDINATES 2 float\n0 1\n"),
+       "unexpected 'X_COORDINATES' in the STRUCTURED_POINTS geometry"},
       {"cell count", vtk(kGeometry, "CELL_DATA 2\n"), "does not match the 1 cells"},
-      {"missing name", points(kVectors), "no point-data VECTORS named 'w'; found: 'v'", "w"},
+      {"missing name", points(kVectors), "no VECTORS named 'w'; found: 'v'", "w"},
       {"binary truncated",
        std::string("# vtk DataFile Version 3.0\nt\nBINARY\nDATASET STRUCTURED_POINTS\n") +
            kGeometry + "POINT_DATA 2\nVECTORS v float\n" + std::string(20, '\0'),
@@ -431,6 +460,163 @@ TEST_F(VtkLegacyTest, ReadVectorFieldDispatchesVtkWithArrayName) {
   ASSERT_TRUE(field.ok()) << field.error().message;
   expectRamp(*field, 1e-3, 1.5e-4);
   expectInputError(readVectorField(file, "nothing"), file, "found: 'first', 'second velocity'");
+}
+
+// --- Cell data, rectilinear grids, NaN ------------------------------------------------------------
+
+TEST_F(VtkLegacyTest, CellDataBecomesAFieldAtTheCellCentres) {
+  // 4x3x2 points are 3x2x1 cells; their centres start half a spacing after the origin.
+  const std::string head =
+      "# vtk DataFile Version 3.0\ncells\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2\n"
+      "SPACING 2 0.5 1\nORIGIN 10 20 30\n";
+  const fs::path file = writeBytes(
+      "cells.vtk", head + "CELL_DATA 6\nSCALARS id int\nLOOKUP_TABLE default\n0 1 2 3 4 5\n"
+                          "VECTORS flow float\n" + asciiNumbers(18, 1, 1));
+  FieldReadInfo info;
+  const Result<VectorField> field = readVectorFieldVtk(file, {}, &info);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(3, 2, 1));
+  EXPECT_EQ(field->geometry.spacing, glm::dvec3(2.0, 0.5, 1.0));
+  EXPECT_EQ(field->geometry.origin, glm::dvec3(11.0, 20.25, 30.5));
+  EXPECT_EQ(field->at(2, 1, 0), glm::vec3(16.0f, 17.0f, 18.0f));
+  EXPECT_EQ(info.arrayName, "flow");
+  EXPECT_EQ(info.arrayNames, std::vector<std::string>{"flow"});
+
+  // An axis of one point has one flat cell at that point: no shift there.
+  const fs::path flat = writeBytes(
+      "flat.vtk", "# vtk DataFile Version 3.0\nflat\nBINARY\nDATASET STRUCTURED_POINTS\n"
+                  "DIMENSIONS 3 1 2\nORIGIN 1 2 3\nCELL_DATA 2\nVECTORS v double\n" +
+                      bigEndian(std::vector<double>{1, 2, 3, 4, 5, 6}) + "\n");
+  const Result<VectorField> flatField = readVectorFieldVtk(flat);
+  ASSERT_TRUE(flatField.ok()) << flatField.error().message;
+  EXPECT_EQ(flatField->dims, Dims(2, 1, 1));
+  EXPECT_EQ(flatField->geometry.origin, glm::dvec3(1.5, 2.0, 3.5));
+  EXPECT_EQ(flatField->vectors[1], glm::vec3(4.0f, 5.0f, 6.0f));
+}
+
+TEST_F(VtkLegacyTest, PointDataIsPreferredAndNamesAreListed) {
+  const std::string file =
+      "# vtk DataFile Version 3.0\nboth\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+      "CELL_DATA 1\nVECTORS shared float\n9 9 9\nVECTORS onlycell float\n7 7 7\n"
+      "POINT_DATA 8\nVECTORS shared float\n" + asciiNumbers(24, 1, 0) +
+      "VECTORS other float\n" + asciiNumbers(24, 2, 0);
+  const fs::path path = writeBytes("both.vtk", file);
+  FieldReadInfo info;
+  Result<VectorField> field = readVectorFieldVtk(path, {}, &info);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(2, 2, 2));
+  EXPECT_EQ(field->vectors[0], glm::vec3(1.0f));
+  EXPECT_EQ(info.arrayName, "shared");
+  EXPECT_EQ(info.arrayNames,
+            (std::vector<std::string>{"shared", "onlycell", "shared", "other"}));
+  // The same name in both: point data wins. A cell-only name reads the cell data.
+  field = readVectorFieldVtk(path, "shared");
+  ASSERT_TRUE(field.ok());
+  EXPECT_EQ(field->dims, Dims(2, 2, 2));
+  field = readVectorFieldVtk(path, "onlycell", &info);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(1, 1, 1));
+  EXPECT_EQ(field->vectors[0], glm::vec3(7.0f));
+  EXPECT_EQ(info.arrayName, "onlycell");
+  // A broken tail after the chosen array is not read without info, and not an error with it.
+  const fs::path tail = writeBytes("tail.vtk", file + "BANANAS\n");
+  EXPECT_TRUE(readVectorFieldVtk(tail, "shared").ok());
+  EXPECT_TRUE(readVectorFieldVtk(tail, "shared", &info).ok());
+  expectInputError(readVectorFieldVtk(tail, "missing"), tail, "unexpected 'BANANAS'");
+}
+
+TEST_F(VtkLegacyTest, ReadsUniformRectilinearGrids) {
+  // ASCII float coordinates (rounded as float) and BINARY double and integer coordinates.
+  const std::string ascii =
+      "# vtk DataFile Version 3.0\nrect\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 3 2 1\n"
+      "X_COORDINATES 3 float\n1000.1 1000.2 1000.3\nY_COORDINATES 2 double\n-1 1\n"
+      "Z_COORDINATES 1 int\n7\nPOINT_DATA 6\nVECTORS v float\n" + asciiNumbers(18, 1, 1);
+  fs::path file = writeBytes("rect.vtk", ascii);
+  Result<VectorField> field = readVectorFieldVtk(file);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(3, 2, 1));
+  EXPECT_NEAR(field->geometry.spacing.x, 0.1, 1e-4);
+  EXPECT_EQ(field->geometry.spacing.y, 2.0);
+  EXPECT_EQ(field->geometry.spacing.z, 1.0);
+  EXPECT_NEAR(field->geometry.origin.x, 1000.1, 1e-4);
+  EXPECT_EQ(field->geometry.origin.y, -1.0);
+  EXPECT_EQ(field->geometry.origin.z, 7.0);
+
+  const std::string binary =
+      "# vtk DataFile Version 3.0\nrect\nBINARY\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 3\n"
+      "Z_COORDINATES 3 double\n" + bigEndian(std::vector<double>{0.0, 0.1, 0.2}) +
+      "\nX_COORDINATES 2 short\n" + bigEndian(std::vector<std::int16_t>{-4, 4}) +
+      "\nY_COORDINATES 2 float\n" + bigEndian(std::vector<float>{0.5f, 0.75f}) +
+      "\nPOINT_DATA 12\nVECTORS v float\n" + bigEndian(std::vector<float>(36, 0.5f)) + "\n";
+  file = writeBytes("rect binary.vtk", binary);
+  field = readVectorFieldVtk(file);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->geometry.spacing, glm::dvec3(8.0, 0.25, 0.1));
+  EXPECT_EQ(field->geometry.origin, glm::dvec3(-4.0, 0.5, 0.0));
+}
+
+TEST_F(VtkLegacyTest, NonUniformRectilinearGridsAreErrorsNamingTheAxis) {
+  const std::string head =
+      "# vtk DataFile Version 3.0\nrect\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 3 2 1\n";
+  const MalformedCase cases[] = {
+      {"uniform but no data",
+       head + "X_COORDINATES 3 double\n0 1 2\nY_COORDINATES 2 double\n0 1\n"
+              "Z_COORDINATES 1 double\n0\n",
+       "ends before POINT_DATA"},
+      {"uneven x",
+       head + "X_COORDINATES 3 double\n0 1 2.001\nY_COORDINATES 2 double\n0 1\n"
+              "Z_COORDINATES 1 double\n0\nPOINT_DATA 6\n",
+       "X_COORDINATES: the coordinates are not uniform: coordinate 1 is 1"},
+      {"slightly uneven double z",
+       "# vtk DataFile Version 3.0\nrect\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 1 1 3\n"
+       "X_COORDINATES 1 double\n0\nY_COORDINATES 1 double\n0\nZ_COORDINATES 3 double\n"
+       "0 1.00001 2\nPOINT_DATA 3\n",
+       "Z_COORDINATES: the coordinates are not uniform"},
+      {"decreasing y",
+       head + "X_COORDINATES 3 double\n0 1 2\nY_COORDINATES 2 double\n1 0\n",
+       "Y_COORDINATES: the coordinates must increase"},
+      {"nan x", head + "X_COORDINATES 3 double\n0 nan 2\n", "X_COORDINATES: the coordinates are not uniform"},
+      {"wrong count", head + "X_COORDINATES 2 double\n0 1\n",
+       "X_COORDINATES 2 does not match DIMENSIONS, which gives 3 points"},
+      {"missing z",
+       head + "X_COORDINATES 3 double\n0 1 2\nY_COORDINATES 2 double\n0 1\nPOINT_DATA 6\n",
+       "Z_COORDINATES missing before POINT_DATA"},
+      {"twice", head + "X_COORDINATES 3 double\n0 1 2\nX_COORDINATES 3 double\n0 1 2\n",
+       "X_COORDINATES appears twice"},
+      {"before dimensions",
+       "# vtk DataFile Version 3.0\nrect\nASCII\nDATASET RECTILINEAR_GRID\n"
+       "X_COORDINATES 3 double\n0 1 2\n",
+       "missing DIMENSIONS before X_COORDINATES"},
+      {"truncated binary",
+       "# vtk DataFile Version 3.0\nrect\nBINARY\nDATASET RECTILINEAR_GRID\nDIMENSIONS 3 2 1\n"
+       "X_COORDINATES 3 double\n" + std::string(20, '\0'),
+       "X_COORDINATES: the data is truncated"},
+  };
+  for (const MalformedCase& c : cases) {
+    SCOPED_TRACE(c.label);
+    const fs::path file = writeBytes("bad rect.vtk", c.content);
+    expectInputError(readVectorFieldVtk(file, c.arrayName), file, c.fragment);
+  }
+}
+
+TEST_F(VtkLegacyTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
+  const fs::path file = writeBytes(
+      "nan.vtk", vtk("DIMENSIONS 2 2 1\n",
+                     "POINT_DATA 4\nVECTORS v float\n1 2 3\nnan 0 0\n0 -inf 0\n1 1e39 -1e-50\n"));
+  FieldReadInfo info;
+  const Result<VectorField> field = readVectorField(file, {}, &info);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(info.nonFiniteVectors, 3u);
+  EXPECT_EQ(field->vectors,
+            (std::vector<glm::vec3>{{1, 2, 3}, glm::vec3(0), glm::vec3(0), glm::vec3(0)}));
+  const std::string binary =
+      "# vtk DataFile Version 3.0\nb\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 1 1\n"
+      "POINT_DATA 2\nVECTORS v double\n" +
+      bigEndian(std::vector<double>{1e300, 0, 0, 0.5, 0.25, 0}) + "\n";
+  const Result<VectorField> doubles = readVectorFieldVtk(writeBytes("d.vtk", binary), {}, &info);
+  ASSERT_TRUE(doubles.ok()) << doubles.error().message;
+  EXPECT_EQ(info.nonFiniteVectors, 1u);
+  EXPECT_EQ(doubles->vectors[1], glm::vec3(0.5f, 0.25f, 0.0f));
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+#pragma once
+// What the fuzz targets share: the readers take paths, so each input is written to a private
+// scratch folder first; and the one property every reader must keep on any input.
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include "error.h"
+#include "volume.h"
+
+namespace lic3d::fuzz {
+
+// Made once per process (in /dev/shm when there is one, so writes stay in memory) and removed at
+// exit.
+inline const std::filesystem::path& scratchFolder() {
+  static const std::filesystem::path folder = [] {
+    const char* base = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
+    std::string pattern = std::string(base) + "/lic3d-fuzz-XXXXXX";
+    if (!::mkdtemp(pattern.data())) std::abort();
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(scratchFolder(), ignored);
+    });
+    return std::filesystem::path(pattern);
+  }();
+  return folder;
+}
+
+inline std::filesystem::path writeFile(const std::string& name, std::string_view bytes) {
+  const std::filesystem::path path = scratchFolder() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) std::abort();
+  return path;
+}
+
+inline std::string_view asText(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+// A reader returns a value or an InvalidInput error, never anything else; a value is consistent.
+template <class T>
+void check(const Result<T>& result) {
+  if (!result.ok()) {
+    if (result.error().kind != ErrorKind::InvalidInput || result.error().message.empty())
+      std::abort();
+    return;
+  }
+  if constexpr (requires { result->vectors; }) {
+    if (result->vectors.size() != voxelCount(result->dims)) std::abort();
+  }
+  if constexpr (requires { result->values; }) {
+    if (result->values.size() != voxelCount(result->dims)) std::abort();
+  }
+}
+
+}  // namespace lic3d::fuzz

@@ -1,0 +1,123 @@
+// PNG writing: 8-bit RGBA and 16-bit grey, text chunks, and refusals; read back with libpng.
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "png_read.h"
+#include "rgba_image.h"
+#include "test_support.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+class PngTest : public test::TempFolderTest {};
+
+using test::DecodedPng;
+using test::decodePng;
+
+TEST_F(PngTest, WritesRgbaWithTextChunks) {
+  RgbaImage image;
+  image.width = 5;
+  image.height = 3;
+  for (int i = 0; i < 5 * 3 * 4; ++i) image.pixels.push_back(static_cast<std::uint8_t>(i * 4 + 1));
+  const PngText text = {{"Software", "lic3d"},
+                        {"lic3d parameters", "--length 20 --step 0.5 --kernel box"},
+                        {"Comment", "flow \xc3\xbc\xe2\x86\x92 streaks"}};
+  const fs::path file = path("image.png");
+  ASSERT_TRUE(writePng(file, image, text).ok());
+  const DecodedPng png = decodePng(file);
+  ASSERT_TRUE(png.ok);
+  EXPECT_EQ(png.width, 5u);
+  EXPECT_EQ(png.height, 3u);
+  EXPECT_EQ(png.bitDepth, 8);
+  EXPECT_EQ(png.colorType, PNG_COLOR_TYPE_RGBA);
+  EXPECT_EQ(png.bytes, image.pixels);
+  EXPECT_EQ(png.text.at("Software"), "lic3d");
+  EXPECT_EQ(png.text.at("lic3d parameters"), "--length 20 --step 0.5 --kernel box");
+  EXPECT_EQ(png.compression.at("Software"), PNG_TEXT_COMPRESSION_NONE);
+  // Non-ASCII text goes into an iTXt chunk as UTF-8.
+  EXPECT_EQ(png.text.at("Comment"), "flow \xc3\xbc\xe2\x86\x92 streaks");
+  EXPECT_EQ(png.compression.at("Comment"), PNG_ITXT_COMPRESSION_NONE);
+  const std::string bytes = test::readWhole(file);
+  EXPECT_NE(bytes.find("tEXtSoftware"), std::string::npos);
+  EXPECT_NE(bytes.find("iTXtComment"), std::string::npos);
+
+  // The two-argument form still works and writes no text.
+  ASSERT_TRUE(writePng(path("plain.png"), image).ok());
+  const DecodedPng plain = decodePng(path("plain.png"));
+  ASSERT_TRUE(plain.ok);
+  EXPECT_TRUE(plain.text.empty());
+  EXPECT_EQ(plain.bytes, image.pixels);
+}
+
+TEST_F(PngTest, WritesSixteenBitGreyBigEndian) {
+  const int width = 4;
+  const int height = 2;
+  const std::vector<std::uint16_t> values = {0, 1, 255, 256, 4660, 32768, 65534, 65535};
+  const fs::path file = path("slice.png");
+  ASSERT_TRUE(writePngGray16(file, width, height, values, {{"Title", "LIC slice z=10"}}).ok());
+  const DecodedPng png = decodePng(file);
+  ASSERT_TRUE(png.ok);
+  EXPECT_EQ(png.width, 4u);
+  EXPECT_EQ(png.height, 2u);
+  EXPECT_EQ(png.bitDepth, 16);
+  EXPECT_EQ(png.colorType, PNG_COLOR_TYPE_GRAY);
+  ASSERT_EQ(png.bytes.size(), 16u);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    EXPECT_EQ(png.bytes[2 * i] << 8 | png.bytes[2 * i + 1], values[i]) << i;
+  EXPECT_EQ(png.text.at("Title"), "LIC slice z=10");
+}
+
+TEST_F(PngTest, RefusesBadImagesAndTextsAndLeavesNoFile) {
+  RgbaImage image;
+  image.width = 2;
+  image.height = 2;
+  image.pixels.assign(15, 0);
+  const fs::path file = path("bad.png");
+  const auto expectRefused = [&](const Result<void>& result, const std::string& fragment) {
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << result.error().message;
+    EXPECT_NE(result.error().message.find("bad.png"), std::string::npos) << result.error().message;
+    EXPECT_NE(result.error().message.find(fragment), std::string::npos) << result.error().message;
+  };
+  expectRefused(writePng(file, image), "holds 15 values instead of 4 per pixel");
+  image.pixels.assign(16, 0);
+  image.width = 0;
+  expectRefused(writePng(file, image), "empty");
+  image.width = 2;
+  expectRefused(writePng(file, image, {{"", "x"}}), "is not a PNG keyword");
+  expectRefused(writePng(file, image, {{" lead", "x"}}), "is not a PNG keyword");
+  expectRefused(writePng(file, image, {{"two  spaces", "x"}}), "is not a PNG keyword");
+  expectRefused(writePng(file, image, {{std::string(80, 'k'), "x"}}), "is not a PNG keyword");
+  expectRefused(writePng(file, image, {{"k\xe9y", "x"}}), "is not a PNG keyword");
+  expectRefused(writePng(file, image, {{"key", std::string("a\0b", 3)}}), "NUL byte");
+  expectRefused(writePng(file, image, {{"key", "\xff\xfe"}}), "not UTF-8");
+  expectRefused(writePngGray16(file, 3, 3, std::vector<std::uint16_t>(8), {}),
+                "holds 8 values instead of 1 per pixel");
+  EXPECT_TRUE(listFolder().empty());
+  // An unwritable path is an input error naming it, and leaves nothing.
+  const Result<void> missing = writePng(path("no folder") / "x.png", RgbaImage{1, 1, {1, 2, 3, 4}});
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("no folder"), std::string::npos);
+  EXPECT_TRUE(listFolder().empty());
+}
+
+TEST_F(PngTest, LibpngLimitsAreErrorsNotCrashes) {
+  // Wider than libpng's default limit of 1,000,000 columns: libpng's own error, as a Result.
+  const std::vector<std::uint16_t> values(1000001, 7);
+  const Result<void> result = writePngGray16(path("wide.png"), 1000001, 1, values);
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.error().kind, ErrorKind::Runtime);
+  EXPECT_NE(result.error().message.find("wide.png"), std::string::npos) << result.error().message;
+  EXPECT_TRUE(listFolder().empty());
+}
+
+}  // namespace
+}  // namespace lic3d

@@ -1,0 +1,653 @@
+// VTK XML ImageData: files in every encoding VTK writes (made here), cell data, array choice,
+// malformed input, and the LIC and RGBA writers read back.
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "field_io.h"
+#include "test_support.h"
+#include "vti.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::readWhole;
+
+class VtiTest : public test::TempFolderTest {};
+
+template <class T>
+void expectInputError(const Result<T>& result, const fs::path& file, const std::string& fragment) {
+  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
+  const std::string& message = result.error().message;
+  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
+  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
+  EXPECT_NE(message.find(fragment), std::string::npos)
+      << "'" << fragment << "' not in: " << message;
+}
+
+std::string base64(const std::string& bytes) {
+  constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t bits = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) bits |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) bits |= static_cast<unsigned char>(bytes[i + 2]);
+    text += kAlphabet[bits >> 18 & 63];
+    text += kAlphabet[bits >> 12 & 63];
+    text += i + 1 < bytes.size() ? kAlphabet[bits >> 6 & 63] : '=';
+    text += i + 2 < bytes.size() ? kAlphabet[bits & 63] : '=';
+  }
+  return text;
+}
+
+std::string zlibCompress(const std::string& data) {
+  uLongf size = compressBound(static_cast<uLong>(data.size()));
+  std::string out(size, '\0');
+  EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                      reinterpret_cast<const Bytef*>(data.data()), static_cast<uLong>(data.size()),
+                      6),
+            Z_OK);
+  out.resize(size);
+  return out;
+}
+
+// How the generated file stores its arrays.
+struct Encoding {
+  std::string format = "ascii";  // ascii, binary, appended
+  bool zlib = false;
+  bool header64 = false;
+  bool appendedBase64 = false;
+  bool bigEndian = false;
+  // Base64 of a block's header and data as one stream instead of two (both occur in the wild).
+  bool jointBase64 = false;
+  std::size_t blockSize = 32768;
+
+  std::string label() const {
+    return format + (zlib ? "+zlib" : "") + (header64 ? " UInt64" : " UInt32") +
+           (format == "appended" ? (appendedBase64 ? " base64" : " raw") : "") +
+           (bigEndian ? " big-endian" : "") + (jointBase64 ? " joint" : "") + " blocks of " +
+           std::to_string(blockSize);
+  }
+};
+
+struct Array {
+  std::string name;
+  std::string type = "Float32";
+  int components = 3;
+  bool cellData = false;
+  std::vector<double> values;
+};
+
+struct Image {
+  std::string wholeExtent = "0 2 0 1 0 1";
+  std::string origin = "1 2 3";
+  std::string spacing = "0.5 0.25 2";
+  std::string pointAttributes;  // e.g. Vectors="b"
+  std::vector<Array> arrays;
+};
+
+std::string valueBytes(const Array& array, bool bigEndian) {
+  std::string bytes;
+  const auto append = [&](const auto value) {
+    char raw[sizeof value];
+    std::memcpy(raw, &value, sizeof value);
+    if (bigEndian == (std::endian::native == std::endian::little))
+      std::reverse(raw, raw + sizeof value);
+    bytes.append(raw, sizeof value);
+  };
+  for (const double v : array.values) {
+    if (array.type == "Float32") append(static_cast<float>(v));
+    if (array.type == "Float64") append(v);
+    if (array.type == "UInt8") append(static_cast<std::uint8_t>(v));
+    if (array.type == "Int16") append(static_cast<std::int16_t>(v));
+    if (array.type == "UInt64") append(static_cast<std::uint64_t>(v));
+  }
+  return bytes;
+}
+
+std::string headerNumbers(const std::vector<std::uint64_t>& numbers, const Encoding& encoding) {
+  Array header;
+  header.type = encoding.header64 ? "UInt64" : "UInt32";
+  std::string bytes;
+  for (const std::uint64_t n : numbers) {
+    if (encoding.header64) {
+      header.values = {static_cast<double>(n)};
+      bytes += valueBytes(header, encoding.bigEndian);
+    } else {
+      std::uint32_t small = static_cast<std::uint32_t>(n);
+      char raw[4];
+      std::memcpy(raw, &small, 4);
+      if (encoding.bigEndian == (std::endian::native == std::endian::little)) std::reverse(raw, raw + 4);
+      bytes.append(raw, 4);
+    }
+  }
+  return bytes;
+}
+
+// The header and the data of one array's block, as VTK lays them out.
+std::pair<std::string, std::string> block(const Array& array, const Encoding& encoding) {
+  const std::string data = valueBytes(array, encoding.bigEndian);
+  if (!encoding.zlib) return {headerNumbers({data.size()}, encoding), data};
+  std::vector<std::uint64_t> header;
+  std::string compressed;
+  const std::size_t blocks = (data.size() + encoding.blockSize - 1) / encoding.blockSize;
+  header.push_back(blocks);
+  header.push_back(encoding.blockSize);
+  header.push_back(data.size() % encoding.blockSize);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::string piece = zlibCompress(data.substr(b * encoding.blockSize, encoding.blockSize));
+    header.push_back(piece.size());
+    compressed += piece;
+  }
+  return {headerNumbers(header, encoding), compressed};
+}
+
+std::string encodedBlock(const Array& array, const Encoding& encoding, bool asBase64) {
+  const auto [header, data] = block(array, encoding);
+  if (!asBase64) return header + data;
+  return encoding.jointBase64 ? base64(header + data) : base64(header) + base64(data);
+}
+
+std::string asciiValues(const Array& array) {
+  std::string text;
+  for (std::size_t i = 0; i < array.values.size(); ++i) {
+    char number[40];
+    std::snprintf(number, sizeof number, array.type == "Float32" ? "%.9g" : "%.17g",
+                  array.values[i]);
+    text += number;
+    text += i % 6 == 5 ? "\n" : " ";
+  }
+  return text;
+}
+
+std::string makeVti(const Image& image, const Encoding& encoding) {
+  std::string appended;
+  const auto arrayXml = [&](const Array& array) {
+    std::string xml = "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name +
+                      "\" NumberOfComponents=\"" + std::to_string(array.components) +
+                      "\" format=\"" + encoding.format + "\"";
+    if (encoding.format == "ascii") return xml + ">\n" + asciiValues(array) + "        </DataArray>\n";
+    if (encoding.format == "binary")
+      return xml + ">\n          " + encodedBlock(array, encoding, true) + "\n        </DataArray>\n";
+    xml += " offset=\"" + std::to_string(appended.size()) + "\"/>\n";
+    appended += encodedBlock(array, encoding, encoding.appendedBase64);
+    return xml;
+  };
+  std::string pointXml;
+  std::string cellXml;
+  for (const Array& array : image.arrays) (array.cellData ? cellXml : pointXml) += arrayXml(array);
+  std::string file = "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"";
+  file += encoding.bigEndian ? "BigEndian" : "LittleEndian";
+  file += std::string("\" header_type=\"") + (encoding.header64 ? "UInt64" : "UInt32") + "\"";
+  if (encoding.zlib) file += " compressor=\"vtkZLibDataCompressor\"";
+  file += ">\n  <ImageData WholeExtent=\"" + image.wholeExtent + "\" Origin=\"" + image.origin +
+          "\" Spacing=\"" + image.spacing + "\">\n    <Piece Extent=\"" + image.wholeExtent +
+          "\">\n      <PointData " + image.pointAttributes + ">\n" + pointXml +
+          "      </PointData>\n      <CellData>\n" + cellXml + "      </CellData>\n    </Piece>\n"
+          "  </ImageData>\n";
+  if (encoding.format == "appended")
+    file += std::string("  <AppendedData encoding=\"") +
+            (encoding.appendedBase64 ? "base64" : "raw") + "\">\n   _" + appended +
+            "\n  </AppendedData>\n";
+  return file + "</VTKFile>\n";
+}
+
+std::vector<double> ramp(std::size_t count, double start, double step) {
+  std::vector<double> values(count);
+  for (std::size_t i = 0; i < count; ++i) values[i] = start + step * static_cast<double>(i);
+  return values;
+}
+
+// A 3x2x2 grid with a vector array "velocity" and a scalar array.
+Image testImage(const std::string& type = "Float32") {
+  Image image;
+  image.arrays.push_back({"density", "Float64", 1, false, ramp(12, 0, 1)});
+  image.arrays.push_back({"velocity", type, 3, false, ramp(36, -3.25, 0.5)});
+  return image;
+}
+
+std::vector<Encoding> everyEncoding() {
+  std::vector<Encoding> encodings;
+  Encoding ascii;
+  encodings.push_back(ascii);
+  for (const char* format : {"binary", "appended"})
+    for (const bool zlib : {false, true})
+      for (const bool header64 : {false, true})
+        for (const bool appendedBase64 : {false, true}) {
+          if (std::string(format) == "binary" && appendedBase64) continue;
+          Encoding e;
+          e.format = format;
+          e.zlib = zlib;
+          e.header64 = header64;
+          e.appendedBase64 = appendedBase64;
+          encodings.push_back(e);
+        }
+  // Big-endian files, blocks that split values, and base64 of header and data as one stream.
+  Encoding big;
+  big.format = "binary";
+  big.zlib = true;
+  big.bigEndian = true;
+  big.header64 = true;
+  big.blockSize = 10;
+  encodings.push_back(big);
+  Encoding small;
+  small.format = "appended";
+  small.zlib = true;
+  small.blockSize = 7;
+  encodings.push_back(small);
+  Encoding joint;
+  joint.format = "binary";
+  joint.jointBase64 = true;
+  encodings.push_back(joint);
+  joint.zlib = true;
+  joint.blockSize = 16;
+  encodings.push_back(joint);
+  Encoding bigRaw;
+  bigRaw.format = "appended";
+  bigRaw.bigEndian = true;
+  encodings.push_back(bigRaw);
+  return encodings;
+}
+
+void expectRamp(const VectorField& field, double start, double step) {
+  ASSERT_EQ(field.vectors.size() * 3, 36u);
+  for (std::size_t i = 0; i < 36; ++i)
+    ASSERT_EQ(field.vectors[i / 3][static_cast<glm::length_t>(i % 3)],
+              static_cast<float>(start + step * static_cast<double>(i)))
+        << i;
+}
+
+TEST_F(VtiTest, ReadsEveryEncoding) {
+  for (const std::string type : {"Float32", "Float64"}) {
+    for (const Encoding& encoding : everyEncoding()) {
+      SCOPED_TRACE(type + " " + encoding.label());
+      const fs::path file = writeBytes("field.vti", makeVti(testImage(type), encoding));
+      FieldReadInfo info;
+      const Result<VectorField> field = readVectorFieldVti(file, {}, &info);
+      ASSERT_TRUE(field.ok()) << field.error().message;
+      EXPECT_EQ(field->dims, Dims(3, 2, 2));
+      EXPECT_EQ(field->geometry.origin, glm::dvec3(1.0, 2.0, 3.0));
+      EXPECT_EQ(field->geometry.spacing, glm::dvec3(0.5, 0.25, 2.0));
+      expectRamp(*field, -3.25, 0.5);
+      EXPECT_EQ(info.nonFiniteVectors, 0u);
+      EXPECT_EQ(info.arrayName, "velocity");
+      EXPECT_EQ(info.arrayNames, std::vector<std::string>{"velocity"});
+    }
+  }
+}
+
+TEST_F(VtiTest, ReadsIntegerVectorsAndLargeCompressedArrays) {
+  Image image;
+  image.wholeExtent = "0 39 0 29 0 19";
+  image.arrays.push_back({"v", "Float32", 3, false, ramp(3 * 40 * 30 * 20, 0.5, 0.25)});
+  Encoding encoding;
+  encoding.format = "appended";
+  encoding.zlib = true;
+  encoding.blockSize = 32768;
+  const fs::path file = writeBytes("large.vti", makeVti(image, encoding));
+  const Result<VectorField> field = readVectorField(file);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(40, 30, 20));
+  EXPECT_EQ(field->vectors.back().z, static_cast<float>(0.5 + 0.25 * (3 * 24000 - 1)));
+
+  image = Image{};
+  image.arrays.push_back({"ints", "Int16", 3, false, ramp(36, -18, 1)});
+  encoding.blockSize = 5;
+  const fs::path ints = writeBytes("ints.vti", makeVti(image, encoding));
+  const Result<VectorField> intField = readVectorFieldVti(ints);
+  ASSERT_TRUE(intField.ok()) << intField.error().message;
+  expectRamp(*intField, -18, 1);
+}
+
+TEST_F(VtiTest, WholeExtentOffsetMovesTheOrigin) {
+  Image image = testImage();
+  image.wholeExtent = "-2 0 4 5 10 11";
+  const fs::path file = writeBytes("offset.vti", makeVti(image, Encoding{}));
+  const Result<VectorField> field = readVectorFieldVti(file);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->geometry.origin, glm::dvec3(1.0 - 1.0, 2.0 + 1.0, 3.0 + 20.0));
+}
+
+TEST_F(VtiTest, CellDataBecomesAFieldAtTheCellCentres) {
+  // 4x3x2 points hold 3x2x1 cells.
+  Image image;
+  image.wholeExtent = "0 3 0 2 0 1";
+  image.arrays.push_back({"cells", "Float32", 3, true, ramp(18, 1, 1)});
+  for (const Encoding& encoding : everyEncoding()) {
+    SCOPED_TRACE(encoding.label());
+    const fs::path file = writeBytes("cells.vti", makeVti(image, encoding));
+    const Result<VectorField> field = readVectorFieldVti(file);
+    ASSERT_TRUE(field.ok()) << field.error().message;
+    EXPECT_EQ(field->dims, Dims(3, 2, 1));
+    EXPECT_EQ(field->geometry.origin, glm::dvec3(1.25, 2.125, 4.0));
+    EXPECT_EQ(field->geometry.spacing, glm::dvec3(0.5, 0.25, 2.0));
+    EXPECT_EQ(field->at(2, 1, 0), glm::vec3(16.0f, 17.0f, 18.0f));
+  }
+}
+
+TEST_F(VtiTest, ChoosesArraysByNameAndListsThemWhenMissing) {
+  Image image;
+  image.pointAttributes = "Vectors=\"b\"";
+  image.arrays.push_back({"scalar", "Float32", 1, false, ramp(12, 0, 1)});
+  image.arrays.push_back({"a", "Float32", 3, false, ramp(36, 1, 0)});
+  image.arrays.push_back({"b", "Float32", 3, false, ramp(36, 2, 0)});
+  image.arrays.push_back({"b", "Float32", 3, true, ramp(6, 5, 0)});
+  image.arrays.push_back({"c", "Float64", 3, true, ramp(6, 3, 0)});
+  for (const Encoding& encoding : everyEncoding()) {
+    SCOPED_TRACE(encoding.label());
+    const fs::path file = writeBytes("arrays.vti", makeVti(image, encoding));
+    FieldReadInfo info;
+    // The active Vectors attribute is the default.
+    Result<VectorField> field = readVectorFieldVti(file, {}, &info);
+    ASSERT_TRUE(field.ok()) << field.error().message;
+    EXPECT_EQ(field->vectors[0], glm::vec3(2.0f));
+    EXPECT_EQ(info.arrayName, "b");
+    EXPECT_EQ(info.arrayNames, (std::vector<std::string>{"a", "b", "b", "c"}));
+    field = readVectorField(file, "a");
+    ASSERT_TRUE(field.ok()) << field.error().message;
+    EXPECT_EQ(field->vectors[11], glm::vec3(1.0f));
+    field = readVectorFieldVti(file, "c");
+    ASSERT_TRUE(field.ok()) << field.error().message;
+    EXPECT_EQ(field->dims, Dims(2, 1, 1));
+    EXPECT_EQ(field->vectors[1], glm::vec3(3.0f));
+    expectInputError(readVectorField(file, "d"), file,
+                     "no 3-component DataArray named 'd'; found: 'a', 'b', 'b' (cell data), "
+                     "'c' (cell data)");
+    expectInputError(readVectorFieldVti(file, "scalar"), file,
+                     "DataArray 'scalar' has 1 components, expected 3");
+  }
+}
+
+TEST_F(VtiTest, NonFiniteVectorsBecomeZeroAndAllZeroIsAnError) {
+  Image image;
+  std::vector<double> values = ramp(36, 1, 1);
+  values[4] = std::numeric_limits<double>::quiet_NaN();
+  values[9] = -std::numeric_limits<double>::infinity();
+  values[35] = 1e300;  // beyond float
+  image.arrays.push_back({"v", "Float64", 3, false, values});
+  for (const Encoding& encoding : everyEncoding()) {
+    SCOPED_TRACE(encoding.label());
+    const fs::path file = writeBytes("nan.vti", makeVti(image, encoding));
+    FieldReadInfo info;
+    const Result<VectorField> field = readVectorFieldVti(file, {}, &info);
+    ASSERT_TRUE(field.ok()) << field.error().message;
+    EXPECT_EQ(info.nonFiniteVectors, 3u);
+    EXPECT_EQ(field->vectors[1], glm::vec3(0.0f));
+    EXPECT_EQ(field->vectors[3], glm::vec3(0.0f));
+    EXPECT_EQ(field->vectors[11], glm::vec3(0.0f));
+    EXPECT_EQ(field->vectors[2], glm::vec3(7.0f, 8.0f, 9.0f));
+  }
+  image.arrays[0].values.assign(36, 0.0);
+  image.arrays[0].values[0] = std::numeric_limits<double>::quiet_NaN();
+  const fs::path file = writeBytes("zero.vti", makeVti(image, Encoding{}));
+  expectInputError(readVectorFieldVti(file), file,
+                   "every vector of the field is zero (1 of the 12 were NaN or infinite)");
+}
+
+// --- Malformed files ----------------------------------------------------------------------------
+
+struct MalformedCase {
+  const char* label;
+  std::string content;
+  const char* fragment;
+};
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST_F(VtiTest, MalformedFilesAreInputErrorsNamingFileAndProblem) {
+  Encoding binary;
+  binary.format = "binary";
+  Encoding zlib = binary;
+  zlib.zlib = true;
+  Encoding appended;
+  appended.format = "appended";
+  Encoding appendedZlib = appended;
+  appendedZlib.zlib = true;
+  const std::string ascii = makeVti(testImage(), Encoding{});
+  const std::string plain = makeVti(testImage(), binary);
+  const std::string compressed = makeVti(testImage(), zlib);
+  const std::string raw = makeVti(testImage(), appended);
+  const std::string rawZlib = makeVti(testImage(), appendedZlib);
+  // The velocity block of the appended raw file: after density's 4 + 96 bytes.
+  const std::size_t velocity = raw.find("\n   _") + 5 + 100;
+  const std::size_t rawZlibData = rawZlib.find("\n   _") + 5;
+
+  const auto withVelocityHeader = [&](std::uint32_t size) {
+    std::string file = raw;
+    std::memcpy(file.data() + velocity, &size, 4);
+    return file;
+  };
+  // The zlib header of "density" (the first array) in the appended zlib file, replaced.
+  const auto withZlibHeader = [&](std::vector<std::uint32_t> numbers) {
+    std::string file = rawZlib;
+    std::memcpy(file.data() + rawZlibData, numbers.data(), 4 * numbers.size());
+    return file;
+  };
+  const std::string velocityBase64 = base64(headerNumbers({144}, binary)) +
+                                     base64(valueBytes(testImage().arrays[1], false));
+
+  const MalformedCase cases[] = {
+      {"empty", "", "empty file"},
+      {"legacy vtk", "# vtk DataFile Version 3.0\n", "not an XML file"},
+      {"bad xml", "<VTKFile type=\"ImageData\"><ImageData>", "invalid XML at byte"},
+      {"mismatched tags", "<VTKFile></ImageData>", "invalid XML"},
+      {"not vtk", "<svg/>", "root element is not VTKFile"},
+      {"polydata", replaced(ascii, "type=\"ImageData\"", "type=\"PolyData\""),
+       "VTKFile type 'PolyData' is not supported (expected ImageData)"},
+      {"byte order", replaced(ascii, "LittleEndian", "MiddleEndian"),
+       "byte_order: expected LittleEndian or BigEndian"},
+      {"header type", replaced(ascii, "header_type=\"UInt32\"", "header_type=\"UInt16\""),
+       "header_type: expected UInt32 or UInt64"},
+      {"lz4", replaced(compressed, "vtkZLibDataCompressor", "vtkLZ4DataCompressor"),
+       "compressor 'vtkLZ4DataCompressor' is not supported"},
+      {"no image data", "<VTKFile type=\"ImageData\"></VTKFile>", "no ImageData element"},
+      {"no extent", replaced(ascii, "WholeExtent=", "Whole="), "ImageData: missing WholeExtent"},
+      {"reversed extent", replaced(ascii, "WholeExtent=\"0 2", "WholeExtent=\"2 0"),
+       "WholeExtent: expected 6 whole numbers"},
+      {"short extent", replaced(ascii, "WholeExtent=\"0 2 0 1 0 1", "WholeExtent=\"0 2 0 1 0"),
+       "WholeExtent: expected 6 whole numbers"},
+      {"huge extent", replaced(ascii, "WholeExtent=\"0 2 0 1 0 1", "WholeExtent=\"0 16383 0 16383 0 8"),
+       "more than the limit"},
+      {"long axis", replaced(ascii, "WholeExtent=\"0 2", "WholeExtent=\"0 16384"),
+       "outside [1, 16384]"},
+      {"enormous extent", replaced(ascii, "WholeExtent=\"0 2", "WholeExtent=\"0 99999999999999999999"),
+       "WholeExtent: expected 6 whole numbers"},
+      {"zero spacing", replaced(ascii, "Spacing=\"0.5", "Spacing=\"0"),
+       "ImageData Spacing: expected 3 positive numbers"},
+      {"nan origin", replaced(ascii, "Origin=\"1", "Origin=\"nan"),
+       "ImageData Origin: expected 3 finite numbers"},
+      {"two pieces", replaced(ascii, "  </ImageData>", "<Piece Extent=\"0 2 0 1 0 1\"/></ImageData>"),
+       "ImageData holds 2 Piece elements"},
+      {"piece extent", replaced(ascii, "<Piece Extent=\"0 2", "<Piece Extent=\"0 1"),
+       "differs from WholeExtent"},
+      {"no vectors", replaced(ascii, "NumberOfComponents=\"3\"", "NumberOfComponents=\"2\""),
+       "no 3-component DataArray in PointData or CellData"},
+      {"zero components", replaced(ascii, "NumberOfComponents=\"3\"", "NumberOfComponents=\"0\""),
+       "NumberOfComponents: expected 1 to 64"},
+      {"string array", replaced(ascii, "type=\"Float32\"", "type=\"String\""),
+       "DataArray 'velocity': type 'String' is not supported"},
+      {"tuples", replaced(ascii, "Name=\"velocity\"", "Name=\"velocity\" NumberOfTuples=\"13\""),
+       "NumberOfTuples '13' does not match the 12 points"},
+      {"few ascii numbers", replaced(ascii, "-3.25 ", ""), "holds 35 numbers, expected 36"},
+      {"many ascii numbers", replaced(ascii, "-3.25 ", "-3.25 1 "),
+       "holds more than the 36 numbers expected"},
+      {"ascii word", replaced(ascii, "-3.25 ", "minus "), "expected a number, found 'minus'"},
+      {"ascii too short",
+       replaced(replaced(ascii, "WholeExtent=\"0 2 0 1 0 1", "WholeExtent=\"0 999 0 999 0 9"),
+                "Extent=\"0 2 0 1 0 1", "Extent=\"0 999 0 999 0 9"),
+       "the text holds at most"},
+      {"format", replaced(ascii, "\"3\" format=\"ascii\"", "\"3\" format=\"hex\""),
+       "format: expected ascii, binary or appended, found 'hex'"},
+      {"bad base64", replaced(plain, velocityBase64.substr(0, 12), "AAAAA=AAAAAA"),
+       "invalid base64 data"},
+      {"block size", replaced(plain, velocityBase64.substr(0, 8), base64(headerNumbers({140}, binary)).substr(0, 8)),
+       "the data block holds 140 bytes, expected 144 (12 tuples of 3 Float32)"},
+      {"base64 cut", replaced(plain, velocityBase64, velocityBase64.substr(0, 100)), "truncated"},
+      {"no appended data", replaced(raw, "<AppendedData encoding=\"raw\">", "<Other>"),
+       "invalid XML"},
+      {"unclosed appended tag", raw.substr(0, raw.find("<AppendedData") + 20),
+       "the AppendedData tag is not closed"},
+      {"no underscore", replaced(raw, "\n   _", "\n   #"), "AppendedData: expected '_' before the data"},
+      {"appended encoding", replaced(raw, "encoding=\"raw\"", "encoding=\"hex\""),
+       "AppendedData encoding: expected raw or base64"},
+      {"offset beyond", replaced(raw, "offset=\"100\"", "offset=\"100000\""),
+       "offset 100000 is beyond the"},
+      {"offset text", replaced(raw, "offset=\"100\"", "offset=\"-1\""),
+       "an appended array needs a whole-number offset"},
+      {"appended missing",
+       replaced(ascii, "Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">",
+                "Name=\"velocity\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\">"),
+       "format is appended, but the file has no AppendedData"},
+      {"appended header", withVelocityHeader(0xfffffff0u), "the data block holds 4294967280 bytes"},
+      {"appended truncated", raw.substr(0, velocity + 100), "truncated"},
+      {"appended header cut", raw.substr(0, velocity + 2), "the data ends inside its header"},
+      {"zlib zero blocks", withZlibHeader({0, 32768, 96}), "compression header"},
+      {"zlib last larger", withZlibHeader({1, 32, 96}), "compression header"},
+      {"zlib many blocks", withZlibHeader({0x7fffffff, 1, 0}),
+       "2147483647 blocks, more than the data can hold"},
+      {"zlib wrong total", withZlibHeader({1, 32768, 95}), "the compressed blocks hold 1 x 32768"},
+      {"zlib huge block", withZlibHeader({1, 32768, 96, 0x7fffffff}), "truncated"},
+      {"zlib ratio", withZlibHeader({1, 96, 0, 0}), "0 compressed bytes cannot inflate to 96"},
+      {"zlib corrupt", [&] {
+         std::string file = rawZlib;
+         for (std::size_t i = rawZlibData + 16 + 2; i < rawZlibData + 16 + 10; ++i) file[i] ^= 0x55;
+         return file;
+       }(),
+       "DataArray 'density' block 0: compressed data"},
+  };
+  for (const MalformedCase& c : cases) {
+    SCOPED_TRACE(c.label);
+    const fs::path file = writeBytes("bad field.vti", c.content);
+    const Result<VectorField> field = readVectorFieldVti(file);
+    if (std::string(c.label).starts_with("zlib")) {
+      // The zlib cases corrupt "density", which the scalar reader reads.
+      expectInputError(readScalarVti(file), file, c.fragment);
+    } else {
+      expectInputError(field, file, c.fragment);
+    }
+  }
+}
+
+TEST_F(VtiTest, CorruptedFilesNeverCrashTheReader) {
+  // Random byte flips and cuts of files in several encodings give a field or an InvalidInput
+  // error; under the sanitizers this also checks every read stays in bounds.
+  std::vector<std::string> originals;
+  for (const Encoding& encoding : everyEncoding())
+    originals.push_back(makeVti(testImage(), encoding));
+  std::mt19937 random(7);
+  for (const std::string& original : originals) {
+    for (int trial = 0; trial < 60; ++trial) {
+      std::string mutated = original;
+      const int flips = 1 + static_cast<int>(random() % 4);
+      for (int f = 0; f < flips; ++f) {
+        const std::size_t at = random() % mutated.size();
+        mutated[at] = random() % 2 ? static_cast<char>(random() % 256)
+                                   : "0123456789 \"<>/=_AZaz+"[random() % 23];
+      }
+      if (trial % 5 == 0) mutated.resize(random() % mutated.size());
+      const fs::path file = writeBytes("mutated.vti", mutated);
+      for (const Result<VectorField>& read : {readVectorFieldVti(file), readVectorFieldVti(file, "x")}) {
+        if (!read.ok()) {
+          EXPECT_EQ(read.error().kind, ErrorKind::InvalidInput) << read.error().message;
+        } else {
+          EXPECT_EQ(read->vectors.size(), voxelCount(read->dims));
+        }
+      }
+      const Result<ScalarVolume> scalars = readScalarVti(file);
+      if (!scalars.ok()) {
+        EXPECT_EQ(scalars.error().kind, ErrorKind::InvalidInput) << scalars.error().message;
+      }
+    }
+  }
+}
+
+// --- Writers ------------------------------------------------------------------------------------
+
+TEST_F(VtiTest, ScalarVolumeRoundTripKeepsValuesNaNAndGeometry) {
+  ScalarVolume volume;
+  volume.dims = {5, 4, 3};
+  volume.geometry = {{0.1, 1.0 / 3.0, 2.0}, {-1.5, 2.25, 1e-3}};
+  for (int i = 0; i < 60; ++i) volume.values.push_back(std::sin(static_cast<float>(i)));
+  volume.values[7] = std::numeric_limits<float>::quiet_NaN();
+  const fs::path file = path("lic.vti");
+  ASSERT_TRUE(writeScalarVti(file, volume).ok());
+  const std::string bytes = readWhole(file);
+  for (const char* text : {"<VTKFile type=\"ImageData\"", "header_type=\"UInt64\"",
+                           "WholeExtent=\"0 4 0 3 0 2\"", "Spacing=\"0.1 0.3333333333333333 2\"",
+                           "<PointData Scalars=\"lic\">", "type=\"Float32\" Name=\"lic\"",
+                           "format=\"appended\" offset=\"0\"", "<AppendedData encoding=\"raw\">"})
+    EXPECT_NE(bytes.find(text), std::string::npos) << text;
+  const Result<ScalarVolume> read = readScalarVti(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->dims, volume.dims);
+  EXPECT_EQ(read->geometry, volume.geometry);
+  ASSERT_EQ(read->values.size(), volume.values.size());
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    if (i == 7) {
+      EXPECT_TRUE(std::isnan(read->values[i]));
+    } else {
+      EXPECT_EQ(read->values[i], volume.values[i]) << i;
+    }
+  }
+  // Any name, escaped for XML, reads back.
+  ASSERT_TRUE(writeScalarVti(path("named.vti"), volume, "LIC <\"&'> value").ok());
+  EXPECT_NE(readWhole(path("named.vti")).find("Name=\"LIC &lt;&quot;&amp;&apos;&gt; value\""),
+            std::string::npos);
+  ASSERT_TRUE(readScalarVti(path("named.vti")).ok());
+}
+
+TEST_F(VtiTest, RgbaVolumeRoundTrip) {
+  RgbaVolume volume;
+  volume.dims = {3, 2, 4};
+  volume.geometry = {{2.0, 0.5, 0.25}, {10.0, -20.0, 0.5}};
+  for (std::size_t i = 0; i < 96; ++i) volume.rgba.push_back(static_cast<std::uint8_t>(i * 7 + 3));
+  const fs::path file = path("colour.vti");
+  ASSERT_TRUE(writeRgbaVti(file, volume).ok());
+  EXPECT_NE(readWhole(file).find("type=\"UInt8\" Name=\"rgba\" NumberOfComponents=\"4\""),
+            std::string::npos);
+  const Result<RgbaVolume> read = readRgbaVti(file);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->dims, volume.dims);
+  EXPECT_EQ(read->geometry, volume.geometry);
+  EXPECT_EQ(read->rgba, volume.rgba);
+  // An RGBA volume is not a scalar or vector volume.
+  expectInputError(readScalarVti(file), file, "no 1-component DataArray");
+  expectInputError(readVectorFieldVti(file), file, "no 3-component DataArray");
+}
+
+TEST_F(VtiTest, WritersRefuseBadVolumesAndLeaveNoFile) {
+  ScalarVolume volume;
+  volume.dims = {2, 2, 2};
+  volume.values.assign(7, 0.5f);
+  const fs::path file = path("bad.vti");
+  expectInputError(writeScalarVti(file, volume), file, "needs 8");
+  volume.values.assign(8, 0.5f);
+  expectInputError(writeScalarVti(file, volume, ""), file, "the array name is empty");
+  expectInputError(writeScalarVti(file, volume, "tab\tname"), file, "control character");
+  volume.geometry.spacing.y = 0.0;
+  expectInputError(writeScalarVti(file, volume), file, "spacing");
+  RgbaVolume rgba;
+  rgba.dims = {0, 1, 1};
+  expectInputError(writeRgbaVti(file, rgba), file, "empty");
+  EXPECT_TRUE(listFolder().empty());
+}
+
+}  // namespace
+}  // namespace lic3d
