@@ -94,8 +94,8 @@ for f in tornado solenoidal; do
   technique "Lighting: Phong with TNB normals" $f "$f-phong" --lighting phong
   technique "Lighting: illuminated lines" $f "$f-lines" --lighting lines
 done
-technique "Nearest filtering of the LIC volume, close up" tornado tornado-nearest --filter nearest --distance 0.7
-technique "Linear filtering of the LIC volume, close up" tornado tornado-linear --filter linear --distance 0.7
+technique "Nearest filtering of a 32³ LIC volume, close up" tornado tornado-nearest --grid 32 --filter nearest --distance 1.9
+technique "Linear filtering of a 32³ LIC volume, close up" tornado tornado-linear --grid 32 --filter linear --distance 1.9
 
 mv "$page" GALLERY.md
 echo "wrote docs/GALLERY.md and $(ls "$OUT" | wc -l) pictures in docs/$OUT"
