@@ -87,7 +87,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
                    parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
   LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
                    parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
-  const auto fieldKind = parseAnalyticField(options.input.field);
+  const auto fieldKind = parseAnalyticField(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
 
   const DeviceInfo& device = context.deviceInfo();
@@ -97,7 +97,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   report["device"] = device.name;
   report["driver"] = device.driver;
   report["date"] = today();
-  report["field"] = options.input.field;
+  report["field"] = options.field;
   report["repeats"] = options.repeats;
   report["warmup"] = options.warmup;
 
@@ -105,7 +105,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
               device.driver.c_str(), report["date"].get<std::string>().c_str());
   std::printf("LIC compute: %s field, rk2, box kernel, h = 0.5, trilinear noise, %s-precision "
               "field texture; median of %d after %d warm-up (GPU timestamps)\n",
-              options.input.field.c_str(),
+              options.field.c_str(),
               resolvePrecision(context, options.precision) == FieldPrecision::Half ? "half" : "float",
               options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
@@ -121,7 +121,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
       report["lic"].push_back({{"n", n}, {"skipped", "device memory"}});
       continue;
     }
-    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));
+    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
     for (const int length : lengths) {
       LicParams params;
       params.length = length;
@@ -152,7 +152,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   if (residentBytes(n, precision) > 0.8 * memory) {
     report["frame"]["skipped"] = "device memory";
   } else {
-    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));
+    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
     LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
     for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm8}) {
       LIC3D_TRY(renderer.setFramePrecision(frame));
@@ -192,7 +192,7 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   if (!hasRuntimeModeShaders())
     return unsupportedError("bench --variants needs a build configured with "
                             "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
-  const auto fieldKind = parseAnalyticField(options.input.field);
+  const auto fieldKind = parseAnalyticField(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
                    parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
@@ -252,8 +252,8 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   runtimeOptions.runtimeModes = true;
   LIC3D_TRY_ASSIGN(LicRenderer specialized, LicRenderer::create(context, {options.precision}));
   LIC3D_TRY_ASSIGN(LicRenderer runtime, LicRenderer::create(context, runtimeOptions));
-  LIC3D_TRY(setVolume(specialized, *fieldKind, n, options.input.seed));
-  LIC3D_TRY(setVolume(runtime, *fieldKind, n, options.input.seed));
+  LIC3D_TRY(setVolume(specialized, *fieldKind, n, options.seed));
+  LIC3D_TRY(setVolume(runtime, *fieldKind, n, options.seed));
   double budgetLeft = options.budgetSeconds;
   for (const Variant& v : variants) {
     LIC3D_TRY_ASSIGN([[maybe_unused]] const bool a, specialized.updateLic(v.lic));
@@ -339,9 +339,9 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
               device.name.c_str(), options.repeats);
   std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
-  const auto fieldKind = parseAnalyticField(options.input.field);
+  const auto fieldKind = parseAnalyticField(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
-  LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.input.seed));
+  LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
   report["recompute"] = nlohmann::json::array();
   for (std::string_view name : sparsityDistributionNames()) {
     const SparsityDistribution d = *parseSparsityDistribution(name);

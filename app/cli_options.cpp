@@ -10,6 +10,7 @@
 
 #include "analytic_fields.h"
 #include "field_io.h"
+#include "enum_names.h"
 #include "noise.h"
 
 namespace lic3d::cli {
@@ -44,6 +45,14 @@ std::string fieldNameList() {
   return names;
 }
 
+TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
+                    const std::string& help, const std::string& shownDefault = "") {
+  option.option = app.add_option(flag, option.text, help);
+  if (!shownDefault.empty()) option.option->default_str(shownDefault);
+  return option;
+}
+
+
 }  // namespace
 
 int exitCodeFor(const Error& error) {
@@ -65,27 +74,28 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
   app.add_flag("-q,--quiet", options.quiet, "Print nothing but errors");
 }
 
-void addFieldOptions(CLI::App& app, FieldOptions& options) {
-  app.add_option("--field", options.field,
+void addInputOptions(CLI::App& app, SessionOptions& options) {
+  Session& s = options.session;
+  app.add_option("--session", options.sessionFile,
+                 "Start from a session file (JSON, as the viewer saves it); other flags override "
+                 "its values");
+  app.add_option("--field", s.field.field,
                  "Vector field: an analytic field (" + fieldNameList() +
                      ") or a file (.nrrd, .vtk)")
       ->capture_default_str();
-  options.gridOption =
-      app.add_option("--grid", options.grid,
-                     "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)")
-          ->capture_default_str();
-  app.add_option("--noise", options.noise,
+  addText(app, "--grid", options.grid,
+          "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)", "128");
+  app.add_option("--noise", s.noise.file,
                  "Noise volume (.nrrd: uchar, ushort or float) on the field's grid (default: "
                  "seeded white noise)");
-  app.add_option("--seed", options.seed, "Seed of the white noise")->capture_default_str();
-  app.add_option("--seed-noise", options.seedNoiseSpots,
+  app.add_option("--seed", s.noise.seed, "Seed of the white noise")->capture_default_str();
+  app.add_option("--seed-noise", s.noise.seedSpots,
                  "Sparse seed noise instead of white noise: N bright spots on black, placed by "
                  "Poisson-disk sampling (streamlines become distinct lines)")
       ->check(CLI::Range(0, 1 << 30))
       ->capture_default_str();
-}
 
-void addLicParamsOptions(CLI::App& app, LicParams& params) {
+  LicParams& params = s.lic;
   app.add_option("-L,--length", params.length, "Streamline steps each way (L)")
       ->check(CLI::Range(0, kMaxLicLength))
       ->capture_default_str();
@@ -94,42 +104,17 @@ void addLicParamsOptions(CLI::App& app, LicParams& params) {
       ->capture_default_str();
   app.add_option("--bias", params.bias, "Integer bias: L-B steps backward, L+B forward, |B| <= L")
       ->capture_default_str();
-  const std::map<std::string, Integrator> integrators{
-      {"euler", Integrator::Euler}, {"rk2", Integrator::Rk2}, {"rk4", Integrator::Rk4}};
-  app.add_option("--integrator", params.integrator, "Streamline integrator: euler|rk2|rk4")
-      ->transform(CLI::CheckedTransformer(integrators).description(""))
-      ->default_str("rk2");
-  const std::map<std::string, Kernel> kernels{
-      {"box", Kernel::Box}, {"hann", Kernel::Hann}, {"gauss", Kernel::Gauss}};
-  app.add_option("--kernel", params.kernel, "Convolution kernel: box|hann|gauss")
-      ->transform(CLI::CheckedTransformer(kernels).description(""))
-      ->default_str("box");
-  const std::map<std::string, NoiseFilter> filters{{"nearest", NoiseFilter::Nearest},
-                                                   {"linear", NoiseFilter::Linear}};
-  app.add_option("--noise-filter", params.noiseFilter,
-                 "Noise lookup along streamlines: nearest|linear")
-      ->transform(CLI::CheckedTransformer(filters).description(""))
-      ->default_str("linear");
-  const std::map<std::string, DirectionMode> directions{
-      {"normalized", DirectionMode::Normalized}, {"magnitude", DirectionMode::Magnitude}};
-  app.add_option("--direction", params.direction,
-                 "Step direction: normalized (v/|v|) or magnitude (v/max|v|, shorter "
-                 "streamlines where the flow is slow)")
-      ->transform(CLI::CheckedTransformer(directions).description(""))
-      ->default_str("normalized");
+  addEnumOption(app, "--integrator", params.integrator, "Streamline integrator");
+  addEnumOption(app, "--kernel", params.kernel, "Convolution kernel");
+  addEnumOption(app, "--noise-filter", params.noiseFilter, "Noise lookup along streamlines");
+  addEnumOption(app, "--direction", params.direction,
+                "Step direction: normalized (v/|v|) or magnitude (v/max|v|, shorter streamlines "
+                "where the flow is slow)");
 
-  std::map<std::string, SparsityDistribution> distributions;
-  std::string distributionNames;
-  for (std::string_view name : sparsityDistributionNames()) {
-    distributions.emplace(std::string(name), *parseSparsityDistribution(name));
-    distributionNames += (distributionNames.empty() ? "" : "|") + std::string(name);
-  }
   SparsityParams& sparsity = params.sparsity;
-  app.add_option("--sparsity", sparsity.distribution,
-                 "Sparsity mask (thesis 5.1.4): voxels whose streamline touches a black point are "
-                 "not drawn; points from " + distributionNames)
-      ->transform(CLI::CheckedTransformer(distributions).description(""))
-      ->default_str("none");
+  addEnumOption(app, "--sparsity", sparsity.distribution,
+                "Sparsity mask (thesis 5.1.4): voxels whose streamline touches a black point are "
+                "not drawn; points from");
   app.add_option("--sparsity-points", sparsity.points,
                  "Black points for poisson, poisson-approx, halton, hammersley (0: automatic)")
       ->check(CLI::Range(0, 1 << 30))
@@ -145,25 +130,13 @@ void addLicParamsOptions(CLI::App& app, LicParams& params) {
       ->capture_default_str();
   app.add_option("--sparsity-seed", sparsity.seed, "Seed of the random sparsity distributions")
       ->capture_default_str();
-}
-
-void addLicOptions(CLI::App& app, LicParams& params) { addLicParamsOptions(app, params); }
-
-void addPrecisionOption(CLI::App& app, FieldPrecision& precision) {
-  const std::map<std::string, FieldPrecision> precisions{{"auto", FieldPrecision::Auto},
-                                                         {"half", FieldPrecision::Half},
-                                                         {"float", FieldPrecision::Float}};
-  app.add_option("--field-precision", precision,
-                 "Precision of the field and noise texture on the device: auto (float on CPU "
-                 "drivers, half on GPUs), half (RGBA16F) or float (RGBA32F)")
-      ->transform(CLI::CheckedTransformer(precisions).description(""))
-      ->default_str("auto");
+  addEnumOption(app, "--field-precision", s.precision,
+                "Precision of the field and noise texture on the device: auto (float on CPU "
+                "drivers, half on GPUs), half (RGBA16F) or float (RGBA32F)");
 }
 
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput) {
-  addFieldOptions(app, options.input);
-  addLicOptions(app, options.lic);
-  addPrecisionOption(app, options.precision);
+  addInputOptions(app, options.inputs);
   app.add_flag("--cpu", options.cpu,
                "Compute the LIC volume with the CPU reference (multi-threaded, double "
                "precision) instead of the GPU");
@@ -171,8 +144,8 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
   app.add_option("-o,--output", options.output, "Output file")->capture_default_str();
 }
 
-void addViewOptions(CLI::App& app, RenderOptions& options) {
-  ViewParams& view = options.view;
+void addViewOptions(CLI::App& app, SessionOptions& options) {
+  ViewParams& view = options.session.view;
   app.add_option("--width", view.width, "Image width in pixels")
       ->check(CLI::Range(1, 16384))
       ->capture_default_str();
@@ -183,13 +156,9 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
                  "Number of slices (0: one per voxel along the view direction)")
       ->check(CLI::Range(0, 16384))
       ->capture_default_str();
-  const std::map<std::string, Slicing> slicings{{"view", Slicing::ViewAligned},
-                                                {"axis", Slicing::AxisAligned}};
-  app.add_option("--slicing", view.slicing,
-                 "Slice planes: view (perpendicular to the view direction) or axis (perpendicular "
-                 "to the grid axis closest to it)")
-      ->transform(CLI::CheckedTransformer(slicings).description(""))
-      ->default_str("view");
+  addEnumOption(app, "--slicing", view.slicing,
+                "Slice planes: view (perpendicular to the view direction) or axis (perpendicular "
+                "to the grid axis closest to it)");
   app.add_option("--azimuth", view.camera.azimuth, "Camera azimuth in degrees around +z")
       ->capture_default_str();
   app.add_option("--elevation", view.camera.elevation, "Camera elevation in degrees")
@@ -208,32 +177,23 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
                  "Opacity per voxel of depth, corrected for the slice spacing (0: invisible)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  const std::map<std::string, OpacityMode> opacities{{"constant", OpacityMode::Constant},
-                                                     {"intensity", OpacityMode::Intensity}};
-  app.add_option("--opacity", view.opacityMode,
-                 "Opacity transfer: constant (alpha everywhere) or intensity (alpha x grey, so "
-                 "dark gaps between streamlines turn clear)")
-      ->transform(CLI::CheckedTransformer(opacities).description(""))
-      ->default_str("intensity");
-  const std::map<std::string, VolumeFilter> filters{{"nearest", VolumeFilter::Nearest},
-                                                    {"linear", VolumeFilter::Linear}};
-  app.add_option("--filter", view.filter,
-                 "Sampling of the LIC volume by the slices: nearest|linear (thesis 6.4)")
-      ->transform(CLI::CheckedTransformer(filters).description(""))
-      ->default_str("linear");
-  app.add_option("--background", options.background,
-                 "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1")
-      ->capture_default_str();
+  addEnumOption(app, "--opacity", view.opacityMode,
+                "Opacity transfer: constant (alpha everywhere) or intensity (alpha x grey, so "
+                "dark gaps between streamlines turn clear)");
+  addEnumOption(app, "--filter", view.filter,
+                "Sampling of the LIC volume by the slices (thesis 6.4)");
+  addText(app, "--background", options.background,
+          "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1", "0,0,0");
 
-  app.add_option("--contrast", options.contrast,
-                 "on: stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25 (a "
-                 "histogram stretch); off: grey = LIC value")
-      ->check(CLI::IsMember({"on", "off"}))
-      ->capture_default_str();
-  app.add_option("--window", options.window,
-                 "Intensity window mapped to black..white instead of the contrast stretch: auto "
-                 "or LO,HI in 0..1")
-      ->capture_default_str();
+  addText(app, "--contrast", options.contrast,
+          "on: stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25 (a "
+          "histogram stretch); off: grey = LIC value",
+          "on")
+      .option->check(CLI::IsMember({"on", "off"}));
+  addText(app, "--window", options.window,
+          "Intensity window mapped to black..white instead of the contrast stretch: auto or "
+          "LO,HI in 0..1",
+          "auto");
   app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
@@ -241,24 +201,13 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
       ->check(CLI::Range(-1.0, 1.0))
       ->capture_default_str();
 
-  const std::map<std::string, ColorMode> colors{{"none", ColorMode::None},
-                                                {"magnitude", ColorMode::Magnitude}};
-  app.add_option("--color", view.color,
-                 "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
-                 "modulating it (thesis 5.1.2)")
-      ->transform(CLI::CheckedTransformer(colors).description(""))
-      ->default_str("none");
-  std::map<std::string, Colormap> colormaps;
-  for (std::string_view name : colormapNames())
-    colormaps.emplace(std::string(name), *parseColormap(name));
-  app.add_option("--colormap", view.colormap,
-                 "thesis (blue-yellow-red), viridis or coolwarm")
-      ->transform(CLI::CheckedTransformer(colormaps).description(""))
-      ->default_str("thesis");
-  app.add_option("--color-range", options.colorRange,
-                 "|v| mapped to the ends of the colour map: auto (the field's min and max) or "
-                 "MIN,MAX")
-      ->capture_default_str();
+  addEnumOption(app, "--color", view.color,
+                "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
+                "modulating it (thesis 5.1.2)");
+  addEnumOption(app, "--colormap", view.colormap, "Colour map");
+  addText(app, "--color-range", options.colorRange,
+          "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
+          "auto");
   app.add_flag("--legend", view.legend,
                "Draw the colour legend into the image (with --color magnitude)");
   app.add_option("--magnitude-opacity", view.magnitudeOpacity,
@@ -270,40 +219,27 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
 
-  app.add_option("--clip", options.clip,
-                 "Keep X0..X1, Y0..Y1, Z0..Z1 of the box, as fractions (thesis 5.2.1)")
-      ->capture_default_str();
-  const std::map<std::string, RoiShape> shapes{{"none", RoiShape::None},
-                                               {"sphere", RoiShape::Sphere},
-                                               {"cube", RoiShape::Cube},
-                                               {"cylinder", RoiShape::Cylinder}};
-  app.add_option("--roi", view.roi, "Region of interest: none|sphere|cube|cylinder (thesis 5.2.2)")
-      ->transform(CLI::CheckedTransformer(shapes).description(""))
-      ->default_str("none");
-  app.add_option("--roi-center", options.roiCenter, "Centre X,Y,Z as fractions of the box")
-      ->capture_default_str();
+  addText(app, "--clip", options.clip,
+          "Keep X0..X1, Y0..Y1, Z0..Z1 of the box, as fractions (thesis 5.2.1)", "0,1,0,1,0,1");
+  addEnumOption(app, "--roi", view.roi, "Region of interest (thesis 5.2.2)");
+  addText(app, "--roi-center", options.roiCenter, "Centre X,Y,Z as fractions of the box",
+          "0.5,0.5,0.5");
   app.add_option("--roi-size", view.roiSize,
                  "Diameter (sphere, cylinder) or side (cube) as a fraction of the longest box side")
       ->check(CLI::Range(1e-3, 10.0))
       ->capture_default_str();
-  app.add_option("--roi-rotate", options.roiRotate,
-                 "Rotation AX,AY,AZ in degrees (about x, then y, then z)")
-      ->capture_default_str();
+  addText(app, "--roi-rotate", options.roiRotate,
+          "Rotation AX,AY,AZ in degrees (about x, then y, then z)", "0,0,0");
   app.add_flag("--roi-outside", view.roiOutside, "Keep the outside of the region instead");
 
-  app.add_option("--fog", options.fog,
-                 "Depth cueing START,END: fog grows linearly from START to END, fractions of the "
-                 "depth from the volume's nearest to its farthest point (thesis 5.3.1)");
-  app.add_option("--fog-color", options.fogColor, "Fog colour R,G,B (default: the background)");
+  addText(app, "--fog", options.fog,
+          "Depth cueing START,END: fog grows linearly from START to END, fractions of the depth "
+          "from the volume's nearest to its farthest point (thesis 5.3.1)");
+  addText(app, "--fog-color", options.fogColor, "Fog colour R,G,B (default: the background)");
 
-  const std::map<std::string, StereoMode> stereo{{"none", StereoMode::None},
-                                                 {"anaglyph", StereoMode::Anaglyph},
-                                                 {"side-by-side", StereoMode::SideBySide}};
-  app.add_option("--stereo", view.stereo,
-                 "none, anaglyph (red left, cyan right) or side-by-side (left|right, twice the "
-                 "width) with an off-axis frustum (thesis 5.3.2)")
-      ->transform(CLI::CheckedTransformer(stereo).description(""))
-      ->default_str("none");
+  addEnumOption(app, "--stereo", view.stereo,
+                "Stereo with an off-axis frustum (thesis 5.3.2): anaglyph is red left, cyan "
+                "right; side-by-side is left|right, twice the width");
   app.add_option("--eye-separation", view.eyeSeparation,
                  "Distance between the eyes in box units (0: zero-parallax distance / 30)")
       ->check(CLI::Range(0.0, 100.0))
@@ -313,15 +249,23 @@ void addViewOptions(CLI::App& app, RenderOptions& options) {
                  "centre)")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
+  addEnumOption(app, "--lighting", view.lighting,
+                "phong: normals from the streamline's TNB frame (thesis 5.3.3); lines: "
+                "illuminated lines, lit from the tangent alone");
+}
 
-  const std::map<std::string, Lighting> lighting{{"none", Lighting::None},
-                                                 {"phong", Lighting::Phong},
-                                                 {"lines", Lighting::Lines}};
-  app.add_option("--lighting", view.lighting,
-                 "none, phong (normals from the streamline's TNB frame, thesis 5.3.3) or lines "
-                 "(illuminated lines: lit from the tangent alone)")
-      ->transform(CLI::CheckedTransformer(lighting).description(""))
-      ->default_str("none");
+Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    std::string file;
+    if (arg == "--session" && i + 1 < argc) file = argv[i + 1];
+    else if (arg.rfind("--session=", 0) == 0) file = arg.substr(10);
+    else continue;
+    LIC3D_TRY_ASSIGN(options.session, readSession(file));
+    options.sessionFile = file;
+    return {};
+  }
+  return {};
 }
 
 Result<Dims> parseGrid(const std::string& text) {
@@ -377,46 +321,68 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
   return values;
 }
 
-Result<void> finishViewOptions(RenderOptions& options) {
-  ViewParams& view = options.view;
-  LIC3D_TRY_ASSIGN(view.background, parseColor(options.background, "--background"));
-  view.contrast = options.contrast == "on";
-  if (options.window != "auto") {
-    LIC3D_TRY_ASSIGN(const std::vector<float> w, parseFloatList(options.window, "--window", 2));
-    if (!(w[0] >= 0.0f && w[1] <= 1.0f && w[0] < w[1]))
-      return inputError("--window: need 0 <= LO < HI <= 1, got '" + options.window + "'");
-    view.manualWindow = true;
-    view.windowLow = w[0];
-    view.windowHigh = w[1];
+Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
+  Session& s = options.session;
+  if (options.grid.given()) {
+    LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text));
   }
-  if (options.colorRange != "auto") {
-    LIC3D_TRY_ASSIGN(const std::vector<float> r,
-                     parseFloatList(options.colorRange, "--color-range", 2));
-    if (!(r[0] < r[1]))
-      return inputError("--color-range: need MIN < MAX, got '" + options.colorRange + "'");
-    view.autoColorRange = false;
-    view.colorLow = r[0];
-    view.colorHigh = r[1];
+  LIC3D_TRY(validate(s.lic));
+  if (s.noise.seedSpots > 0 && !s.noise.file.empty())
+    return inputError("--seed-noise and --noise both choose the noise: give one");
+  if (!withView) return {};
+
+  ViewParams& view = s.view;
+  if (options.background.given()) {
+    LIC3D_TRY_ASSIGN(view.background, parseColor(options.background.text, "--background"));
+  }
+  if (options.contrast.given()) view.contrast = options.contrast.text == "on";
+  if (options.window.given()) {
+    view.manualWindow = options.window.text != "auto";
+    if (view.manualWindow) {
+      LIC3D_TRY_ASSIGN(const std::vector<float> w,
+                       parseFloatList(options.window.text, "--window", 2));
+      if (!(w[0] >= 0.0f && w[1] <= 1.0f && w[0] < w[1]))
+        return inputError("--window: need 0 <= LO < HI <= 1, got '" + options.window.text + "'");
+      view.windowLow = w[0];
+      view.windowHigh = w[1];
+    }
+  }
+  if (options.colorRange.given()) {
+    view.autoColorRange = options.colorRange.text == "auto";
+    if (!view.autoColorRange) {
+      LIC3D_TRY_ASSIGN(const std::vector<float> r,
+                       parseFloatList(options.colorRange.text, "--color-range", 2));
+      if (!(r[0] < r[1]))
+        return inputError("--color-range: need MIN < MAX, got '" + options.colorRange.text + "'");
+      view.colorLow = r[0];
+      view.colorHigh = r[1];
+    }
   }
   if (view.legend && view.color != ColorMode::Magnitude)
     return inputError("--legend shows the colour map: use it with --color magnitude");
-  LIC3D_TRY_ASSIGN(const std::vector<float> clip, parseFloatList(options.clip, "--clip", 6));
-  view.clipMin = {clip[0], clip[2], clip[4]};
-  view.clipMax = {clip[1], clip[3], clip[5]};
-  LIC3D_TRY_ASSIGN(const std::vector<float> centre,
-                   parseFloatList(options.roiCenter, "--roi-center", 3));
-  view.roiCenter = {centre[0], centre[1], centre[2]};
-  LIC3D_TRY_ASSIGN(const std::vector<float> rotate,
-                   parseFloatList(options.roiRotate, "--roi-rotate", 3));
-  view.roiRotation = {rotate[0], rotate[1], rotate[2]};
-  if (!options.fog.empty()) {
-    LIC3D_TRY_ASSIGN(const std::vector<float> fog, parseFloatList(options.fog, "--fog", 2));
+  if (options.clip.given()) {
+    LIC3D_TRY_ASSIGN(const std::vector<float> clip, parseFloatList(options.clip.text, "--clip", 6));
+    view.clipMin = {clip[0], clip[2], clip[4]};
+    view.clipMax = {clip[1], clip[3], clip[5]};
+  }
+  if (options.roiCenter.given()) {
+    LIC3D_TRY_ASSIGN(const std::vector<float> c,
+                     parseFloatList(options.roiCenter.text, "--roi-center", 3));
+    view.roiCenter = {c[0], c[1], c[2]};
+  }
+  if (options.roiRotate.given()) {
+    LIC3D_TRY_ASSIGN(const std::vector<float> r,
+                     parseFloatList(options.roiRotate.text, "--roi-rotate", 3));
+    view.roiRotation = {r[0], r[1], r[2]};
+  }
+  if (options.fog.given()) {
+    LIC3D_TRY_ASSIGN(const std::vector<float> fog, parseFloatList(options.fog.text, "--fog", 2));
     view.fog = true;
     view.fogStart = fog[0];
     view.fogEnd = fog[1];
   }
-  if (!options.fogColor.empty()) {
-    LIC3D_TRY_ASSIGN(view.fogColor, parseColor(options.fogColor, "--fog-color"));
+  if (options.fogColor.given()) {
+    LIC3D_TRY_ASSIGN(view.fogColor, parseColor(options.fogColor.text, "--fog-color"));
     view.fogColorFromBackground = false;
   }
   return validate(view);
@@ -437,34 +403,33 @@ Result<void> checkHostMemory(Dims dims) {
   return {};
 }
 
-Result<VectorField> loadField(const FieldOptions& options) {
-  if (const auto analytic = parseAnalyticField(options.field)) {
-    LIC3D_TRY_ASSIGN(const Dims dims, parseGrid(options.grid));
-    LIC3D_TRY(checkHostMemory(dims));
-    return makeAnalyticField(*analytic, dims);
+Result<VectorField> loadField(const FieldSource& source, bool gridGiven) {
+  if (const auto analytic = parseAnalyticField(source.field)) {
+    LIC3D_TRY(checkHostMemory(source.grid));
+    return makeAnalyticField(*analytic, source.grid);
   }
-  if (options.gridOption && options.gridOption->count() > 0)
-    return inputError("--grid applies to analytic fields only; " + options.field +
+  if (gridGiven)
+    return inputError("--grid applies to analytic fields only; " + source.field +
                       " has its own grid");
-  const std::filesystem::path path(options.field);
+  const std::filesystem::path path(source.field);
   if (!path.has_extension())
-    return inputError("--field: '" + options.field + "' is neither an analytic field (" +
+    return inputError("--field: '" + source.field + "' is neither an analytic field (" +
                       fieldNameList() + ") nor a file name with an extension");
-  return readVectorField(path);
+  return readVectorField(path, source.array);
 }
 
-Result<NoiseVolume> loadNoise(const FieldOptions& options, Dims dims) {
-  if (options.seedNoiseSpots > 0 && !options.noise.empty())
+Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {
+  if (source.seedSpots > 0 && !source.file.empty())
     return inputError("--seed-noise and --noise both choose the noise: give one");
-  if (options.seedNoiseSpots > 0) {
-    if (static_cast<std::size_t>(options.seedNoiseSpots) > voxelCount(dims))
+  if (source.seedSpots > 0) {
+    if (static_cast<std::size_t>(source.seedSpots) > voxelCount(dims))
       return inputError("--seed-noise: more spots than voxels");
-    return makeSeedNoise(dims, static_cast<std::size_t>(options.seedNoiseSpots), options.seed);
+    return makeSeedNoise(dims, static_cast<std::size_t>(source.seedSpots), source.seed);
   }
-  if (options.noise.empty()) return makeWhiteNoise(dims, options.seed);
-  LIC3D_TRY_ASSIGN(NoiseVolume noise, readNoise(options.noise));
+  if (source.file.empty()) return makeWhiteNoise(dims, source.seed);
+  LIC3D_TRY_ASSIGN(NoiseVolume noise, readNoise(source.file));
   if (noise.dims != dims)
-    return inputError(options.noise + ": the noise grid " + std::to_string(noise.dims.x) + "x" +
+    return inputError(source.file + ": the noise grid " + std::to_string(noise.dims.x) + "x" +
                       std::to_string(noise.dims.y) + "x" + std::to_string(noise.dims.z) +
                       " does not match the field grid " + std::to_string(dims.x) + "x" +
                       std::to_string(dims.y) + "x" + std::to_string(dims.z));

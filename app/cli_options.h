@@ -1,17 +1,18 @@
 #pragma once
-// The flags shared by the subcommands, bound straight to the engine's parameter structs.
+// The flags shared by the subcommands (and the viewer), bound straight to a Session: the engine's
+// parameter structs plus where the field and the noise come from.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "enum_names.h"
 #include "error.h"
-#include "lic_params.h"
-#include "view_params.h"
+#include "session.h"
 #include "volume.h"
-#include "volume_textures.h"
 
 namespace lic3d::cli {
 
@@ -27,57 +28,62 @@ struct GlobalOptions {
   bool quiet = false;
 };
 
-struct FieldOptions {
-  std::string field = "tornado";
-  std::string grid = "128";
-  std::string noise;
-  std::uint64_t seed = 1;
-  int seedNoiseSpots = 0;  // > 0: sparse seed noise with this many spots instead of white noise
-  CLI::Option* gridOption = nullptr;
+// Flags whose text needs parsing after CLI11 (lists, colours, on/off). Each is applied only if
+// given, so that values from --session survive unless a flag overrides them.
+struct TextOption {
+  std::string text;
+  CLI::Option* option = nullptr;
+  bool given() const { return option && option->count() > 0; }
+};
+
+struct SessionOptions {
+  Session session;
+  std::string sessionFile;
+  TextOption grid;
+  // view flags (render and the viewer only)
+  TextOption background, window, contrast, colorRange, clip, roiCenter, roiRotate, fog, fogColor;
 };
 
 struct ComputeOptions {
-  FieldOptions input;
-  LicParams lic;
-  FieldPrecision precision = FieldPrecision::Auto;
+  SessionOptions inputs;
   bool cpu = false;
   std::string output;
 };
 
-// View flags whose text is parsed after CLI11 is done (lists, colours, on/off).
-struct RenderOptions {
-  ComputeOptions compute;
-  ViewParams view;
-  std::string background = "0,0,0";
-  std::string window = "auto";
-  std::string contrast = "on";
-  std::string colorRange = "auto";
-  std::string clip = "0,1,0,1,0,1";
-  std::string roiCenter = "0.5,0.5,0.5";
-  std::string roiRotate = "0,0,0";
-  std::string fog;
-  std::string fogColor;
-};
+// An option taking one of the names of E (enum_names.h).
+template <class E>
+CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
+                           const std::string& help) {
+  std::map<std::string, E> names;
+  for (const EnumName<E>& n : enumNames<E>()) names.emplace(std::string(n.name), n.value);
+  return app.add_option(flag, value, help + ": " + enumChoices<E>())
+      ->transform(CLI::CheckedTransformer(names).description(""))
+      ->default_str(std::string(enumName(value)));
+}
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
-void addFieldOptions(CLI::App& app, FieldOptions& options);
-void addLicOptions(CLI::App& app, LicParams& params);
-void addPrecisionOption(CLI::App& app, FieldPrecision& precision);
+// --session, the field and noise flags, the LIC flags and --field-precision.
+void addInputOptions(CLI::App& app, SessionOptions& options);
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput);
-void addViewOptions(CLI::App& app, RenderOptions& options);
+// Every ViewParams flag.
+void addViewOptions(CLI::App& app, SessionOptions& options);
+
+// Looks for --session FILE among the arguments and loads it into `options.session` before
+// CLI11 parses them, so that explicit flags override the file.
+Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& options);
+// Applies the text flags to the session and checks it (InvalidInput naming the flag).
+Result<void> finishSessionOptions(SessionOptions& options, bool withView);
 
 Result<Dims> parseGrid(const std::string& text);
 Result<glm::vec3> parseColor(const std::string& text, const char* flag);
 Result<std::vector<int>> parseIntList(const std::string& text, const char* flag, int min, int max);
 Result<std::vector<float>> parseFloatList(const std::string& text, const char* flag,
                                           std::size_t count);
-// Applies the text-valued view flags (colours, lists, on/off) to options.view and checks it.
-Result<void> finishViewOptions(RenderOptions& options);
 
 // Refuses grids whose host-side arrays would not fit this machine's memory.
 Result<void> checkHostMemory(Dims dims);
-Result<VectorField> loadField(const FieldOptions& options);
-Result<NoiseVolume> loadNoise(const FieldOptions& options, Dims dims);
+Result<VectorField> loadField(const FieldSource& source, bool gridGiven);
+Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);
 // The output must have `extension` and lie in an existing folder: checked before any work.
 Result<void> checkOutputPath(const std::string& path, const char* extension);
 

@@ -39,11 +39,12 @@ struct Inputs {
 };
 
 Result<Inputs> loadInputs(const ComputeOptions& options) {
-  LIC3D_TRY(validate(options.lic));
+  const Session& session = options.inputs.session;
+  LIC3D_TRY(validate(session.lic));
   Inputs inputs;
-  LIC3D_TRY_ASSIGN(inputs.field, loadField(options.input));
-  LIC3D_TRY(validate(options.lic.sparsity, inputs.field.dims));
-  LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(options.input, inputs.field.dims));
+  LIC3D_TRY_ASSIGN(inputs.field, loadField(session.field, options.inputs.grid.given()));
+  LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
+  LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, inputs.field.dims));
   return inputs;
 }
 
@@ -58,13 +59,14 @@ Result<ScalarVolume> computeOnCpu(const GlobalOptions& global, const Inputs& inp
 Result<void> prepareRenderer(const GlobalOptions& global, const ComputeOptions& options,
                              const Inputs& inputs, LicRenderer& renderer) {
   LIC3D_TRY(renderer.setInputs(inputs.field, inputs.noise));
+  const LicParams& lic = options.inputs.session.lic;
   if (options.cpu) {
-    LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(global, inputs, options.lic));
-    return renderer.setLicVolume(volume, options.lic);
+    LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(global, inputs, lic));
+    return renderer.setLicVolume(volume, lic);
   }
   Progress progress("LIC " + gridText(inputs.field.dims) + " on the GPU", global.quiet);
   LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran,
-                   renderer.updateLic(options.lic, [&](double f) { progress.update(f); }));
+                   renderer.updateLic(lic, [&](double f) { progress.update(f); }));
   return {};
 }
 
@@ -103,7 +105,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   if (!inputs) return reportError(inputs.error());
 
   if (options.cpu) {
-    const Result<ScalarVolume> volume = computeOnCpu(global, *inputs, options.lic);
+    const Result<ScalarVolume> volume = computeOnCpu(global, *inputs, options.inputs.session.lic);
     if (!volume) return reportError(volume.error());
     if (auto r = writeLicVolume(options.output, *volume); !r) return reportError(r.error());
     if (!global.quiet) std::fprintf(stderr, "lic3d: wrote %s\n", options.output.c_str());
@@ -114,7 +116,8 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   if (!context) return reportError(context.error());
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context, {options.precision});
+    Result<LicRenderer> renderer =
+        LicRenderer::create(*context, {options.inputs.session.precision});
     Result<void> done = renderer ? prepareRenderer(global, options, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<ScalarVolume> volume = done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
@@ -128,8 +131,9 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options) {
   return finish(*context, status);
 }
 
-int runRender(const GlobalOptions& global, const RenderOptions& options) {
-  const ComputeOptions& compute = options.compute;
+int runRender(const GlobalOptions& global, const ComputeOptions& options) {
+  const ComputeOptions& compute = options;
+  const Session& session = options.inputs.session;
   if (auto r = checkOutputPath(compute.output, ".png"); !r) return reportError(r.error());
   Result<Inputs> inputs = loadInputs(compute);
   if (!inputs) return reportError(inputs.error());
@@ -138,17 +142,17 @@ int runRender(const GlobalOptions& global, const RenderOptions& options) {
 
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context, {compute.precision});
+    Result<LicRenderer> renderer = LicRenderer::create(*context, {session.precision});
     Result<void> done = renderer ? prepareRenderer(global, compute, *inputs, *renderer)
                                  : Result<void>(renderer.error());
     Result<RgbaImage> image =
-        done ? renderer->render(compute.lic, options.view) : Result<RgbaImage>(done.error());
+        done ? renderer->render(session.lic, session.view) : Result<RgbaImage>(done.error());
     if (image) done = writePng(compute.output, *image);
     else done = image.error();
     if (!done) status = reportError(done.error());
     else if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%dx%d, %s %s, on %s)\n", compute.output.c_str(),
-                   options.view.width, options.view.height, compute.input.field.c_str(),
+                   image->width, image->height, session.field.field.c_str(),
                    gridText(inputs->field.dims).c_str(), context->deviceInfo().name.c_str());
   }
   return finish(*context, status);

@@ -8,7 +8,8 @@
 namespace lic3d::cli {
 
 struct BenchOptions {
-  FieldOptions input;
+  std::string field = "tornado";
+  std::uint64_t seed = 1;
   FieldPrecision precision = FieldPrecision::Auto;
   std::string sizes = "64,128,256,512";
   std::string lengths = "10,20";
@@ -25,7 +26,7 @@ struct BenchOptions {
 
 int runDevices(const GlobalOptions& global);
 int runCompute(const GlobalOptions& global, const ComputeOptions& options);
-int runRender(const GlobalOptions& global, const RenderOptions& options);
+int runRender(const GlobalOptions& global, const ComputeOptions& options);
 int runBench(const GlobalOptions& global, const BenchOptions& options);
 
 }  // namespace lic3d::cli

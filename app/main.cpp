@@ -1,6 +1,12 @@
 // lic3d: 3D Line Integral Convolution of vector fields with Vulkan, from the command line.
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <new>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -9,7 +15,48 @@
 
 using namespace lic3d::cli;
 
+namespace {
+
+// `lic3d view ...` runs the desktop app, a separate binary so that this one needs no window
+// system. Global options may come before `view`.
+int execViewer(int argc, char** argv, int viewIndex) {
+  std::error_code ec;
+  std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) self = argv[0];
+  const std::filesystem::path viewer = self.parent_path() / "lic3d-view";
+  std::vector<char*> args;
+  const std::string program = viewer.string();
+  args.push_back(const_cast<char*>(program.c_str()));
+  for (int i = 1; i < argc; ++i)
+    if (i != viewIndex) args.push_back(argv[i]);
+  args.push_back(nullptr);
+  execv(program.c_str(), args.data());
+  std::fprintf(stderr,
+               "lic3d: error: cannot start %s (%s): the desktop app is built with GLFW and Dear "
+               "ImGui next to lic3d\n",
+               program.c_str(), std::strerror(errno));
+  return kExitFailure;
+}
+
+// The index of the subcommand `view` if it is the command given, else 0.
+int findViewCommand(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--device") {
+      ++i;  // its value
+      continue;
+    }
+    if (!arg.empty() && arg[0] == '-') continue;
+    return arg == "view" ? i : 0;
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (const int view = findViewCommand(argc, argv)) return execViewer(argc, argv, view);
+
   CLI::App app{"lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
                "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices."};
   app.set_version_flag("--version", "lic3d 0.1.0");
@@ -25,6 +72,8 @@ int main(int argc, char** argv) {
   addGlobalOptions(app, global);
 
   CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices lic3d can use");
+  app.add_subcommand("view",
+                     "Open the interactive desktop app (lic3d-view) with the render options");
 
   ComputeOptions compute;
   CLI::App* computeCommand =
@@ -32,18 +81,20 @@ int main(int argc, char** argv) {
   addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
   computeCommand->footer(globalNote);
 
-  RenderOptions render;
+  ComputeOptions render;
   CLI::App* renderCommand =
       app.add_subcommand("render", "Compute a LIC volume and render it to a PNG image");
-  addComputeOptions(*renderCommand, render.compute, "lic3d.png");
-  addViewOptions(*renderCommand, render);
+  addComputeOptions(*renderCommand, render, "lic3d.png");
+  addViewOptions(*renderCommand, render.inputs);
   renderCommand->footer(globalNote);
 
   BenchOptions bench;
   CLI::App* benchCommand = app.add_subcommand(
       "bench", "Time the LIC pass and frames with GPU timestamps (median of repeats)");
-  addFieldOptions(*benchCommand, bench.input);
-  addPrecisionOption(*benchCommand, bench.precision);
+  benchCommand->add_option("--field", bench.field, "Analytic field to time")->capture_default_str();
+  benchCommand->add_option("--seed", bench.seed, "Seed of the white noise")->capture_default_str();
+  addEnumOption(*benchCommand, "--field-precision", bench.precision,
+                "Field texture precision: auto (float on CPU drivers, half on GPUs)");
   benchCommand->add_option("--sizes", bench.sizes, "Volume sizes N (N^3) of the LIC table")
       ->capture_default_str();
   benchCommand->add_option("--lengths", bench.lengths, "LIC lengths L of the LIC table")
@@ -78,6 +129,9 @@ int main(int argc, char** argv) {
   benchCommand->footer(globalNote);
 
   try {
+    // A session file is read before the flags, which then override it.
+    if (auto r = preloadSession(argc, argv, compute.inputs); !r) return reportError(r.error());
+    if (auto r = preloadSession(argc, argv, render.inputs); !r) return reportError(r.error());
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -93,9 +147,12 @@ int main(int argc, char** argv) {
 
   try {
     if (devices->parsed()) return runDevices(global);
-    if (computeCommand->parsed()) return runCompute(global, compute);
+    if (computeCommand->parsed()) {
+      if (auto r = finishSessionOptions(compute.inputs, false); !r) return reportError(r.error());
+      return runCompute(global, compute);
+    }
     if (renderCommand->parsed()) {
-      if (auto r = finishViewOptions(render); !r) return reportError(r.error());
+      if (auto r = finishSessionOptions(render.inputs, true); !r) return reportError(r.error());
       return runRender(global, render);
     }
     if (benchCommand->parsed()) return runBench(global, bench);

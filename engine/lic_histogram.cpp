@@ -54,12 +54,15 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                   MemoryUse::DeviceLocal, "histogram counts"));
-  LIC3D_TRY_ASSIGN(pass.readback_, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                  MemoryUse::Readback, "histogram readback"));
+  LIC3D_TRY_ASSIGN(pass.readback_,
+                   Buffer::create(context, bytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  MemoryUse::Readback, "histogram readback"));
   return pass;
 }
 
-void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dims) {
+void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dims,
+                              std::uint32_t slot) {
+  LIC3D_ASSERT(slot < kSlots);
   // The previous histogram's shader and copy must be done with the buffers before they are reused.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -87,15 +90,17 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
 
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-  const VkBufferCopy region{0, 0, counts_.size()};
+  const VkBufferCopy region{0, slot * counts_.size(), counts_.size()};
   vkCmdCopyBuffer(cmd, counts_.handle(), readback_.handle(), 1, &region);
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
-std::vector<std::uint32_t> LicHistogramPass::counts() const {
+std::vector<std::uint32_t> LicHistogramPass::counts(std::uint32_t slot) const {
+  LIC3D_ASSERT(slot < kSlots);
   std::vector<std::uint32_t> out(gpu::kHistogramBins);
-  std::memcpy(out.data(), readback_.mapped(), out.size() * sizeof(std::uint32_t));
+  std::memcpy(out.data(), static_cast<const std::byte*>(readback_.mapped()) + slot * counts_.size(),
+              out.size() * sizeof(std::uint32_t));
   return out;
 }
 

@@ -28,14 +28,17 @@ IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts
 
 class LicHistogramPass {
  public:
+  // Read-back slots: a histogram stays in its slot until the CPU has read it.
+  static constexpr std::uint32_t kSlots = 4;
+
   // `context` must outlive the pass.
   static Result<LicHistogramPass> create(const Context& context);
 
   // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
-  // visible to compute shaders) and its copy to host-visible memory.
-  void record(VkCommandBuffer cmd, const Image& volume, Dims dims);
-  // The counts of the last recorded histogram, once its command buffer completed.
-  std::vector<std::uint32_t> counts() const;
+  // visible to compute shaders) and its copy to host-visible memory in `slot`.
+  void record(VkCommandBuffer cmd, const Image& volume, Dims dims, std::uint32_t slot);
+  // The counts recorded into `slot`, once that command buffer completed.
+  std::vector<std::uint32_t> counts(std::uint32_t slot) const;
 
  private:
   const Context* context_ = nullptr;

@@ -1,6 +1,7 @@
 #include "lic_renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -25,6 +26,7 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   LicRenderer renderer;
   renderer.context_ = &context;
   renderer.precision_ = resolvePrecision(context, options.fieldPrecision);
+  renderer.doubleBuffered_ = options.doubleBuffered;
   LIC3D_TRY(renderer.setFramePrecision(options.framePrecision));
   LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
@@ -43,7 +45,7 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
                       VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT |
                           VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
     return unsupportedError(context.deviceInfo().name +
-                            " cannot use R16_UNORM as a filtered storage image");
+                            " cannot use RG16_UNORM as a filtered storage image");
   return renderer;
 }
 
@@ -57,40 +59,49 @@ Result<void> LicRenderer::setFramePrecision(FramePrecision precision) {
 }
 
 LicRenderer::~LicRenderer() {
-  // Resources may still be in use by the last submission only if it failed; be safe.
+  // Frames recorded by the caller may still use the volumes.
   if (context_) vkDeviceWaitIdle(context_->device());
 }
 
 Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume& noise) {
-  licParams_.reset();
-  if (field.dims != field_.dims) maskParams_.reset();  // the mask lives on the field's grid
+  // In-flight frames may still read the old texture and volumes.
+  vkDeviceWaitIdle(context_->device());
+  job_.reset();
+  finished_.reset();
+  shownParams_.reset();
+  if (field.dims != field_.dims) {
+    maskParams_.reset();  // the mask and the volumes live on the field's grid
+    mask_ = Image();
+    volumes_[0] = Image();
+    volumes_[1] = Image();
+  }
   field_ = FieldTexture();  // free the old texture before allocating the new one
   LIC3D_TRY_ASSIGN(field_, uploadLicInputs(*context_, field, noise, precision_));
   return {};
 }
 
-Result<void> LicRenderer::ensureLicVolume() {
+Result<void> LicRenderer::ensureVolumes() {
   if (!field_.image) return inputError("no vector field and noise were set");
-  if (licVolume_) {
-    const VkExtent3D e = licVolume_.extent();
-    if (Dims(e.width, e.height, e.depth) == field_.dims) return {};
+  for (int i = 0; i < (doubleBuffered_ ? 2 : 1); ++i) {
+    if (volumes_[i]) continue;
+    ImageDesc desc;
+    desc.format = kLicVolumeFormat;
+    desc.extent = {static_cast<std::uint32_t>(field_.dims.x),
+                   static_cast<std::uint32_t>(field_.dims.y),
+                   static_cast<std::uint32_t>(field_.dims.z)};
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.name = i == 0 ? "lic volume A" : "lic volume B";
+    LIC3D_TRY_ASSIGN(volumes_[i], Image::create(*context_, desc));
   }
-  ImageDesc desc;
-  desc.format = kLicVolumeFormat;
-  desc.extent = {static_cast<std::uint32_t>(field_.dims.x), static_cast<std::uint32_t>(field_.dims.y),
-                 static_cast<std::uint32_t>(field_.dims.z)};
-  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = "lic volume";
-  licVolume_ = Image();  // free the old volume before allocating the new one
-  LIC3D_TRY_ASSIGN(licVolume_, Image::create(*context_, desc));
   return {};
 }
 
 Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicParams& params) {
   if (!field_.image || volume.dims != field_.dims)
     return inputError("the LIC volume's grid does not match the field's");
-  LIC3D_TRY(ensureLicVolume());
+  LIC3D_TRY(ensureVolumes());
+  job_.reset();
   // RG16: the value, and whether the voxel is drawn.
   std::vector<std::uint16_t> texels(2 * volume.values.size());
   for (std::size_t i = 0; i < volume.values.size(); ++i) {
@@ -98,30 +109,14 @@ Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicPara
         std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
     texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
   }
-  LIC3D_TRY(uploadImage(*context_, licVolume_, texels.data(), texels.size() * sizeof(std::uint16_t)));
+  vkQueueWaitIdle(context_->queue());  // frames may still read the shown volume
+  LIC3D_TRY(uploadImage(*context_, frontVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
   LIC3D_TRY(submitAndWait(
-      *context_, [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, licVolume_, field_.dims); },
+      *context_,
+      [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, frontVolume(), field_.dims, 0); },
       "lic histogram"));
-  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
-  licParams_ = params;
-  return {};
-}
-
-Result<void> LicRenderer::ensureMask(const SparsityParams& sparsity) {
-  if (sparsity.distribution == SparsityDistribution::None) return {};
-  if (maskParams_ && *maskParams_ == sparsity) return {};
-  LIC3D_TRY_ASSIGN(const SparsityMask mask, makeSparsityMask(sparsity, field_.dims));
-  ImageDesc desc;
-  desc.format = kSparsityMaskFormat;
-  desc.extent = licVolume_.extent();
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = "sparsity mask";
-  maskParams_.reset();
-  mask_ = Image();
-  LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
-  LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
-  maskParams_ = sparsity;
-  ++maskBuilds_;
+  collectStatistics(0);
+  shownParams_ = params;
   return {};
 }
 
@@ -138,57 +133,186 @@ VolumeFacts LicRenderer::volumeFacts() const {
   facts.intensityMean = statistics_.mean;
   facts.intensityDeviation = statistics_.deviation;
   facts.sparsity =
-      licParams_ && licParams_->sparsity.distribution != SparsityDistribution::None;
+      shownParams_ && shownParams_->sparsity.distribution != SparsityDistribution::None;
   return facts;
 }
 
-void LicRenderer::recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
-                                bool first, bool last, Result<void>& status) {
-  if (first) {
+std::uint64_t LicRenderer::volumeBytes() const {
+  std::uint64_t bytes = field_.image ? field_.image.memorySize() : 0;
+  for (const Image& v : volumes_) bytes += v ? v.memorySize() : 0;
+  return bytes + (mask_ ? mask_.memorySize() : 0);
+}
+
+LicStatus LicRenderer::licStatus() const {
+  LicStatus status;
+  if (!job_) {
+    status.pending = finished_.has_value();
+    return status;
+  }
+  status.pending = true;
+  status.fraction = field_.dims.z > 0 ? static_cast<double>(job_->nextZ) / field_.dims.z : 0.0;
+  status.waitingForMask = job_->needsMask;
+  return status;
+}
+
+// ---- Jobs --------------------------------------------------------------------------------------
+
+Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
+  LIC3D_TRY(validate(params));
+  if (!field_.image) return inputError("no vector field and noise were set");
+  LIC3D_TRY(validate(params.sparsity, field_.dims));
+  if (!force && job_ && job_->params == params) return {};
+  Job job;
+  job.params = params;
+  job.needsMask = params.sparsity.distribution != SparsityDistribution::None &&
+                  !(maskParams_ && *maskParams_ == params.sparsity);
+  if (job.needsMask) {
+    // Some distributions take seconds (best candidate): never on the thread that draws.
+    job.mask = std::async(std::launch::async, makeSparsityMask, params.sparsity, field_.dims).share();
+  }
+  job_ = std::move(job);
+  return {};
+}
+
+Result<void> LicRenderer::requestLic(const LicParams& params) {
+  const std::optional<LicParams>& latest = finished_ ? finished_->params : shownParams_;
+  if (!job_ && latest && *latest == params) return {};
+  return startJob(params, false);
+}
+
+Result<void> LicRenderer::uploadMask(const SparsityMask& mask) {
+  ImageDesc desc;
+  desc.format = kSparsityMaskFormat;
+  desc.extent = {static_cast<std::uint32_t>(field_.dims.x), static_cast<std::uint32_t>(field_.dims.y),
+                 static_cast<std::uint32_t>(field_.dims.z)};
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "sparsity mask";
+  // Slabs of an earlier job recorded into frames still in flight may read the old mask.
+  vkQueueWaitIdle(context_->queue());
+  maskParams_.reset();
+  mask_ = Image();
+  LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
+  LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
+  ++maskBuilds_;
+  return {};
+}
+
+// Whether the job's mask is on the GPU; uploads it when the worker has finished it.
+Result<bool> LicRenderer::prepareMask() {
+  if (!job_->needsMask) return true;
+  if (job_->mask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+  const Result<SparsityMask> mask = job_->mask.get();
+  if (!mask) {
+    Error error = mask.error();
+    job_.reset();
+    return error;
+  }
+  LIC3D_TRY(uploadMask(*mask));
+  maskParams_ = job_->params.sparsity;
+  job_->needsMask = false;
+  return true;
+}
+
+Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, std::uint32_t slot) {
+  LicWork work;
+  // A finished volume waits for collectStatistics; the next job would overwrite it.
+  if (!job_ || finished_) return work;
+  LIC3D_TRY_ASSIGN(const bool maskReady, prepareMask());
+  if (!maskReady) {
+    work.waitingForMask = true;
+    return work;
+  }
+  LIC3D_TRY(ensureVolumes());
+  const Dims dims = field_.dims;
+  Image& back = backVolume();
+  const int zBegin = job_->nextZ;
+  const int zEnd = std::min(dims.z, zBegin + std::max(1, maxSlices));
+  if (zBegin == 0) {
     // The old contents are discarded; earlier frames and histograms must be done reading.
-    imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+    if (!doubleBuffered_) shownParams_.reset();
+    imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                  kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   } else {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
-  status = licPass_.record(cmd, field_, maskFor(params), licVolume_, params, zBegin, zEnd);
-  if (!status) return;
-  if (last) {
-    imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
-                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    histogramPass_.record(cmd, licVolume_, field_.dims);
-  }
+  LIC3D_TRY(licPass_.record(cmd, field_, maskFor(job_->params), back, job_->params, zBegin, zEnd));
+  work.slicesRecorded = zEnd - zBegin;
+  job_->nextZ = zEnd;
+  if (zEnd < dims.z) return work;
+
+  imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+               kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  histogramPass_.record(cmd, back, dims, slot);
+  // Shown once its statistics are read back: a frame never draws a volume with another's
+  // contrast stretch.
+  finished_ = Finished{job_->params, slot};
+  job_.reset();
+  ++licDispatches_;
+  work.finished = true;
+  return work;
+}
+
+void LicRenderer::collectStatistics(std::uint32_t slot) {
+  if (!finished_ || finished_->slot != slot) return;
+  statistics_ = lic3d::intensityStatistics(histogramPass_.counts(slot));
+  if (doubleBuffered_) front_ = 1 - front_;
+  shownParams_ = finished_->params;
+  finished_.reset();
 }
 
 Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
   LIC3D_TRY(validate(params));
-  if (licParams_ && *licParams_ == params) return false;
-  LIC3D_TRY(ensureLicVolume());
-  licParams_.reset();
-  LIC3D_TRY(ensureMask(params.sparsity));
-
-  const Dims dims = field_.dims;
-  const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
-  for (int z = 0; z < dims.z; z += slab) {
-    const int zEnd = std::min(dims.z, z + slab);
-    Result<void> status;
+  if (!job_ && shownParams_ && *shownParams_ == params) return false;
+  LIC3D_TRY(startJob(params, false));
+  const int slab = progress ? (field_.dims.z + kProgressSlabs - 1) / kProgressSlabs : field_.dims.z;
+  while (job_) {
+    if (job_->needsMask) job_->mask.wait();
+    Result<LicWork> work = LicWork{};
     LIC3D_TRY(submitAndWait(
-        *context_,
-        [&](VkCommandBuffer cmd) {
-          recordLicSlab(cmd, params, z, zEnd, z == 0, zEnd == dims.z, status);
-        },
-        "lic compute"));
-    LIC3D_TRY(std::move(status));
-    if (progress) progress(static_cast<double>(zEnd) / dims.z);
+        *context_, [&](VkCommandBuffer cmd) { work = recordLicWork(cmd, slab, 0); }, "lic compute"));
+    LIC3D_TRY(work);
+    if (work->finished) collectStatistics(0);
+    if (progress && work->slicesRecorded > 0)
+      progress(job_ ? static_cast<double>(job_->nextZ) / field_.dims.z : 1.0);
   }
-  ++licDispatches_;
-  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
-  licParams_ = params;
   return true;
+}
+
+// ---- Drawing -----------------------------------------------------------------------------------
+
+Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkExtent2D extent,
+                                     const ViewParams& view, std::uint32_t slotBase) {
+  if (!hasVolume()) return {};
+  LIC3D_TRY(validate(view));
+  const VolumeFacts facts = volumeFacts();
+  const bool sideBySide = view.stereo == StereoMode::SideBySide;
+  const VkExtent2D eyeExtent{sideBySide ? extent.width / 2 : extent.width, extent.height};
+  const float aspect = static_cast<float>(eyeExtent.width) / static_cast<float>(eyeExtent.height);
+  struct Draw {
+    Eye eye;
+    VkRect2D viewport;
+  };
+  std::vector<Draw> draws;
+  switch (view.stereo) {
+    case StereoMode::None: draws = {{Eye::Mono, {{0, 0}, eyeExtent}}}; break;
+    case StereoMode::Anaglyph:
+      draws = {{Eye::Left, {{0, 0}, eyeExtent}}, {Eye::Right, {{0, 0}, eyeExtent}}};
+      break;
+    case StereoMode::SideBySide:
+      draws = {{Eye::Left, {{0, 0}, eyeExtent}},
+               {Eye::Right, {{static_cast<std::int32_t>(eyeExtent.width), 0}, eyeExtent}}};
+      break;
+  }
+  for (std::uint32_t i = 0; i < draws.size(); ++i) {
+    const SliceFrame frame = makeSliceFrame(view, facts, draws[i].eye, aspect);
+    LIC3D_TRY(slicePass_.record(cmd, format, draws[i].viewport, frontVolume(), field_, frame,
+                                slotBase + i));
+  }
+  return {};
 }
 
 Result<void> LicRenderer::ensureTarget(int width, int height) {
@@ -219,7 +343,8 @@ Result<void> LicRenderer::ensureTarget(int width, int height) {
   return {};
 }
 
-void LicRenderer::recordFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status) {
+void LicRenderer::recordOffscreenFrame(VkCommandBuffer cmd, const ViewParams& view,
+                                       Result<void>& status) {
   // The previous frame's copy must finish reading before the target is cleared again.
   imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -238,31 +363,7 @@ void LicRenderer::recordFrame(VkCommandBuffer cmd, const ViewParams& view, Resul
   rendering.colorAttachmentCount = 1;
   rendering.pColorAttachments = &color;
   vkCmdBeginRendering(cmd, &rendering);
-
-  const VolumeFacts facts = volumeFacts();
-  const VkExtent2D eyeExtent{static_cast<std::uint32_t>(view.width),
-                             static_cast<std::uint32_t>(view.height)};
-  const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
-  struct Draw {
-    Eye eye;
-    VkRect2D viewport;
-  };
-  std::vector<Draw> draws;
-  switch (view.stereo) {
-    case StereoMode::None: draws = {{Eye::Mono, {{0, 0}, eyeExtent}}}; break;
-    case StereoMode::Anaglyph:
-      draws = {{Eye::Left, {{0, 0}, eyeExtent}}, {Eye::Right, {{0, 0}, eyeExtent}}};
-      break;
-    case StereoMode::SideBySide:
-      draws = {{Eye::Left, {{0, 0}, eyeExtent}},
-               {Eye::Right, {{static_cast<std::int32_t>(view.width), 0}, eyeExtent}}};
-      break;
-  }
-  for (std::uint32_t i = 0; i < draws.size() && status.ok(); ++i) {
-    const SliceFrame frame = makeSliceFrame(view, facts, draws[i].eye, aspect);
-    status = slicePass_.record(cmd, target_.format(), draws[i].viewport, licVolume_, field_, frame,
-                               i);
-  }
+  status = recordDraw(cmd, target_.format(), extent, view, 0);
   vkCmdEndRendering(cmd);
 }
 
@@ -275,7 +376,7 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   LIC3D_TRY(submitAndWait(
       *context_,
       [&](VkCommandBuffer cmd) {
-        recordFrame(cmd, view, status);
+        recordOffscreenFrame(cmd, view, status);
         imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -315,14 +416,14 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
 }
 
 Result<ScalarVolume> LicRenderer::readLicVolume() const {
-  if (!licParams_) return inputError("no LIC volume has been computed");
+  if (!shownParams_) return inputError("no LIC volume has been computed");
   LIC3D_TRY_ASSIGN(std::vector<std::byte> bytes,
-                   readImage(*context_, licVolume_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
+                   readImage(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
   ScalarVolume volume;
   volume.dims = field_.dims;
   volume.geometry = field_.geometry;
   volume.values.resize(voxelCount(field_.dims));
-  const bool sparse = licParams_->sparsity.distribution != SparsityDistribution::None;
+  const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
   if (sparse) volume.drawn.resize(volume.values.size());
   for (std::size_t i = 0; i < volume.values.size(); ++i) {
     std::uint16_t texel[2];
@@ -334,41 +435,28 @@ Result<ScalarVolume> LicRenderer::readLicVolume() const {
 }
 
 Result<double> LicRenderer::timeLicDispatch(const LicParams& params) {
-  LIC3D_TRY(validate(params));
   if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
-  LIC3D_TRY(ensureLicVolume());
-  licParams_.reset();
-  LIC3D_TRY(ensureMask(params.sparsity));
-  Result<void> status;
+  LIC3D_TRY(startJob(params, true));
+  if (job_->needsMask) job_->mask.wait();
+  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool maskReady, prepareMask());
+  Result<LicWork> work = LicWork{};
   LIC3D_TRY(submitAndWait(
       *context_,
       [&](VkCommandBuffer cmd) {
         timer_.reset(cmd, 0);
-        imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         timer_.begin(cmd, 0);
-        status = licPass_.record(cmd, field_, maskFor(params), licVolume_, params, 0,
-                                 field_.dims.z);
+        work = recordLicWork(cmd, field_.dims.z, 0);
         timer_.end(cmd, 0);
-        imageBarrier(cmd, licVolume_.handle(), VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-        histogramPass_.record(cmd, licVolume_, field_.dims);
       },
       "lic timing"));
-  LIC3D_TRY(std::move(status));
-  ++licDispatches_;
-  statistics_ = lic3d::intensityStatistics(histogramPass_.counts());
-  licParams_ = params;
+  LIC3D_TRY(work);
+  collectStatistics(0);
   return timer_.milliseconds(0);
 }
 
 Result<double> LicRenderer::timeFrame(const ViewParams& view) {
   if (!timer_.valid()) return unsupportedError("the device has no timestamp queries");
-  if (!licParams_) return inputError("no LIC volume has been computed");
+  if (!hasVolume()) return inputError("no LIC volume has been computed");
   LIC3D_TRY(validate(view));
   LIC3D_TRY(ensureTarget(view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width,
                          view.height));
@@ -378,7 +466,7 @@ Result<double> LicRenderer::timeFrame(const ViewParams& view) {
       [&](VkCommandBuffer cmd) {
         timer_.reset(cmd, 1);
         timer_.begin(cmd, 1);
-        recordFrame(cmd, view, status);
+        recordOffscreenFrame(cmd, view, status);
         timer_.end(cmd, 1);
         // Leave the target as the next frame's barrier expects it (after a copy).
         imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

@@ -1,8 +1,16 @@
 #pragma once
 // Ties the passes together for one field and one noise volume: keeps the LIC volume on the GPU,
-// recomputes it only when LicParams, the field or the noise change, and draws it offscreen.
+// recomputes it only when LicParams, the field or the noise change, and draws it.
+//
+// Two ways to drive it:
+// - blocking (CLI, tests, benchmark): updateLic() and render() record, submit and wait;
+// - frame-paced (the desktop app): requestLic() names the wanted volume, recordLicWork() adds a
+//   slab of the computation to each frame's command buffer, recordDraw() draws the last finished
+//   volume. With doubleBuffered, a recompute spread over many frames never shows a half-written
+//   volume, and a new request simply replaces the pending one (slider drags never queue up).
 
 #include <cstdint>
+#include <future>
 #include <optional>
 
 #include "error.h"
@@ -14,6 +22,7 @@
 #include "lic_reference.h"
 #include "rgba_image.h"
 #include "slice_pass.h"
+#include "sparsity.h"
 #include "view_params.h"
 #include "volume.h"
 #include "volume_textures.h"
@@ -28,7 +37,21 @@ enum class FramePrecision { Float16, Unorm8 };
 struct RendererOptions {
   FieldPrecision fieldPrecision = FieldPrecision::Auto;
   FramePrecision framePrecision = FramePrecision::Float16;
-  bool runtimeModes = false;  // benchmark builds only: see SlicePass::create
+  bool runtimeModes = false;   // benchmark builds only: see SlicePass::create
+  bool doubleBuffered = false;  // a second LIC volume for frame-paced recomputes
+};
+
+// What one recordLicWork() call did.
+struct LicWork {
+  int slicesRecorded = 0;
+  bool finished = false;       // the job's last slice was recorded: the new volume is shown
+  bool waitingForMask = false;  // the sparsity mask is still being made on a worker thread
+};
+
+struct LicStatus {
+  bool pending = false;    // a requested volume is not finished yet
+  double fraction = 1.0;   // of the pending job's slices recorded
+  bool waitingForMask = false;
 };
 
 class LicRenderer {
@@ -40,10 +63,12 @@ class LicRenderer {
   ~LicRenderer();
 
   // The field and the noise that LIC smears along it; they share one texture, so they are set
-  // together (the noise must be on the field's grid).
+  // together (the noise must be on the field's grid). Waits for the device to be idle.
   Result<void> setInputs(const VectorField& field, const NoiseVolume& noise);
   // Uses a LIC volume computed elsewhere (the CPU reference) as the result for `params`.
   Result<void> setLicVolume(const ScalarVolume& volume, const LicParams& params);
+
+  // ---- Blocking use --------------------------------------------------------------------------
 
   // Runs the LIC pass unless the volume already matches `params`, the field and the noise.
   // With a progress callback the work is split into slabs along z, each submitted and waited
@@ -56,9 +81,6 @@ class LicRenderer {
   // colour legend is drawn into it.
   Result<RgbaImage> render(const LicParams& params, const ViewParams& view);
 
-  // What frames are drawn from, for the current LIC volume.
-  VolumeFacts volumeFacts() const;
-
   Result<ScalarVolume> readLicVolume() const;
 
   // Benchmark helpers: GPU milliseconds from timestamp queries around one LIC dispatch over the
@@ -66,7 +88,33 @@ class LicRenderer {
   Result<double> timeLicDispatch(const LicParams& params);
   Result<double> timeFrame(const ViewParams& view);
 
-  // The colour buffer's format for the next frames (see FramePrecision).
+  // ---- Frame-paced use -------------------------------------------------------------------------
+
+  // Asks for the volume of `params`. Nothing changes if the shown volume or the pending job
+  // already has them; otherwise the pending job is dropped and a new one starts. A new sparsity
+  // mask is made on a worker thread.
+  Result<void> requestLic(const LicParams& params);
+  // Records up to `maxSlices` z slices of the pending job. When it records the last one, the
+  // volume's histogram goes to `slot` (< LicHistogramPass::kSlots): call collectStatistics(slot)
+  // once `cmd` has completed. Until then no further work is recorded.
+  Result<LicWork> recordLicWork(VkCommandBuffer cmd, int maxSlices, std::uint32_t slot);
+  // Reads the histogram of `slot`; if it belongs to the finished volume, that volume and its
+  // statistics are what recordDraw() draws from then on.
+  void collectStatistics(std::uint32_t slot);
+  // Records the shown volume's slices into an open dynamic rendering of one `format` attachment
+  // covering `extent` (both halves for side-by-side stereo). Uniform slots `slotBase` and
+  // slotBase + 1 must not be in use by a frame still in flight.
+  Result<void> recordDraw(VkCommandBuffer cmd, VkFormat format, VkExtent2D extent,
+                          const ViewParams& view, std::uint32_t slotBase);
+  bool hasVolume() const { return shownParams_.has_value(); }
+  LicStatus licStatus() const;
+
+  // ---- State -------------------------------------------------------------------------------------
+
+  // What frames are drawn from, for the shown LIC volume.
+  VolumeFacts volumeFacts() const;
+
+  // The colour buffer's format for the next offscreen frames (see FramePrecision).
   Result<void> setFramePrecision(FramePrecision precision);
 
   std::uint64_t licDispatchCount() const { return licDispatches_; }
@@ -76,18 +124,31 @@ class LicRenderer {
   const GridGeometry& geometry() const { return field_.geometry; }
   double fieldMaxMagnitude() const { return field_.maxMagnitude; }
   FieldPrecision fieldPrecision() const { return field_.precision; }
+  const std::optional<LicParams>& shownParams() const { return shownParams_; }
+  // Bytes of device memory the renderer's volumes hold (field, LIC volumes, mask).
+  std::uint64_t volumeBytes() const;
   const LicPass& licPass() const { return licPass_; }
   const SlicePass& slicePass() const { return slicePass_; }
 
  private:
+  // The computation of one LIC volume, possibly spread over many command buffers.
+  struct Job {
+    LicParams params;
+    int nextZ = 0;
+    bool needsMask = false;
+    std::shared_future<Result<SparsityMask>> mask;
+  };
+
   LicRenderer() = default;
-  Result<void> ensureLicVolume();
-  Result<void> ensureMask(const SparsityParams& sparsity);
+  Result<void> ensureVolumes();
+  Result<void> startJob(const LicParams& params, bool force);
+  Result<bool> prepareMask();
+  Result<void> uploadMask(const SparsityMask& mask);
   Result<void> ensureTarget(int width, int height);
-  void recordLicSlab(VkCommandBuffer cmd, const LicParams& params, int zBegin, int zEnd,
-                     bool first, bool last, Result<void>& status);
-  void recordFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status);
+  void recordOffscreenFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status);
   const Image& maskFor(const LicParams& params) const;
+  Image& backVolume() { return volumes_[doubleBuffered_ ? 1 - front_ : front_]; }
+  const Image& frontVolume() const { return volumes_[front_]; }
 
   const Context* context_ = nullptr;
   LicPass licPass_;
@@ -96,13 +157,21 @@ class LicRenderer {
   GpuTimer timer_;  // region 0: LIC dispatch, region 1: frame
   FieldPrecision precision_ = FieldPrecision::Auto;
   VkFormat frameFormat_ = VK_FORMAT_R16G16B16A16_SFLOAT;
+  bool doubleBuffered_ = false;
   FieldTexture field_;
-  Image licVolume_;
-  std::optional<LicParams> licParams_;  // what licVolume_ holds; empty when stale
+  Image volumes_[2];  // the shown one is volumes_[front_]; the other is written by jobs
+  int front_ = 0;
+  std::optional<LicParams> shownParams_;  // what the shown volume holds; empty when none
+  std::optional<Job> job_;
+  struct Finished {
+    LicParams params;
+    std::uint32_t slot = 0;  // of the histogram to read
+  };
+  std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
   IntensityStatistics statistics_;
   std::uint64_t licDispatches_ = 0;
-  Image mask_;           // the sparsity mask of maskParams_ on the field's grid
-  Image emptyMask_;      // 1x1x1, bound when sparsity is off
+  Image mask_;       // the sparsity mask of maskParams_ on the field's grid
+  Image emptyMask_;  // 1x1x1, bound when sparsity is off
   std::optional<SparsityParams> maskParams_;
   std::uint64_t maskBuilds_ = 0;
   Image target_;

@@ -51,15 +51,19 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
   });
 }
 
-// One queue family that does graphics and compute: lic3d records both passes on one queue.
-std::uint32_t findQueueFamily(VkPhysicalDevice device) {
+// One queue family that does graphics and compute (and presents to `surface`, if any): lic3d
+// records every pass on one queue.
+std::uint32_t findQueueFamily(VkPhysicalDevice device, VkSurfaceKHR surface = VK_NULL_HANDLE) {
   std::uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
   for (std::uint32_t i = 0; i < count; ++i) {
     const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    if ((families[i].queueFlags & needed) == needed) return i;
+    if ((families[i].queueFlags & needed) != needed) continue;
+    VkBool32 presents = VK_TRUE;
+    if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface, &presents);
+    if (presents) return i;
   }
   return UINT32_MAX;
 }
@@ -81,7 +85,8 @@ std::string versionString(std::uint32_t v) {
 
 // Checks everything lic3d needs from a device; the reason names what is missing.
 DeviceInfo describeDevice(VkPhysicalDevice device, int index,
-                          const std::vector<const char*>& extraExtensions) {
+                          const std::vector<const char*>& extraExtensions,
+                          VkSurfaceKHR surface = VK_NULL_HANDLE) {
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
   vkGetPhysicalDeviceProperties2(device, &properties);
@@ -111,7 +116,9 @@ DeviceInfo describeDevice(VkPhysicalDevice device, int index,
     if (!features.features.shaderStorageImageExtendedFormats)
       missing.push_back("shaderStorageImageExtendedFormats");
   }
-  if (findQueueFamily(device) == UINT32_MAX) missing.push_back("a graphics+compute queue");
+  if (findQueueFamily(device, surface) == UINT32_MAX)
+    missing.push_back(surface ? "a graphics+compute queue that presents to the window"
+                              : "a graphics+compute queue");
   if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
     missing.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
   for (const char* extension : extraExtensions)
@@ -257,6 +264,7 @@ Result<std::vector<DeviceInfo>> listDevices() {
 struct Context::State {
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
   VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   VkQueue queue = VK_NULL_HANDLE;
@@ -273,6 +281,7 @@ struct Context::State {
 
   ~State() {
     if (device) vkDestroyDevice(device, nullptr);
+    if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
     if (messenger) {
       auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
           vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -332,14 +341,18 @@ Result<Context> Context::create(const ContextOptions& options) {
                                   "vkCreateDebugUtilsMessengerEXT"));
   }
 
+  if (options.createSurface) {
+    LIC3D_TRY_ASSIGN(state->surface, options.createSurface(state->instance));
+  }
   const std::vector<VkPhysicalDevice> physical = physicalDevices(state->instance);
   std::vector<DeviceInfo> infos;
   for (std::size_t i = 0; i < physical.size(); ++i)
-    infos.push_back(describeDevice(physical[i], static_cast<int>(i), options.deviceExtensions));
+    infos.push_back(describeDevice(physical[i], static_cast<int>(i), options.deviceExtensions,
+                                   state->surface));
   LIC3D_TRY_ASSIGN(const int chosen, chooseDevice(infos, options.device));
   state->physicalDevice = physical[chosen];
   state->info = infos[chosen];
-  state->queueFamily = findQueueFamily(state->physicalDevice);
+  state->queueFamily = findQueueFamily(state->physicalDevice, state->surface);
   vkGetPhysicalDeviceProperties(state->physicalDevice, &state->properties);
   vkGetPhysicalDeviceMemoryProperties(state->physicalDevice, &state->memory);
   {
@@ -392,6 +405,7 @@ VkPhysicalDevice Context::physicalDevice() const { return state_->physicalDevice
 VkDevice Context::device() const { return state_->device; }
 VkQueue Context::queue() const { return state_->queue; }
 std::uint32_t Context::queueFamily() const { return state_->queueFamily; }
+VkSurfaceKHR Context::surface() const { return state_->surface; }
 const DeviceInfo& Context::deviceInfo() const { return state_->info; }
 const VkPhysicalDeviceProperties& Context::properties() const { return state_->properties; }
 bool Context::supportsTimestamps() const { return state_->timestamps; }

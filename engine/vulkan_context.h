@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct ContextOptions {
   std::string device;
   std::vector<const char*> instanceExtensions;  // e.g. what GLFW needs for a surface
   std::vector<const char*> deviceExtensions;    // e.g. VK_KHR_swapchain
+  // For a window: makes the surface once the instance exists. The chosen queue must then be able
+  // to present to it, and the context destroys it with the instance.
+  std::function<Result<VkSurfaceKHR>(VkInstance)> createSurface;
 };
 
 struct DeviceInfo {
@@ -55,6 +59,7 @@ class Context {
   VkDevice device() const;
   VkQueue queue() const;
   std::uint32_t queueFamily() const;
+  VkSurfaceKHR surface() const;  // VK_NULL_HANDLE without createSurface
   const DeviceInfo& deviceInfo() const;
   const VkPhysicalDeviceProperties& properties() const;
   bool supportsTimestamps() const;

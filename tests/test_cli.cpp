@@ -15,6 +15,7 @@
 #include "lic_reference.h"
 #include "nrrd.h"
 #include "noise.h"
+#include "png_read.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -293,6 +294,45 @@ TEST_F(CliTest, RenderWithNoOptionsWritesLic3dPng) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("lic3d.png")), std::make_pair(1024, 1024));
   EXPECT_NE(r.output.find("tornado"), std::string::npos) << r.output;
+}
+
+// A session file written by hand (as the viewer would save it) makes the same pixels as the
+// same parameters given as flags; flags after --session override it.
+TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
+  writeBytes("s.json", R"({
+  "lic3d_session": 1,
+  "field": {"source": "abc", "grid": [12, 10, 14]},
+  "noise": {"seed": 5},
+  "lic": {"length": 6, "step": 0.75, "bias": 2, "kernel": "hann",
+          "sparsity": {"distribution": "halton", "points": 40, "seed": 3}},
+  "view": {"width": 48, "height": 40, "camera": {"azimuth": 70, "elevation": -10},
+           "alpha": 0.5, "color": "magnitude", "colormap": "viridis",
+           "clip_min": [0.1, 0, 0], "fog": true, "background": [0.2, 0.1, 0]}
+})");
+  const std::string flags =
+      "--field abc --grid 12,10,14 --seed 5 --length 6 --step 0.75 --bias 2 --kernel hann "
+      "--sparsity halton --sparsity-points 40 --sparsity-seed 3 --width 48 --height 40 "
+      "--azimuth 70 --elevation -10 --alpha 0.5 --color magnitude --colormap viridis "
+      "--clip 0.1,1,0,1,0,1 --fog 0,1 --background 0.2,0.1,0";
+  ASSERT_EQ(run("render -q --session s.json -o from_session.png").status, 0);
+  ASSERT_EQ(run("render -q " + flags + " -o from_flags.png").status, 0);
+  const test::RgbaPixels a = test::readRgbaPng(path("from_session.png"));
+  const test::RgbaPixels b = test::readRgbaPng(path("from_flags.png"));
+  ASSERT_EQ(a.width, 48);
+  ASSERT_EQ(a.height, 40);
+  EXPECT_TRUE(a.rgba == b.rgba) << "the session and the flags make different images";
+
+  // A flag after the session overrides it: another azimuth is another picture.
+  ASSERT_EQ(run("render -q --session s.json --azimuth 10 -o override.png").status, 0);
+  EXPECT_FALSE(test::readRgbaPng(path("override.png")).rgba == a.rgba);
+
+  // A session with a misspelt key is refused, naming the file and the key.
+  writeBytes("bad.json", R"({"lic": {"lenght": 6}})");
+  const CommandRun bad = run("render -q --session bad.json -o bad.png");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("bad.json"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("lenght"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "field_io.h"
 #include "gpu_test_support.h"
 #include "lic_reference.h"
+#include "gpu_submit.h"
 #include "lic_renderer.h"
 #include "noise.h"
 #include "test_support.h"
@@ -297,6 +298,73 @@ TEST_F(GpuTest, MismatchedNoiseGridIsAnInputError) {
   ASSERT_FALSE(set.ok());
   EXPECT_EQ(set.error().kind, ErrorKind::InvalidInput);
   EXPECT_FALSE(renderer->updateLic(LicParams{}).ok()) << "nothing to compute from";
+}
+
+}  // namespace
+}  // namespace lic3d
+
+namespace lic3d {
+namespace {
+
+// The desktop app spreads a recompute over frames: the shown volume stays the previous one until
+// the job's last slab, a new request replaces the pending job, and the result equals the blocking
+// computation.
+TEST_F(GpuTest, FramePacedRecomputeShowsOnlyFinishedVolumes) {
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {16, 16, 24});
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 5);
+  RendererOptions options;
+  options.doubleBuffered = true;
+  Result<LicRenderer> renderer = LicRenderer::create(context(), options);
+  ASSERT_TRUE(renderer.ok());
+  ASSERT_TRUE(renderer->setInputs(field, noise).ok());
+
+  LicParams first;
+  first.length = 6;
+  ASSERT_TRUE(renderer->updateLic(first).ok());
+  const ScalarVolume firstVolume = *renderer->readLicVolume();
+
+  LicParams second = first;
+  second.length = 9;
+  LicParams third = first;
+  third.kernel = Kernel::Hann;
+  ASSERT_TRUE(renderer->requestLic(second).ok());
+  int frames = 0;
+  auto frame = [&](int slices) {
+    Result<LicWork> work = LicWork{};
+    EXPECT_TRUE(submitAndWait(
+                    context(),
+                    [&](VkCommandBuffer cmd) {
+                      work = renderer->recordLicWork(cmd, slices, static_cast<std::uint32_t>(frames % 2));
+                    },
+                    "test frame")
+                    .ok());
+    EXPECT_TRUE(work.ok());
+    if (work->finished) renderer->collectStatistics(static_cast<std::uint32_t>(frames % 2));
+    ++frames;
+    return *work;
+  };
+  EXPECT_FALSE(frame(5).finished);
+  EXPECT_EQ(renderer->shownParams(), first) << "a half-computed volume is never shown";
+  EXPECT_NEAR(renderer->licStatus().fraction, 5.0 / 24.0, 1e-12);
+  EXPECT_EQ(compareVolumes(*renderer->readLicVolume(), firstVolume).max, 0.0);
+
+  // A new request drops the pending job and starts over.
+  ASSERT_TRUE(renderer->requestLic(third).ok());
+  EXPECT_EQ(renderer->licStatus().fraction, 0.0);
+  while (!frame(5).finished) {
+  }
+  EXPECT_EQ(frames, 1 + 5);  // 24 slices in slabs of 5
+  EXPECT_EQ(renderer->shownParams(), third);
+  EXPECT_FALSE(renderer->licStatus().pending);
+  const ScalarVolume paced = *renderer->readLicVolume();
+
+  // The same volume as a blocking computation.
+  Result<LicRenderer> blocking = LicRenderer::create(context());
+  ASSERT_TRUE(blocking.ok());
+  ASSERT_TRUE(blocking->setInputs(field, noise).ok());
+  ASSERT_TRUE(blocking->updateLic(third).ok());
+  EXPECT_EQ(compareVolumes(paced, *blocking->readLicVolume()).max, 0.0);
+  EXPECT_NEAR(renderer->intensityStatistics().mean, blocking->intensityStatistics().mean, 1e-6);
 }
 
 }  // namespace

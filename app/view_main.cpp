@@ -1,0 +1,93 @@
+// lic3d-view: the desktop app. A window shows the LIC volume with blended slices; Dear ImGui
+// panels change every parameter, and the LIC volume is recomputed a slab per frame while the old
+// one stays on screen.
+#include <cstdio>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_options.h"
+#include "viewer.h"
+
+using namespace lic3d;
+using namespace lic3d::cli;
+
+int main(int argc, char** argv) {
+  CLI::App app{"lic3d-view: the lic3d desktop app. Opens a window with the LIC volume of a vector "
+               "field and panels for every parameter.\nMouse: left drag orbits, shift+left or "
+               "middle drag pans, wheel zooms. Keys: R reset view, Space play the bias "
+               "animation, F12 screenshot, H or Tab hide panels, F1 help, Esc quit."};
+  app.set_version_flag("--version", "lic3d-view 0.1.0");
+  app.footer("Also started by `lic3d view ...`. Exit status: 0 success, 1 failure (no display, "
+             "no device, GPU or validation error), 2 bad arguments or input files.");
+
+  GlobalOptions global;
+  addGlobalOptions(app, global);
+  SessionOptions inputs;
+  addInputOptions(app, inputs);
+  addViewOptions(app, inputs);
+
+  viewer::ViewerOptions options;
+  std::string windowSize;
+  app.add_option("--window-size", windowSize, "Window size WxH in screen pixels")
+      ->default_str("1280x800");
+  app.add_option("--vsync", options.vsync, "Wait for the display's refresh (on|off)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}})
+                      .description(""))
+      ->default_str("on");
+  app.add_flag("--hide-ui", options.hideUi, "Start with the panels hidden (H or Tab shows them)");
+  app.add_option("--frames", options.frames,
+                 "Scripted run: quit after this many frames, once the LIC volume is shown")
+      ->check(CLI::Range(1, 1000000));
+  app.add_option("--screenshot", options.screenshot,
+                 "Scripted run: save the window as this PNG before quitting (needs --frames)");
+
+  app.add_option("--save-session", options.saveSession,
+                 "Save every parameter as a session JSON file on quit (for `lic3d render "
+                 "--session`)");
+
+  try {
+    if (auto r = preloadSession(argc, argv, inputs); !r) return reportError(r.error());
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "lic3d-view: error: %s\nRun `lic3d-view --help`.\n", e.what());
+    return kExitBadInput;
+  }
+
+  if (!windowSize.empty()) {
+    int w = 0, h = 0;
+    char rest = 0;
+    if (std::sscanf(windowSize.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 64 || h < 64 ||
+        w > 16384 || h > 16384) {
+      std::fprintf(stderr, "lic3d-view: error: --window-size: expected WxH between 64 and 16384, "
+                           "got '%s'\n", windowSize.c_str());
+      return kExitBadInput;
+    }
+    options.windowWidth = w;
+    options.windowHeight = h;
+  }
+  if (!options.screenshot.empty()) {
+    if (options.frames == 0) {
+      std::fprintf(stderr, "lic3d-view: error: --screenshot needs --frames\n");
+      return kExitBadInput;
+    }
+    if (auto r = checkOutputPath(options.screenshot, ".png"); !r) return reportError(r.error());
+  }
+  if (!options.saveSession.empty())
+    if (auto r = checkOutputPath(options.saveSession, ".json"); !r) return reportError(r.error());
+  if (auto r = finishSessionOptions(inputs, true); !r) return reportError(r.error());
+
+  try {
+    return viewer::runViewer(global, inputs, options);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lic3d-view: error: out of host memory\n");
+    return kExitFailure;
+  }
+}

@@ -1,0 +1,790 @@
+#include "viewer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <future>
+#include <optional>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+#include <glm/trigonometric.hpp>
+
+#include "gpu_submit.h"
+#include "gpu_timer.h"
+#include "lic_renderer.h"
+#include "rgba_image.h"
+#include "slice_geometry.h"
+#include "swapchain.h"
+#include "viewer_ui.h"
+#include "vk_check.h"
+
+namespace lic3d::viewer {
+namespace {
+
+constexpr std::uint32_t kFramesInFlight = 2;
+// GPU time the frame-paced LIC may take per frame: the UI stays responsive while the volume is
+// recomputed in slabs, even on a CPU driver.
+constexpr double kLicBudgetMs = 12.0;
+constexpr VkFormat kOffscreenFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+// Mouse and keyboard events between two frames.
+struct Input {
+  bool orbiting = false;
+  bool panning = false;
+  double lastX = 0.0, lastY = 0.0;
+  double dx = 0.0, dy = 0.0;  // cursor motion while dragging, in pixels
+  double scroll = 0.0;
+  bool resetView = false, togglePlay = false, screenshot = false, toggleUi = false,
+       toggleHelp = false, quit = false, resized = false;
+};
+
+Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+
+void onMouseButton(GLFWwindow* window, int button, int action, int mods) {
+  Input& in = inputOf(window);
+  if (ImGui::GetIO().WantCaptureMouse && action == GLFW_PRESS) return;
+  const bool pressed = action == GLFW_PRESS;
+  if (button == GLFW_MOUSE_BUTTON_LEFT) {
+    in.orbiting = pressed && !(mods & GLFW_MOD_SHIFT);
+    in.panning = pressed && (mods & GLFW_MOD_SHIFT);
+  } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
+    in.panning = pressed;
+  }
+  glfwGetCursorPos(window, &in.lastX, &in.lastY);
+}
+
+void onCursor(GLFWwindow* window, double x, double y) {
+  Input& in = inputOf(window);
+  if (in.orbiting || in.panning) {
+    in.dx += x - in.lastX;
+    in.dy += y - in.lastY;
+  }
+  in.lastX = x;
+  in.lastY = y;
+}
+
+void onScroll(GLFWwindow* window, double, double y) {
+  if (!ImGui::GetIO().WantCaptureMouse) inputOf(window).scroll += y;
+}
+
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  Input& in = inputOf(window);
+  switch (key) {
+    case GLFW_KEY_R: in.resetView = true; break;
+    case GLFW_KEY_SPACE: in.togglePlay = true; break;
+    case GLFW_KEY_F12: in.screenshot = true; break;
+    case GLFW_KEY_H:
+    case GLFW_KEY_TAB: in.toggleUi = true; break;
+    case GLFW_KEY_F1: in.toggleHelp = true; break;
+    case GLFW_KEY_ESCAPE: in.quit = true; break;
+    default: break;
+  }
+}
+
+void onFramebufferSize(GLFWwindow* window, int, int) { inputOf(window).resized = true; }
+
+void checkImguiVk(VkResult result) {
+  if (result != VK_SUCCESS) abortOnVkError("Dear ImGui Vulkan backend", result, __FILE__, __LINE__);
+}
+
+// Per frame in flight.
+struct Frame {
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  VkSemaphore imageAvailable = VK_NULL_HANDLE;
+  GpuTimer timer;  // region 0: LIC work, region 1: volume draw
+  bool timed = false;
+  bool finishedLic = false;
+  int licSlices = 0;  // z-slices of LIC work this frame recorded
+  bool screenshot = false;
+  bool scriptedShot = false;  // the screenshot asked for by --screenshot
+  Buffer readback;
+};
+
+class App {
+ public:
+  App(const cli::GlobalOptions& global, cli::SessionOptions& inputs, const ViewerOptions& options)
+      : global_(global), inputs_(inputs), options_(options), session_(inputs.session) {}
+  ~App();
+  int run();
+
+ private:
+  Result<void> init();
+  Result<void> createSwapchain();
+  Result<void> startLoading(const FieldSource& field, const NoiseSource& noise);
+  Result<void> finishLoading();
+  Result<bool> frame();
+  void updateCamera(const Input& in);
+  void animate(double seconds);
+  Result<void> handleActions(const Actions& actions);
+  Result<void> saveScreenshot(const Frame& f);
+  void destroySwapchainObjects();
+
+  const cli::GlobalOptions& global_;
+  cli::SessionOptions& inputs_;
+  ViewerOptions options_;
+  Session session_;
+  Session drawnSession_;  // what the frames were made with: changes are compared against it
+  UiState ui_;
+  Stats stats_;
+  Input input_;
+
+  GLFWwindow* window_ = nullptr;
+  std::optional<Context> context_;
+  std::optional<LicRenderer> renderer_;
+  Swapchain swapchain_;
+  std::vector<VkSemaphore> renderFinished_;  // per swapchain image
+  std::vector<VkFramebuffer> framebuffers_;
+  VkRenderPass uiPass_ = VK_NULL_HANDLE;
+  VkDescriptorPool uiPool_ = VK_NULL_HANDLE;
+  bool imguiReady_ = false;
+  Image offscreen_;
+  std::array<Frame, kFramesInFlight> frames_;
+  std::uint64_t frameNumber_ = 0;
+  int slicesPerFrame_ = 4;
+  double licSumMs_ = 0.0;  // GPU time of the LIC slabs of the volume being computed
+  double biasPhase_ = 0.0;
+  int screenshots_ = 0;
+  struct Loaded {
+    VectorField field;
+    NoiseVolume noise;
+  };
+  std::future<Result<Loaded>> loading_;
+  FieldSource loadedField_;
+  NoiseSource loadedNoise_;
+  std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
+  int exitStatus_ = cli::kExitOk;
+};
+
+App::~App() {
+  if (context_) vkDeviceWaitIdle(context_->device());
+  if (imguiReady_) {
+    ImGui_ImplVulkan_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  if (context_) {
+    VkDevice device = context_->device();
+    destroySwapchainObjects();
+    for (Frame& f : frames_) {
+      if (f.fence) vkDestroyFence(device, f.fence, nullptr);
+      if (f.imageAvailable) vkDestroySemaphore(device, f.imageAvailable, nullptr);
+      if (f.pool) vkDestroyCommandPool(device, f.pool, nullptr);
+      f.timer = GpuTimer();
+      f.readback = Buffer();
+    }
+    if (uiPass_) vkDestroyRenderPass(device, uiPass_, nullptr);
+    if (uiPool_) vkDestroyDescriptorPool(device, uiPool_, nullptr);
+    offscreen_ = Image();
+    renderer_.reset();
+    swapchain_ = Swapchain();
+    context_.reset();
+  }
+  if (window_) glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+void App::destroySwapchainObjects() {
+  VkDevice device = context_->device();
+  for (VkFramebuffer fb : framebuffers_) vkDestroyFramebuffer(device, fb, nullptr);
+  framebuffers_.clear();
+  for (VkSemaphore s : renderFinished_) vkDestroySemaphore(device, s, nullptr);
+  renderFinished_.clear();
+}
+
+Result<void> App::init() {
+  glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "lic3d-view: GLFW: %s\n", text); });
+  if (!glfwInit())
+    return unsupportedError("cannot open a window (no display? set DISPLAY, or use `lic3d render`)");
+  if (!glfwVulkanSupported())
+    return unsupportedError("GLFW finds no Vulkan loader for windows");
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  window_ = glfwCreateWindow(options_.windowWidth, options_.windowHeight, "lic3d", nullptr, nullptr);
+  if (!window_) return unsupportedError("cannot create the window");
+  glfwSetWindowUserPointer(window_, &input_);
+  glfwSetMouseButtonCallback(window_, onMouseButton);
+  glfwSetCursorPosCallback(window_, onCursor);
+  glfwSetScrollCallback(window_, onScroll);
+  glfwSetKeyCallback(window_, onKey);
+  glfwSetFramebufferSizeCallback(window_, onFramebufferSize);
+
+  ContextOptions contextOptions;
+  contextOptions.validation = global_.validation;
+  contextOptions.device = global_.device;
+  std::uint32_t count = 0;
+  const char** extensions = glfwGetRequiredInstanceExtensions(&count);
+  contextOptions.instanceExtensions.assign(extensions, extensions + count);
+  contextOptions.deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  contextOptions.createSurface = [this](VkInstance instance) -> Result<VkSurfaceKHR> {
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    const VkResult r = glfwCreateWindowSurface(instance, window_, nullptr, &surface);
+    if (r != VK_SUCCESS)
+      return unsupportedError(std::string("cannot make a Vulkan surface for the window: ") +
+                              vkResultName(r));
+    return surface;
+  };
+  LIC3D_TRY_ASSIGN(Context context, Context::create(contextOptions));
+  context_.emplace(std::move(context));
+  stats_.device = context_->deviceInfo().name;
+  VkDevice device = context_->device();
+
+  RendererOptions rendererOptions;
+  rendererOptions.fieldPrecision = session_.precision;
+  rendererOptions.doubleBuffered = true;
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(*context_, rendererOptions));
+  renderer_.emplace(std::move(renderer));
+
+  for (Frame& f : frames_) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context_->queueFamily();
+    LIC3D_TRY(checkVk(vkCreateCommandPool(device, &poolInfo, nullptr, &f.pool), "vkCreateCommandPool"));
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = f.pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    LIC3D_TRY(checkVk(vkAllocateCommandBuffers(device, &alloc, &f.cmd), "vkAllocateCommandBuffers"));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    LIC3D_TRY(checkVk(vkCreateFence(device, &fenceInfo, nullptr, &f.fence), "vkCreateFence"));
+    VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    LIC3D_TRY(checkVk(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &f.imageAvailable),
+                      "vkCreateSemaphore"));
+    const std::string name = "frame " + std::to_string(&f - frames_.data());
+    context_->setDebugName(f.pool, VK_OBJECT_TYPE_COMMAND_POOL, name + " pool");
+    context_->setDebugName(f.cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, name);
+    context_->setDebugName(f.fence, VK_OBJECT_TYPE_FENCE, name + " fence");
+    context_->setDebugName(f.imageAvailable, VK_OBJECT_TYPE_SEMAPHORE, name + " image available");
+    if (context_->supportsTimestamps()) {
+      LIC3D_TRY_ASSIGN(f.timer, GpuTimer::create(*context_, 2, name + " timestamps"));
+    }
+  }
+  LIC3D_TRY(createSwapchain());
+
+  // Dear ImGui 1.86's Vulkan backend draws inside a classic render pass; the volume before it
+  // uses dynamic rendering into an offscreen image that is blitted to the swapchain image.
+  const std::array<VkDescriptorPoolSize, 1> sizes{{{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16}}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  poolInfo.maxSets = 16;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  LIC3D_TRY(checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &uiPool_), "vkCreateDescriptorPool"));
+  context_->setDebugName(uiPool_, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "imgui descriptors");
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  float scale = 1.0f;
+  glfwGetWindowContentScale(window_, &scale, nullptr);
+  if (scale > 1.0f) {
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    ImGui::GetIO().FontGlobalScale = scale;
+  }
+  ImGui_ImplGlfw_InitForVulkan(window_, true);
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = context_->instance();
+  info.PhysicalDevice = context_->physicalDevice();
+  info.Device = device;
+  info.QueueFamily = context_->queueFamily();
+  info.Queue = context_->queue();
+  info.DescriptorPool = uiPool_;
+  info.MinImageCount = swapchain_.minImageCount();
+  info.ImageCount = swapchain_.imageCount();
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  info.CheckVkResultFn = checkImguiVk;
+  ImGui_ImplVulkan_Init(&info, uiPass_);
+  imguiReady_ = true;
+  LIC3D_TRY(submitAndWait(
+      *context_, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); },
+      "imgui fonts"));
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+
+  ui_.visible = !options_.hideUi;
+  ui_.pendingField = session_.field;
+  ui_.pendingNoise = session_.noise;
+  LIC3D_TRY(startLoading(session_.field, session_.noise));
+  return {};
+}
+
+Result<void> App::createSwapchain() {
+  VkDevice device = context_->device();
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  vkDeviceWaitIdle(device);
+  destroySwapchainObjects();
+  LIC3D_TRY_ASSIGN(Swapchain next,
+                   Swapchain::create(*context_,
+                                     {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height)},
+                                     options_.vsync, swapchain_.handle()));
+  swapchain_ = std::move(next);
+
+  if (!uiPass_) {
+    VkAttachmentDescription attachment{};
+    attachment.format = swapchain_.format();
+    attachment.samples = VK_SAMPLE_COUNT_1_BIT;
+    attachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the blitted volume
+    attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    attachment.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    attachment.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    VkAttachmentReference reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &reference;
+    const std::array<VkSubpassDependency, 2> dependencies{{
+        {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+         VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
+        {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+         VK_ACCESS_TRANSFER_READ_BIT, 0},
+    }};
+    VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    info.attachmentCount = 1;
+    info.pAttachments = &attachment;
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
+    info.pDependencies = dependencies.data();
+    LIC3D_TRY(checkVk(vkCreateRenderPass(device, &info, nullptr, &uiPass_), "vkCreateRenderPass"));
+    context_->setDebugName(uiPass_, VK_OBJECT_TYPE_RENDER_PASS, "imgui pass");
+  }
+  for (std::uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
+    VkImageView view = swapchain_.view(i);
+    VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    info.renderPass = uiPass_;
+    info.attachmentCount = 1;
+    info.pAttachments = &view;
+    info.width = swapchain_.extent().width;
+    info.height = swapchain_.extent().height;
+    info.layers = 1;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    LIC3D_TRY(checkVk(vkCreateFramebuffer(device, &info, nullptr, &framebuffer), "vkCreateFramebuffer"));
+    framebuffers_.push_back(framebuffer);
+    context_->setDebugName(framebuffer, VK_OBJECT_TYPE_FRAMEBUFFER, "imgui framebuffer " + std::to_string(i));
+    VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore semaphore = VK_NULL_HANDLE;
+    LIC3D_TRY(checkVk(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &semaphore), "vkCreateSemaphore"));
+    renderFinished_.push_back(semaphore);
+    context_->setDebugName(semaphore, VK_OBJECT_TYPE_SEMAPHORE, "render finished " + std::to_string(i));
+  }
+  if (imguiReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
+
+  ImageDesc desc;
+  desc.type = VK_IMAGE_TYPE_2D;
+  desc.format = kOffscreenFormat;
+  desc.extent = {swapchain_.extent().width, swapchain_.extent().height, 1};
+  desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  desc.name = "window volume image";
+  offscreen_ = Image();
+  LIC3D_TRY_ASSIGN(offscreen_, Image::create(*context_, desc));
+  const VkDeviceSize bytes =
+      static_cast<VkDeviceSize>(swapchain_.extent().width) * swapchain_.extent().height * 4;
+  for (Frame& f : frames_) {
+    f.readback = Buffer();
+    LIC3D_TRY_ASSIGN(f.readback, Buffer::create(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                MemoryUse::Readback, "screenshot readback"));
+  }
+  return {};
+}
+
+Result<void> App::startLoading(const FieldSource& field, const NoiseSource& noise) {
+  loadedField_ = field;
+  loadedNoise_ = noise;
+  stats_.loading = true;
+  // Reading a large file or sampling a large grid takes a while: off the drawing thread.
+  // --grid with a file field is an error on the command line only, not when loading later.
+  const bool gridGiven = !renderer_->hasVolume() && inputs_.grid.given();
+  loading_ = std::async(std::launch::async, [field, noise, gridGiven]() -> Result<Loaded> {
+    Loaded loaded;
+    LIC3D_TRY_ASSIGN(loaded.field, cli::loadField(field, gridGiven));
+    LIC3D_TRY_ASSIGN(loaded.noise, cli::loadNoise(noise, loaded.field.dims));
+    return loaded;
+  });
+  return {};
+}
+
+Result<void> App::finishLoading() {
+  if (!loading_.valid() ||
+      loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return {};
+  Result<Loaded> loaded = loading_.get();
+  stats_.loading = false;
+  if (!loaded) {
+    stats_.message = loaded.error().message;
+    if (!renderer_->hasVolume()) return std::move(loaded).error();  // nothing to show at all
+    return {};
+  }
+  if (auto r = validate(session_.lic.sparsity, loaded->field.dims); !r) {
+    session_.lic.sparsity = SparsityParams{};
+    stats_.message = r.error().message + " (sparsity turned off)";
+  }
+  LIC3D_TRY(renderer_->setInputs(loaded->field, loaded->noise));
+  session_.field = loadedField_;
+  session_.noise = loadedNoise_;
+  stats_.dims = loaded->field.dims;
+  stats_.minMagnitude = static_cast<float>(minMagnitude(loaded->field));
+  stats_.maxMagnitude = static_cast<float>(maxMagnitude(loaded->field));
+  return renderer_->requestLic(session_.lic);
+}
+
+void App::updateCamera(const Input& in) {
+  CameraParams& camera = session_.view.camera;
+  const VkExtent2D extent = swapchain_.extent();
+  const float aspect = static_cast<float>(extent.width) / static_cast<float>(std::max(extent.height, 1u));
+  const glm::vec3 half = boxHalfExtent(renderer_->dims(), renderer_->geometry());
+  const CameraMatrices m = computeCamera(camera, half, aspect);
+  if (in.orbiting) {
+    camera.azimuth -= static_cast<float>(in.dx) * 0.3f;
+    camera.elevation = std::clamp(camera.elevation + static_cast<float>(in.dy) * 0.3f, -89.0f, 89.0f);
+  }
+  if (in.panning) {
+    // One pixel moves the target by the world size of a pixel at the target's depth.
+    const float pixel = 2.0f * m.distance * std::tan(glm::radians(camera.fovY) * 0.5f) /
+                        static_cast<float>(std::max(extent.height, 1u));
+    camera.target += (-static_cast<float>(in.dx) * m.right + static_cast<float>(in.dy) * m.up) * pixel;
+  }
+  if (in.scroll != 0.0) camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
+}
+
+void App::animate(double seconds) {
+  if (!ui_.playing) return;
+  LicParams& lic = session_.lic;
+  const int span = 2 * lic.length + 1;
+  if (lic.length == 0) return;
+  // The bias runs from -L to L and wraps: the texture moves forward along the streamlines.
+  biasPhase_ = std::fmod(biasPhase_ + seconds * ui_.animationSpeed, static_cast<double>(span));
+  lic.bias = static_cast<int>(biasPhase_) - lic.length;
+}
+
+Result<void> App::handleActions(const Actions& actions) {
+  if (actions.reloadField) LIC3D_TRY(startLoading(ui_.pendingField, ui_.pendingNoise));
+  if (actions.resetView) {
+    const ViewParams defaults;
+    session_.view.camera = defaults.camera;
+  }
+  if (actions.saveSession) {
+    const Result<void> r = writeSession(ui_.sessionPath, session_);
+    stats_.message = r ? "saved " + ui_.sessionPath : r.error().message;
+  }
+  if (actions.loadSession) {
+    Result<Session> loaded = readSession(ui_.sessionPath);
+    if (!loaded) {
+      stats_.message = loaded.error().message;
+    } else {
+      const bool newInputs = !(loaded->field == session_.field && loaded->noise == session_.noise);
+      session_ = std::move(loaded).value();
+      ui_.pendingField = session_.field;
+      ui_.pendingNoise = session_.noise;
+      if (newInputs) LIC3D_TRY(startLoading(session_.field, session_.noise));
+      stats_.message = "loaded " + ui_.sessionPath;
+    }
+  }
+  if (actions.renderImage && renderer_->hasVolume()) {
+    // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
+    vkDeviceWaitIdle(context_->device());
+    ViewParams view = session_.view;
+    view.width = ui_.imageWidth;
+    view.height = ui_.imageHeight;
+    Result<RgbaImage> image = renderer_->render(*renderer_->shownParams(), view);
+    const Result<void> written = image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
+    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
+  }
+  return {};
+}
+
+Result<void> App::saveScreenshot(const Frame& f) {
+  const VkExtent2D extent = swapchain_.extent();
+  RgbaImage image;
+  image.width = static_cast<int>(extent.width);
+  image.height = static_cast<int>(extent.height);
+  image.pixels.resize(static_cast<std::size_t>(extent.width) * extent.height * 4);
+  const auto* src = static_cast<const std::uint8_t*>(f.readback.mapped());
+  const bool bgra = swapchain_.format() == VK_FORMAT_B8G8R8A8_UNORM;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+    image.pixels[i + 0] = src[i + (bgra ? 2 : 0)];
+    image.pixels[i + 1] = src[i + 1];
+    image.pixels[i + 2] = src[i + (bgra ? 0 : 2)];
+    image.pixels[i + 3] = 255;
+  }
+  const std::string path = f.scriptedShot ? options_.screenshot
+                                          : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
+  LIC3D_TRY(writePng(path, image));
+  stats_.message = "wrote " + path;
+  if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", path.c_str());
+  return {};
+}
+
+// Draws one frame; false when the app should quit.
+Result<bool> App::frame() {
+  glfwPollEvents();
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - lastTime_).count();
+  lastTime_ = now;
+  stats_.fps = static_cast<float>(0.9 * stats_.fps + 0.1 * (seconds > 0.0 ? 1.0 / seconds : 0.0));
+
+  Input in = input_;
+  input_.dx = input_.dy = input_.scroll = 0.0;
+  input_.resetView = input_.togglePlay = input_.screenshot = input_.toggleUi = input_.toggleHelp = false;
+  if (in.quit || glfwWindowShouldClose(window_)) return false;
+
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  if (width == 0 || height == 0) {  // minimised: nothing to draw into
+    glfwWaitEvents();
+    return true;
+  }
+  if (in.resized || swapchain_.extent().width != static_cast<std::uint32_t>(width) ||
+      swapchain_.extent().height != static_cast<std::uint32_t>(height)) {
+    input_.resized = false;
+    LIC3D_TRY(createSwapchain());
+  }
+
+  LIC3D_TRY(finishLoading());
+  Frame& f = frames_[frameNumber_ % kFramesInFlight];
+  const std::uint32_t slot = static_cast<std::uint32_t>(frameNumber_ % kFramesInFlight);
+  VkDevice device = context_->device();
+  LIC3D_TRY(checkVk(vkWaitForFences(device, 1, &f.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences"));
+  if (f.finishedLic) renderer_->collectStatistics(slot);
+  if (f.timed) {
+    LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
+    LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
+    if (f.licSlices > 0) {
+      licSumMs_ += slabMs;
+      // Aim the next slabs at the LIC time budget, from this device's measured speed.
+      const double msPerSlice = std::max(slabMs / f.licSlices, 1e-3);
+      slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
+                                   std::max(1, renderer_->dims().z));
+    }
+    if (f.finishedLic) {
+      stats_.licMs = licSumMs_;  // the whole volume, summed over its slabs
+      licSumMs_ = 0.0;
+    }
+  }
+  f.finishedLic = false;
+  if (f.screenshot) {
+    LIC3D_TRY(saveScreenshot(f));
+    f.screenshot = f.scriptedShot = false;
+  }
+
+  std::uint32_t imageIndex = 0;
+  const VkResult acquired = vkAcquireNextImageKHR(device, swapchain_.handle(), UINT64_MAX,
+                                                  f.imageAvailable, VK_NULL_HANDLE, &imageIndex);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+    LIC3D_TRY(createSwapchain());
+    return true;
+  }
+  if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR)
+    return runtimeError(std::string("vkAcquireNextImageKHR failed: ") + vkResultName(acquired));
+  LIC3D_TRY(checkVk(vkResetFences(device, 1, &f.fence), "vkResetFences"));
+
+  // UI and input.
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  if (in.toggleUi) ui_.visible = !ui_.visible;
+  if (in.toggleHelp) ui_.help = !ui_.help;
+  if (in.togglePlay) ui_.playing = !ui_.playing;
+  const LicStatus status = renderer_->licStatus();
+  stats_.computing = status.pending;
+  stats_.computeFraction = status.fraction;
+  stats_.waitingForMask = status.waitingForMask;
+  stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
+  Actions actions = drawUi(session_, ui_, stats_);
+  ImGui::Render();
+  actions.resetView = actions.resetView || in.resetView;
+  actions.screenshot = actions.screenshot || in.screenshot;
+  if (renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse) updateCamera(in);
+  animate(seconds);
+  LIC3D_TRY(handleActions(actions));
+  if (auto r = validate(session_.view); !r) {
+    stats_.message = r.error().message;
+    session_.view = drawnSession_.view;
+  }
+  if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
+    if (auto r = renderer_->requestLic(session_.lic); !r) {
+      stats_.message = r.error().message;
+      session_.lic = drawnSession_.lic;
+    }
+  }
+  drawnSession_ = session_;
+
+  // A scripted run takes its screenshot once the volume for the current parameters is shown.
+  const bool scriptedShot = options_.frames > 0 && frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
+                            !stats_.loading && renderer_->hasVolume() && !renderer_->licStatus().pending;
+  // It quits after this frame; run() saves the screenshot once the frame has finished.
+  const bool quitAfterThis = scriptedShot;
+  f.scriptedShot = scriptedShot && !options_.screenshot.empty();
+  f.screenshot = actions.screenshot || f.scriptedShot;
+
+  // Record.
+  VkCommandBuffer cmd = f.cmd;
+  LIC3D_TRY(checkVk(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer"));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  LIC3D_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  f.timed = f.timer.valid();
+  if (f.timed) {
+    f.timer.reset(cmd, 0);
+    f.timer.reset(cmd, 1);
+    f.timer.begin(cmd, 0);
+  }
+  LIC3D_TRY_ASSIGN(const LicWork work, renderer_->recordLicWork(cmd, slicesPerFrame_, slot));
+  if (f.timed) f.timer.end(cmd, 0);
+  f.finishedLic = work.finished;
+  f.licSlices = work.slicesRecorded;
+
+  const VkExtent2D extent = swapchain_.extent();
+  imageBarrier(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = offscreen_.view();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  const glm::vec3 bg = session_.view.background;
+  color.clearValue.color = {{bg.r, bg.g, bg.b, 1.0f}};
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  if (f.timed) f.timer.begin(cmd, 1);
+  vkCmdBeginRendering(cmd, &rendering);
+  const Result<void> drawn = renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
+  vkCmdEndRendering(cmd);
+  if (f.timed) f.timer.end(cmd, 1);
+  LIC3D_TRY(drawn);
+
+  VkImage target = swapchain_.image(imageIndex);
+  imageBarrier(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_TRANSFER_READ_BIT);
+  // The acquire semaphore is waited for at the blit stage; this barrier chains to it.
+  imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+  blit.dstSubresource = blit.srcSubresource;
+  blit.dstOffsets[1] = blit.srcOffsets[1];
+  vkCmdBlitImage(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+
+  VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  passBegin.renderPass = uiPass_;
+  passBegin.framebuffer = framebuffers_[imageIndex];
+  passBegin.renderArea = {{0, 0}, extent};
+  vkCmdBeginRenderPass(cmd, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+  vkCmdEndRenderPass(cmd);
+
+  if (f.screenshot) {
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f.readback.handle(), 1,
+                           &region);
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_NONE,
+                 VK_ACCESS_2_NONE);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  }
+  LIC3D_VK_CHECK(vkEndCommandBuffer(cmd));
+
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = f.imageAvailable;
+  wait.stageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = renderFinished_[imageIndex];
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cmdInfo.commandBuffer = cmd;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.waitSemaphoreInfoCount = 1;
+  submit.pWaitSemaphoreInfos = &wait;
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cmdInfo;
+  submit.signalSemaphoreInfoCount = 1;
+  submit.pSignalSemaphoreInfos = &signal;
+  LIC3D_TRY(checkVk(vkQueueSubmit2(context_->queue(), 1, &submit, f.fence), "vkQueueSubmit2"));
+
+  VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  present.waitSemaphoreCount = 1;
+  present.pWaitSemaphores = &renderFinished_[imageIndex];
+  present.swapchainCount = 1;
+  VkSwapchainKHR handle = swapchain_.handle();
+  present.pSwapchains = &handle;
+  present.pImageIndices = &imageIndex;
+  const VkResult presented = vkQueuePresentKHR(context_->queue(), &present);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
+    input_.resized = true;
+  } else if (presented != VK_SUCCESS) {
+    return runtimeError(std::string("vkQueuePresentKHR failed: ") + vkResultName(presented));
+  }
+  ++frameNumber_;
+  if (options_.frames > 0 && frameNumber_ > static_cast<std::uint64_t>(options_.frames) + 100000)
+    return runtimeError("the LIC volume was not ready after 100000 frames");
+  return !quitAfterThis;
+}
+
+int App::run() {
+  if (auto r = init(); !r) return cli::reportError(r.error());
+  drawnSession_ = session_;
+  while (true) {
+    Result<bool> more = frame();
+    if (!more) {
+      exitStatus_ = cli::reportError(more.error());
+      break;
+    }
+    if (!*more) break;
+  }
+  // Let the last screenshot's frame finish (a scripted run quits right after recording it).
+  vkDeviceWaitIdle(context_->device());
+  for (Frame& f : frames_)
+    if (f.screenshot) {
+      if (auto r = saveScreenshot(f); !r) exitStatus_ = cli::reportError(r.error());
+      f.screenshot = f.scriptedShot = false;
+    }
+  if (!options_.saveSession.empty()) {
+    if (auto r = writeSession(options_.saveSession, session_); !r)
+      exitStatus_ = cli::reportError(r.error());
+    else
+      std::fprintf(stderr, "lic3d-view: wrote %s\n", options_.saveSession.c_str());
+  }
+  if (context_->validationEnabled() && context_->validationMessageCount() > 0) {
+    std::fprintf(stderr, "lic3d-view: error: %zu validation message(s)\n",
+                 context_->validationMessageCount());
+    if (exitStatus_ == cli::kExitOk) exitStatus_ = cli::kExitFailure;
+  }
+  return exitStatus_;
+}
+
+}  // namespace
+
+int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
+              const ViewerOptions& options) {
+  App app(global, inputs, options);
+  return app.run();
+}
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,29 @@
+#pragma once
+// The desktop app: a GLFW window with a Vulkan swapchain, the engine's passes drawing the LIC
+// volume, and Dear ImGui panels on top.
+
+#include <string>
+
+#include "cli_options.h"
+
+namespace lic3d::viewer {
+
+struct ViewerOptions {
+  int windowWidth = 1280;
+  int windowHeight = 800;
+  bool vsync = true;
+  bool hideUi = false;
+  // Scripted runs: after `frames` frames (and once the LIC volume for the current parameters is
+  // shown) save a screenshot of the window to `screenshot`, if given, and quit. 0 runs until
+  // the window closes.
+  int frames = 0;
+  std::string screenshot;
+  // On quit, save the session (every parameter as shown) to this JSON file, if given.
+  std::string saveSession;
+};
+
+// Runs the app until the window closes; returns the process exit status.
+int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
+              const ViewerOptions& options);
+
+}  // namespace lic3d::viewer

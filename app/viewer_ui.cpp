@@ -1,0 +1,343 @@
+#include "viewer_ui.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstring>
+
+#include <imgui.h>
+
+#include "analytic_fields.h"
+#include "colormap.h"
+#include "enum_names.h"
+
+namespace lic3d::viewer {
+namespace {
+
+void tip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+bool text(const char* label, std::string& value, const char* help) {
+  std::array<char, 1024> buffer{};
+  std::snprintf(buffer.data(), buffer.size(), "%s", value.c_str());
+  const bool changed = ImGui::InputText(label, buffer.data(), buffer.size());
+  tip(help);
+  if (changed) value = buffer.data();
+  return changed;
+}
+
+template <class E>
+bool combo(const char* label, E& value, const char* help) {
+  bool changed = false;
+  if (ImGui::BeginCombo(label, std::string(enumName(value)).c_str())) {
+    for (const EnumName<E>& n : enumNames<E>()) {
+      const bool selected = n.value == value;
+      if (ImGui::Selectable(std::string(n.name).c_str(), selected)) {
+        value = n.value;
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  tip(help);
+  return changed;
+}
+
+void fieldPanel(UiState& ui, Actions& actions) {
+  if (!ImGui::CollapsingHeader("Field and noise", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  FieldSource& f = ui.pendingField;
+  if (ImGui::BeginCombo("analytic", parseAnalyticField(f.field) ? f.field.c_str() : "(file)")) {
+    for (std::string_view name : analyticFieldNames())
+      if (ImGui::Selectable(std::string(name).c_str(), f.field == name)) f.field = name;
+    ImGui::EndCombo();
+  }
+  tip("An analytic field: tornado (Crawfis), corner (thesis 4.5), solenoidal (thesis 6.2), "
+      "vortex, ABC flow");
+  text("file", f.field, "Or a field file: .nrrd or .vtk (press Load)");
+  ImGui::InputInt3("grid", &f.grid.x);
+  f.grid = glm::clamp(f.grid, glm::ivec3(1), glm::ivec3(2048));
+  tip("Voxels of an analytic field along x, y, z");
+  text("array", f.array, "The vector array to read from a file with several (empty: the first)");
+  NoiseSource& n = ui.pendingNoise;
+  int seed = static_cast<int>(n.seed);
+  if (ImGui::InputInt("noise seed", &seed)) n.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+  tip("Seed of the white noise (and of the seed noise's spots)");
+  ImGui::InputInt("seed spots", &n.seedSpots);
+  n.seedSpots = std::max(n.seedSpots, 0);
+  tip("Sparse seed noise: this many bright spots on black instead of white noise (0: white "
+      "noise)");
+  text("noise file", n.file, "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
+  if (ImGui::Button("Load")) actions.reloadField = true;
+  tip("Load the field and noise above (the LIC volume is recomputed)");
+}
+
+void licPanel(Session& s) {
+  if (!ImGui::CollapsingHeader("LIC", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  LicParams& l = s.lic;
+  ImGui::SliderInt("length L", &l.length, 0, 100);
+  tip("Streamline steps each way: longer streaks, more blur (thesis 4.4.3)");
+  ImGui::SliderFloat("step h", &l.step, 0.1f, 2.0f, "%.2f voxels");
+  tip("Step length in voxels");
+  ImGui::SliderInt("bias", &l.bias, -l.length, l.length);
+  l.bias = std::clamp(l.bias, -l.length, l.length);
+  tip("L - bias steps backward, L + bias forward: moving it animates the flow (thesis 3.3.3)");
+  combo("integrator", l.integrator, "Euler, midpoint RK2 or classical RK4");
+  combo("kernel", l.kernel, "Weights along the streamline: box, Hann or Gaussian");
+  combo("noise filter", l.noiseFilter, "Noise looked up at the nearest voxel or trilinearly");
+  combo("direction", l.direction,
+        "normalized: unit steps; magnitude: steps scaled by |v| / max |v|");
+  combo("precision", s.precision,
+        "Field texture on the device: float on CPU drivers, half on GPUs (auto)");
+}
+
+void sparsityPanel(Session& s) {
+  if (!ImGui::CollapsingHeader("Sparsity")) return;
+  SparsityParams& p = s.lic.sparsity;
+  combo("distribution", p.distribution,
+        "Black points of the mask (thesis 5.1.4): a voxel whose streamline touches one is not "
+        "drawn");
+  ImGui::InputInt("points", &p.points, 1000, 10000);
+  p.points = std::max(p.points, 0);
+  tip("Black points for poisson, poisson-approx, halton, hammersley (0: automatic)");
+  ImGui::SliderFloat("radius", &p.radius, 0.0f, 8.0f, "%.2f voxels");
+  tip("Minimum distance between black points for poisson and jitter (0: automatic)");
+  ImGui::SliderFloat("ratio", &p.ratio, 0.01f, 0.99f);
+  tip("Fraction of black voxels of the checkerboard");
+  int seed = static_cast<int>(p.seed);
+  if (ImGui::InputInt("mask seed", &seed)) p.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+  tip("Seed of the random distributions");
+}
+
+void colourPanel(ViewParams& v, const Stats& stats) {
+  if (!ImGui::CollapsingHeader("Colour and opacity", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::SliderFloat("alpha", &v.alpha, 0.0f, 1.0f);
+  tip("Opacity per voxel of depth, corrected for the slice spacing (thesis 5.1.1)");
+  combo("opacity", v.opacityMode, "constant alpha, or alpha x grey (dark gaps turn clear)");
+  combo("color", v.color, "Colour by |v|, modulated by the LIC intensity (thesis 5.1.2)");
+  combo("colormap", v.colormap, "The thesis' blue-yellow-red, viridis, or cool-warm");
+  ImGui::Checkbox("auto range", &v.autoColorRange);
+  tip("Colour range from the field's min and max |v|");
+  if (!v.autoColorRange) {
+    ImGui::DragFloatRange2("range", &v.colorLow, &v.colorHigh, 0.005f * stats.maxMagnitude, 0.0f,
+                           2.0f * stats.maxMagnitude, "%.4g", "%.4g");
+    if (v.colorHigh <= v.colorLow) v.colorHigh = v.colorLow + 1e-6f;
+    tip("|v| at the two ends of the colour map");
+  }
+  ImGui::Checkbox("legend", &v.legend);
+  tip("Show the colour legend");
+  ImGui::SliderFloat("magnitude opacity", &v.magnitudeOpacity, 0.0f, 4.0f);
+  tip("Opacity x (normalised |v|)^E: slow regions fade (thesis 5.1.3); 0 is off");
+  ImGui::SliderFloat("threshold", &v.magnitudeThreshold, 0.0f, 1.0f);
+  tip("Voxels whose normalised |v| is below this vanish");
+  ImGui::Checkbox("contrast stretch", &v.contrast);
+  tip("Stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25");
+  ImGui::Checkbox("manual window", &v.manualWindow);
+  if (v.manualWindow) {
+    ImGui::DragFloatRange2("window", &v.windowLow, &v.windowHigh, 0.002f, 0.0f, 1.0f);
+    if (v.windowHigh <= v.windowLow) v.windowHigh = v.windowLow + 1e-3f;
+  }
+  tip("LIC values mapped to black..white instead of the stretch");
+  ImGui::SliderFloat("gain", &v.gain, 0.0f, 4.0f);
+  tip("Scales grey values around mid-grey");
+  ImGui::SliderFloat("brightness", &v.brightness, -1.0f, 1.0f);
+  tip("Added to grey values");
+  ImGui::ColorEdit3("background", &v.background.x);
+  tip("Background colour");
+}
+
+void localPanel(ViewParams& v) {
+  if (!ImGui::CollapsingHeader("Clip planes and region")) return;
+  const char* axes[3] = {"clip x", "clip y", "clip z"};
+  for (int a = 0; a < 3; ++a) {
+    ImGui::DragFloatRange2(axes[a], &v.clipMin[a], &v.clipMax[a], 0.005f, 0.0f, 1.0f);
+    if (v.clipMax[a] <= v.clipMin[a]) v.clipMax[a] = std::min(1.0f, v.clipMin[a] + 0.01f);
+    if (v.clipMax[a] <= v.clipMin[a]) v.clipMin[a] = v.clipMax[a] - 0.01f;
+    tip("The part of the box kept along this axis (thesis 5.2.1)");
+  }
+  combo("region", v.roi, "A region of interest: only its inside (or outside) is drawn (5.2.2)");
+  if (v.roi != RoiShape::None) {
+    ImGui::SliderFloat3("centre", &v.roiCenter.x, 0.0f, 1.0f);
+    tip("Centre as fractions of the box");
+    ImGui::SliderFloat("size", &v.roiSize, 0.01f, 1.5f);
+    tip("Diameter or side as a fraction of the longest box side");
+    ImGui::SliderFloat3("rotate", &v.roiRotation.x, -180.0f, 180.0f, "%.0f deg");
+    tip("The region turns with its own frame (x, then y, then z)");
+    ImGui::Checkbox("outside", &v.roiOutside);
+    tip("Keep the outside of the region instead");
+  }
+}
+
+void depthPanel(ViewParams& v) {
+  if (!ImGui::CollapsingHeader("Depth: fog, lighting, stereo")) return;
+  ImGui::Checkbox("fog", &v.fog);
+  tip("Intensity depth cueing (thesis 5.3.1)");
+  if (v.fog) {
+    ImGui::DragFloatRange2("fog range", &v.fogStart, &v.fogEnd, 0.005f, -0.5f, 1.5f);
+    if (v.fogEnd <= v.fogStart) v.fogEnd = v.fogStart + 0.01f;
+    tip("Start and end, as fractions of the depth from the nearest to the farthest point");
+    ImGui::Checkbox("fog = background", &v.fogColorFromBackground);
+    if (!v.fogColorFromBackground) ImGui::ColorEdit3("fog colour", &v.fogColor.x);
+  }
+  combo("lighting", v.lighting,
+        "phong: normals from the streamline's TNB frame (5.3.3); lines: lit from the tangent");
+  if (v.lighting != Lighting::None) {
+    ImGui::SliderFloat("ambient", &v.light.ambient, 0.0f, 1.0f);
+    ImGui::SliderFloat("diffuse", &v.light.diffuse, 0.0f, 1.5f);
+    ImGui::SliderFloat("specular", &v.light.specular, 0.0f, 1.5f);
+    ImGui::SliderFloat("shininess", &v.light.shininess, 1.0f, 128.0f);
+  }
+  combo("stereo", v.stereo,
+        "Off-axis stereo (5.3.2): red/cyan anaglyph or side by side; quad-buffered stereo is not "
+        "offered by Vulkan surfaces here");
+  if (v.stereo != StereoMode::None) {
+    ImGui::SliderFloat("eye separation", &v.eyeSeparation, 0.0f, 0.3f, "%.3f");
+    tip("Box units; 0 is a thirtieth of the zero-parallax distance");
+    ImGui::SliderFloat("zero parallax", &v.zeroParallax, 0.0f, 10.0f, "%.2f");
+    tip("Distance of the plane without disparity; 0 is the volume centre");
+  }
+}
+
+void renderingPanel(ViewParams& v, UiState& ui, Actions& actions) {
+  if (!ImGui::CollapsingHeader("Slices and camera")) return;
+  combo("slicing", v.slicing, "view-aligned planes, or the thesis' axis-aligned planes (4.1.2)");
+  ImGui::SliderInt("slices", &v.slices, 0, 1024);
+  tip("Number of slices (0: one per voxel along the view direction)");
+  combo("filter", v.filter, "Nearest keeps neighbouring streamlines apart, linear smooths (6.4)");
+  ImGui::Checkbox("orthographic", &v.camera.orthographic);
+  ImGui::SliderFloat("field of view", &v.camera.fovY, 5.0f, 120.0f, "%.0f deg");
+  ImGui::SliderFloat("azimuth", &v.camera.azimuth, -180.0f, 180.0f, "%.1f deg");
+  ImGui::SliderFloat("elevation", &v.camera.elevation, -89.0f, 89.0f, "%.1f deg");
+  if (ImGui::Button("Reset view (R)")) actions.resetView = true;
+  ImGui::Checkbox("play bias (Space)", &ui.playing);
+  tip("Cycle the bias so the texture flows along the streamlines (thesis 3.3.3)");
+  ImGui::SliderFloat("speed", &ui.animationSpeed, 1.0f, 60.0f, "%.0f steps/s");
+}
+
+void filesPanel(UiState& ui, Actions& actions) {
+  if (!ImGui::CollapsingHeader("Session and images")) return;
+  text("session", ui.sessionPath, "JSON file with every parameter");
+  if (ImGui::Button("Save session")) actions.saveSession = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Load session")) actions.loadSession = true;
+  if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
+  tip("The window as it is, UI included, to lic3d-screenshot-N.png");
+  text("image", ui.imagePath, "PNG file for the image below");
+  ImGui::InputInt2("size", &ui.imageWidth);
+  ui.imageWidth = std::clamp(ui.imageWidth, 16, 16384);
+  ui.imageHeight = std::clamp(ui.imageHeight, 16, 16384);
+  if (ImGui::Button("Render image")) actions.renderImage = true;
+  tip("The volume alone at this size, as `lic3d render` would make it");
+}
+
+void statsOverlay(const Stats& stats) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+  // Wide enough from the first frame: an auto-sized window trails its text by a frame.
+  ImGui::SetNextWindowSizeConstraints(ImVec2(ImGui::GetFontSize() * 30.0f, 0.0f),
+                                      ImVec2(10000.0f, 10000.0f));
+  ImGui::SetNextWindowBgAlpha(0.5f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+  if (ImGui::Begin("stats", nullptr, flags)) {
+    ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
+                stats.licMs, stats.frameMs);
+    ImGui::Text("%dx%dx%d volume, %.1f MiB on the device", stats.dims.x, stats.dims.y, stats.dims.z,
+                stats.volumeMiB);
+    ImGui::Text("%s", stats.device.c_str());
+    if (stats.loading) ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "loading the field...");
+    if (stats.waitingForMask)
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "making the sparsity mask...");
+    else if (stats.computing)
+      ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "computing LIC %3.0f %%",
+                         100.0 * stats.computeFraction);
+    if (!stats.message.empty()) {
+      // A fixed wrap width: TextWrapped would wrap at the auto-sized window's previous width.
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+      ImGui::TextUnformatted(stats.message.c_str());
+      ImGui::PopTextWrapPos();
+    }
+  }
+  ImGui::End();
+}
+
+void legend(const ViewParams& v, const Stats& stats) {
+  if (!v.legend || v.color != ColorMode::Magnitude) return;
+  const float low = v.autoColorRange ? stats.minMagnitude : v.colorLow;
+  const float high = v.autoColorRange ? stats.maxMagnitude : v.colorHigh;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  // At the left edge, below the stats: the panels take the right edge.
+  const float x0 = 24.0f, x1 = x0 + 18.0f;
+  const float y0 = std::max(display.y * 0.3f, 130.0f), y1 = std::max(display.y * 0.8f, y0 + 40.0f);
+  const int steps = 64;
+  for (int i = 0; i < steps; ++i) {
+    const float t0 = static_cast<float>(i) / steps, t1 = static_cast<float>(i + 1) / steps;
+    const glm::vec3 c = sampleColormap(v.colormap, 1.0f - 0.5f * (t0 + t1));
+    draw->AddRectFilled(ImVec2(x0, y0 + t0 * (y1 - y0)), ImVec2(x1, y0 + t1 * (y1 - y0)),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+  }
+  draw->AddRect(ImVec2(x0, y0), ImVec2(x1, y1), IM_COL32_WHITE);
+  char label[32];
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(high));
+  draw->AddText(ImVec2(x1 + 4, y0 - 7), IM_COL32_WHITE, label);
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(0.5f * (low + high)));
+  draw->AddText(ImVec2(x1 + 4, 0.5f * (y0 + y1) - 7), IM_COL32_WHITE, label);
+  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(low));
+  draw->AddText(ImVec2(x1 + 4, y1 - 7), IM_COL32_WHITE, label);
+  draw->AddText(ImVec2(x0, y0 - 24), IM_COL32_WHITE, "|v|");
+}
+
+void helpPanel(UiState& ui) {
+  if (!ui.help) return;
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Help", &ui.help)) {
+    ImGui::TextUnformatted(
+        "Mouse\n"
+        "  left drag            orbit\n"
+        "  middle / shift+left  pan\n"
+        "  wheel                zoom\n"
+        "Keys\n"
+        "  R          reset the view\n"
+        "  Space      play / pause the bias animation\n"
+        "  F12        screenshot of the window\n"
+        "  H or Tab   show / hide the panels\n"
+        "  F1         this help\n"
+        "  Esc        quit\n"
+        "\n"
+        "View changes redraw at once. LIC changes recompute the\n"
+        "volume in the background; the last volume stays on\n"
+        "screen until the new one is complete.");
+  }
+  ImGui::End();
+}
+
+}  // namespace
+
+Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
+  Actions actions;
+  legend(session.view, stats);
+  if (!ui.visible) return actions;
+  statsOverlay(stats);
+  helpPanel(ui);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 380.0f, 10.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(370.0f, display.y - 20.0f), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("lic3d")) {
+    ImGui::PushItemWidth(180.0f);
+    fieldPanel(ui, actions);
+    licPanel(session);
+    sparsityPanel(session);
+    colourPanel(session.view, stats);
+    localPanel(session.view);
+    depthPanel(session.view);
+    renderingPanel(session.view, ui, actions);
+    filesPanel(ui, actions);
+    ImGui::PopItemWidth();
+    if (ImGui::Button("Help (F1)")) ui.help = !ui.help;
+  }
+  ImGui::End();
+  return actions;
+}
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,134 @@
+// Session files: every parameter survives a JSON round trip, and bad files are refused with the
+// file and the key named.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "session.h"
+#include "test_support.h"
+
+namespace lic3d {
+namespace {
+
+class SessionTest : public test::TempFolderTest {};
+
+// A session with every field away from its default, so a key the writer or the reader forgets
+// shows up as a difference.
+Session unusualSession() {
+  Session s;
+  s.field = {"data/carotid.vtk", Dims{17, 19, 23}, "velocity"};
+  s.noise = {"noise.nrrd", 77, 300};
+  s.precision = FieldPrecision::Half;
+  LicParams& l = s.lic;
+  l.length = 13;
+  l.step = 0.375f;
+  l.bias = -4;
+  l.integrator = Integrator::Rk4;
+  l.kernel = Kernel::Gauss;
+  l.noiseFilter = NoiseFilter::Nearest;
+  l.direction = DirectionMode::Magnitude;
+  l.sparsity = {SparsityDistribution::Hammersley, 1234, 2.5f, 0.125f, 9};
+  ViewParams& v = s.view;
+  v.width = 333;
+  v.height = 222;
+  v.slicing = Slicing::AxisAligned;
+  v.slices = 99;
+  v.camera = {12.5f, -30.0f, 2.25f, 45.0f, false, glm::vec3(0.1f, -0.2f, 0.3f)};
+  v.background = {0.25f, 0.5f, 0.75f};
+  v.alpha = 0.125f;
+  v.opacityMode = OpacityMode::Constant;
+  v.filter = VolumeFilter::Nearest;
+  v.contrast = false;
+  v.manualWindow = true;
+  v.windowLow = 0.25f;
+  v.windowHigh = 0.75f;
+  v.gain = 1.5f;
+  v.brightness = -0.25f;
+  v.color = ColorMode::Magnitude;
+  v.colormap = Colormap::Viridis;
+  v.autoColorRange = false;
+  v.colorLow = 0.5f;
+  v.colorHigh = 2.5f;
+  v.legend = true;
+  v.magnitudeOpacity = 0.5f;
+  v.magnitudeThreshold = 0.25f;
+  v.clipMin = {0.125f, 0.25f, 0.375f};
+  v.clipMax = {0.5f, 0.625f, 0.75f};
+  v.roi = RoiShape::Cylinder;
+  v.roiCenter = {0.25f, 0.5f, 0.75f};
+  v.roiSize = 0.375f;
+  v.roiRotation = {10.0f, 20.0f, 30.0f};
+  v.roiOutside = true;
+  v.fog = true;
+  v.fogStart = 0.125f;
+  v.fogEnd = 0.875f;
+  v.fogColorFromBackground = false;
+  v.fogColor = {0.5f, 0.25f, 0.125f};
+  v.stereo = StereoMode::SideBySide;
+  v.eyeSeparation = 0.0625f;
+  v.zeroParallax = 1.5f;
+  v.lighting = Lighting::Phong;
+  v.light = {0.25f, 0.5f, 0.125f, 8.0f};
+  return s;
+}
+
+TEST(Session, EveryParameterSurvivesAJsonRoundTrip) {
+  const Session original = unusualSession();
+  ASSERT_NE(original, Session{}) << "the test session must differ from the defaults";
+  Result<Session> back = sessionFromJson(sessionToJson(original), "memory");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(*back, original) << sessionToJson(*back);
+
+  // Stereo needs a perspective camera, so the orthographic flag gets a session of its own.
+  Session ortho = original;
+  ortho.view.stereo = StereoMode::None;
+  ortho.view.camera.orthographic = true;
+  Result<Session> orthoBack = sessionFromJson(sessionToJson(ortho), "memory");
+  ASSERT_TRUE(orthoBack) << orthoBack.error().message;
+  EXPECT_EQ(*orthoBack, ortho);
+}
+
+TEST(Session, MissingKeysKeepTheirDefaults) {
+  Result<Session> s = sessionFromJson(R"({"lic": {"length": 7}})", "partial.json");
+  ASSERT_TRUE(s) << s.error().message;
+  Session expected;
+  expected.lic.length = 7;
+  EXPECT_EQ(*s, expected);
+}
+
+TEST(Session, BadFilesAreRefusedWithTheFileAndKeyNamed) {
+  struct Case {
+    const char* json;
+    const char* mentions;
+  };
+  for (const Case& c : {Case{R"({"lic": {"lenght": 7}})", "lenght"},
+                        Case{R"({"lic": {"length": "long"}})", "length"},
+                        Case{R"({"lic": {"kernel": "triangle"}})", "kernel"},
+                        Case{R"({"view": {"clip_min": [0, 1]}})", "clip_min"},
+                        Case{R"({"lic": {"length": -3}})", "length"},
+                        Case{R"([1, 2, 3])", "object"},
+                        Case{R"({"lic": )", "bad.json"}}) {
+    Result<Session> s = sessionFromJson(c.json, "bad.json");
+    ASSERT_FALSE(s) << c.json;
+    EXPECT_EQ(s.error().kind, ErrorKind::InvalidInput) << c.json;
+    EXPECT_NE(s.error().message.find("bad.json"), std::string::npos) << s.error().message;
+    EXPECT_NE(s.error().message.find(c.mentions), std::string::npos) << s.error().message;
+  }
+}
+
+TEST_F(SessionTest, FileRoundTripLeavesNoTemporary) {
+  const Session original = unusualSession();
+  ASSERT_TRUE(writeSession(path("s.json"), original));
+  Result<Session> back = readSession(path("s.json"));
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(*back, original);
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"s.json"});
+
+  Result<Session> missing = readSession(path("none.json"));
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("none.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lic3d

@@ -1,0 +1,171 @@
+// The desktop app under a virtual X server (xvfb-run) on lavapipe: it starts, runs a scripted
+// number of frames with validation on, and its screenshot shows the volume and the panels.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "png_read.h"
+#include "session.h"
+#include "test_support.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int status = -1;
+  std::string output;
+};
+
+CommandRun runShell(const std::string& command) {
+  CommandRun result;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  std::size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  return result;
+}
+
+constexpr int kWidth = 1024;
+constexpr int kHeight = 640;
+
+class ViewerTest : public test::TempFolderTest {
+ protected:
+  void SetUp() override {
+    test::TempFolderTest::SetUp();
+    if (runShell("command -v xvfb-run").status != 0)
+      FAIL() << "xvfb-run is missing: install xvfb and xauth (cmake/install-deps.sh does)";
+  }
+
+  // lic3d-view in a fresh virtual screen, in the test's folder.
+  CommandRun view(const std::string& args) const {
+    return runShell("cd '" + folder().string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' '" +
+                    std::string(LIC3D_VIEWER) + "' --validation --window-size " +
+                    std::to_string(kWidth) + "x" + std::to_string(kHeight) + " " + args);
+  }
+};
+
+struct Box {
+  int x0, y0, x1, y1;
+};
+
+// Fraction of the box's pixels for which `test` holds.
+template <class Test>
+double fraction(const test::RgbaPixels& image, Box box, Test test) {
+  int hits = 0, total = 0;
+  for (int y = box.y0; y < box.y1; ++y)
+    for (int x = box.x0; x < box.x1; ++x, ++total) {
+      const std::uint8_t* p = &image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)];
+      if (test(p[0], p[1], p[2])) ++hits;
+    }
+  return total ? static_cast<double>(hits) / total : 0.0;
+}
+
+bool lit(int r, int g, int b) { return r + g + b > 30; }
+// Dear ImGui's dark style: headers and the title bar are a saturated blue no LIC grey reaches.
+bool imguiBlue(int r, int g, int b) { return b > 100 && b > r + 50 && b > g + 20; }
+
+// Where the panels go (the right edge) and where the volume projects (the window's middle).
+const Box kPanel{kWidth - 300, 0, kWidth, kHeight / 2};
+const Box kVolume{kWidth / 2 - 60, kHeight / 2 - 60, kWidth / 2 + 60, kHeight / 2 + 60};
+const Box kStats{0, 0, 220, 50};
+
+TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
+  const CommandRun r = view("--grid 32 --frames 4 --screenshot shot.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(shot.width, kWidth) << r.output;
+  ASSERT_EQ(shot.height, kHeight);
+
+  EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9)
+      << "the volume should cover the window's middle";
+  // LIC, not a flat block: the grey values spread.
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = kVolume.y0; y < kVolume.y1; ++y)
+    for (int x = kVolume.x0; x < kVolume.x1; ++x, ++n) {
+      const double v = shot.rgba[4 * (static_cast<std::size_t>(y) * kWidth + x)];
+      sum += v;
+      sum2 += v * v;
+    }
+  const double deviation = std::sqrt(sum2 / n - (sum / n) * (sum / n));
+  EXPECT_GT(deviation, 10.0) << "the volume looks flat: is the LIC texture there?";
+  // Contrast stretch in effect: the volume is grey texture, not saturated white.
+  EXPECT_LT(fraction(shot, kVolume, [](int r_, int g, int b) { return r_ + g + b > 735; }), 0.2);
+
+  EXPECT_GT(fraction(shot, kPanel, imguiBlue), 0.02) << "the parameter panels are missing";
+  EXPECT_GT(fraction(shot, kStats, [](int r_, int g, int b) { return r_ > 200 && g > 200 && b > 200; }),
+            0.02)
+      << "the stats overlay's text is missing";
+}
+
+TEST_F(ViewerTest, HiddenUiLeavesOnlyTheVolume) {
+  const CommandRun r = view("--grid 24 --frames 3 --hide-ui --screenshot shot.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(shot.width, kWidth) << r.output;
+  EXPECT_EQ(fraction(shot, kPanel, imguiBlue), 0.0);
+  EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
+}
+
+// The app starts from a session and saves the same session back; `lic3d render` reads it.
+TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
+  Session original;
+  original.field.field = "abc";
+  original.field.grid = Dims{20, 18, 16};
+  original.lic.length = 7;
+  original.lic.kernel = Kernel::Hann;
+  original.view.color = ColorMode::Magnitude;
+  original.view.colormap = Colormap::CoolWarm;
+  original.view.camera.azimuth = 60.0f;
+  original.view.clipMax = {0.75f, 1.0f, 1.0f};
+  original.view.width = 64;
+  original.view.height = 48;
+  ASSERT_TRUE(writeSession(path("in.json"), original));
+
+  const CommandRun r = view("--session in.json --frames 2 --save-session out.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(*saved, original) << sessionToJson(*saved);
+
+  const CommandRun render = runShell("cd '" + folder().string() + "' && '" +
+                                     std::string(LIC3D_EXECUTABLE) +
+                                     "' render -q --session out.json -o out.png");
+  ASSERT_EQ(render.status, 0) << render.output;
+  EXPECT_EQ(test::readRgbaPng(path("out.png")).width, 64);
+}
+
+TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
+  for (const char* args : {"--window-size 10x10", "--screenshot shot.png", "--frames 2 --screenshot shot.jpg",
+                           "--session missing.json"}) {
+    const CommandRun r = runShell("cd '" + folder().string() + "' && '" +
+                                  std::string(LIC3D_VIEWER) + "' " + args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << args;
+  }
+  // A field file that cannot be read is found once the window is open: still status 2.
+  const CommandRun missing = view("--field missing.nrrd --frames 1");
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("missing.nrrd"), std::string::npos) << missing.output;
+
+  // `lic3d view` starts the app with the same options.
+  const CommandRun help = runShell(std::string("'") + LIC3D_EXECUTABLE + "' view --help");
+  EXPECT_EQ(help.status, 0) << help.output;
+  EXPECT_NE(help.output.find("--frames"), std::string::npos) << help.output;
+}
+
+}  // namespace
+}  // namespace lic3d
