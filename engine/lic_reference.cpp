@@ -39,8 +39,7 @@ struct Stepper {
   glm::dvec3 direction(glm::dvec3 v) const {
     const double magnitude = glm::length(v);
     if (magnitude <= criticalMagnitude) return glm::dvec3(0.0);
-    return params.direction == DirectionMode::Normalized ? v / magnitude
-                                                         : v / sampler.maxMagnitude();
+    return params.direction == DirectionMode::Normalized ? v / magnitude : v / sampler.maxSpeed();
   }
   glm::dvec3 directionAt(glm::dvec3 x) const { return direction(sampler.at(x)); }
 
@@ -61,8 +60,32 @@ struct Stepper {
 
 }  // namespace
 
+Result<void> checkSpacing(const GridGeometry& geometry) {
+  for (int a = 0; a < 3; ++a)
+    if (!(geometry.spacing[a] > 0.0) || !std::isfinite(geometry.spacing[a]))
+      return inputError("the grid's spacing must be positive and finite on every axis");
+  return {};
+}
+
+glm::dvec3 voxelUnitScale(const GridGeometry& geometry) {
+  const glm::dvec3 s = geometry.spacing;
+  // min / s[a] rather than s[a] / min: the axes with the smallest spacing get exactly 1.
+  return std::min({s.x, s.y, s.z}) / s;
+}
+
+double maxVoxelSpeed(const VectorField& field) {
+  const glm::dvec3 scale = voxelUnitScale(field.geometry);
+  double largest = 0.0;
+  for (const glm::vec3& v : field.vectors) {
+    // The same arithmetic as maxMagnitude (volume.cpp): equal to it on isotropic grids.
+    const double x = v.x * scale.x, y = v.y * scale.y, z = v.z * scale.z;
+    largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
+  }
+  return largest;
+}
+
 FieldSampler::FieldSampler(const VectorField& field)
-    : field_(field), maxMagnitude_(lic3d::maxMagnitude(field)) {}
+    : field_(field), scale_(voxelUnitScale(field.geometry)), maxSpeed_(maxVoxelSpeed(field)) {}
 
 glm::dvec3 FieldSampler::at(glm::dvec3 x) const {
   const Dims d = field_.dims;
@@ -72,7 +95,7 @@ glm::dvec3 FieldSampler::at(glm::dvec3 x) const {
   const glm::dvec3 c10 = glm::mix(v(cx.i0, cy.i1, cz.i0), v(cx.i1, cy.i1, cz.i0), cx.t);
   const glm::dvec3 c01 = glm::mix(v(cx.i0, cy.i0, cz.i1), v(cx.i1, cy.i0, cz.i1), cx.t);
   const glm::dvec3 c11 = glm::mix(v(cx.i0, cy.i1, cz.i1), v(cx.i1, cy.i1, cz.i1), cx.t);
-  return glm::mix(glm::mix(c00, c10, cy.t), glm::mix(c01, c11, cy.t), cz.t);
+  return glm::mix(glm::mix(c00, c10, cy.t), glm::mix(c01, c11, cy.t), cz.t) * scale_;
 }
 
 double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x) {
@@ -95,7 +118,7 @@ double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x) {
 std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
                                         const LicParams& params, glm::dvec3 start, int sign,
                                         int steps) {
-  const Stepper stepper{sampler, params, kCriticalFraction * sampler.maxMagnitude()};
+  const Stepper stepper{sampler, params, kCriticalFraction * sampler.maxSpeed()};
   std::vector<glm::dvec3> samples{start};
   glm::dvec3 x = start;
   const double sh = sign * static_cast<double>(params.step);
@@ -129,7 +152,6 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
                            const LicParams& params, glm::ivec3 voxel, const SparsityMask* mask) {
   const glm::dvec3 start(voxel);
   double sum = 0.0, weights = 0.0;
-  bool drawn = true;
   for (int sign : {-1, 1}) {
     const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
     const std::vector<glm::dvec3> samples =
@@ -140,16 +162,19 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
                                     params.bias);
       sum += w * sampleNoise(noise, params.noiseFilter, samples[i]);
       weights += w;
-      if (mask && inBlackVoxel(*mask, samples[i])) drawn = false;
+      // A hidden voxel's value is never shown: its streamline is not followed further, and
+      // the value is 0 on both implementations (docs/LIC_SEMANTICS.md, Sparsity).
+      if (mask && inBlackVoxel(*mask, samples[i])) return {0.0, false};
     }
   }
-  return {sum / weights, drawn};
+  return {sum / weights, true};
 }
 
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
                                          const LicParams& params, unsigned threads,
                                          const ProgressCallback& progress) {
   LIC3D_TRY(validate(params));
+  LIC3D_TRY(checkSpacing(field.geometry));
   if (noise.dims != field.dims)
     return inputError("the noise volume and the field must have the same grid");
 

@@ -17,16 +17,33 @@ namespace lic3d {
 // Called with the finished fraction in [0,1] from the calling thread.
 using ProgressCallback = std::function<void(double fraction)>;
 
-// Edge-clamped trilinear interpolation of a field at continuous voxel positions.
+// ---- Voxel units (docs/LIC_SEMANTICS.md, "Anisotropic grids") ----------------------------------
+// LIC integrates in voxel units: component a of a physical vector is divided by the spacing along
+// a. The result is multiplied by the smallest spacing, so the factor is exactly 1 on every axis of
+// an isotropic grid and such grids keep their vectors bit for bit. The GPU upload
+// (volume_textures.cpp) and this reference both convert with these two, so they cannot drift.
+
+// An input error unless the spacing is positive and finite on every axis (the readers ensure it;
+// computeLicReference and uploadLicInputs check it for fields made in code).
+Result<void> checkSpacing(const GridGeometry& geometry);
+// min(spacing) / spacing per axis, for a geometry that passes checkSpacing.
+glm::dvec3 voxelUnitScale(const GridGeometry& geometry);
+// The largest |v * voxelUnitScale| over the grid's voxels: what magnitude steps are scaled by.
+double maxVoxelSpeed(const VectorField& field);
+
+// Edge-clamped trilinear interpolation of a field at continuous voxel positions, in voxel units.
 class FieldSampler {
  public:
   explicit FieldSampler(const VectorField& field);
+  // The interpolated vector times voxelUnitScale (interpolation and the per-axis scale commute).
   glm::dvec3 at(glm::dvec3 x) const;
-  double maxMagnitude() const { return maxMagnitude_; }
+  // maxVoxelSpeed of the field.
+  double maxSpeed() const { return maxSpeed_; }
 
  private:
   const VectorField& field_;
-  double maxMagnitude_ = 0.0;
+  glm::dvec3 scale_{1.0};
+  double maxSpeed_ = 0.0;
 };
 
 // The samples x_0 = start, x_1, ... that a streamline reaches in direction sign (+1 or -1) within

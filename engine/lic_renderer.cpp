@@ -130,6 +130,7 @@ VolumeFacts LicRenderer::volumeFacts() const {
   facts.geometry = field_.geometry;
   facts.minMagnitude = static_cast<float>(field_.minMagnitude);
   facts.maxMagnitude = static_cast<float>(field_.maxMagnitude);
+  facts.texelToPhysical = glm::vec3(field_.texelToPhysical);
   facts.intensityMean = statistics_.mean;
   facts.intensityDeviation = statistics_.deviation;
   facts.sparsity =

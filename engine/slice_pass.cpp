@@ -104,7 +104,8 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
 
   const float low = view.autoColorRange ? volume.minMagnitude : view.colorLow;
   const float high = view.autoColorRange ? volume.maxMagnitude : view.colorHigh;
-  u.magnitude = glm::vec4(low, 1.0f / std::max(high - low, 1e-30f), volume.maxMagnitude, 0.0f);
+  u.magnitude = glm::vec4(low, 1.0f / std::max(high - low, 1e-30f), 0.0f, 0.0f);
+  u.texelToPhysical = glm::vec4(volume.texelToPhysical, 0.0f);
   u.magnitudeOpacity = glm::vec4(view.magnitudeOpacity, view.magnitudeThreshold, 0.0f, 0.0f);
 
   // Fog depths from the nearest to the farthest point of the volume's bounding sphere.

@@ -46,8 +46,9 @@ static_assert(sizeof(SliceSpecialization) == 12 * 4);
 struct VolumeFacts {
   Dims dims{1};
   GridGeometry geometry;
-  float minMagnitude = 0.0f;  // over the grid's voxels
+  float minMagnitude = 0.0f;  // physical |v| over the grid's voxels (the automatic colour range)
   float maxMagnitude = 1.0f;
+  glm::vec3 texelToPhysical{1.0f};  // FieldTexture::texelToPhysical: decodes the field texture
   float intensityMean = 0.5f;       // of the drawn voxels' LIC values
   float intensityDeviation = 0.1f;  // their standard deviation
   bool sparsity = false;            // the LIC volume carries a sparsity mask

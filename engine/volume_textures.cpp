@@ -3,6 +3,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gpu_submit.h"
+#include "lic_reference.h"
 
 namespace lic3d {
 namespace {
@@ -11,9 +12,10 @@ std::string gridText(Dims d) {
   return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
-// Interleaves (v / max|v|, noise) as RGBA texels of type T, converted by `convert`.
+// Interleaves (v in voxel units / its largest length, noise) as RGBA texels of type T, converted
+// by `convert`. `scale` is voxelUnitScale / maxVoxelSpeed.
 template <class T, class Convert>
-std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, double scale,
+std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
                           Convert convert) {
   std::vector<T> texels(4 * field.vectors.size());
   for (std::size_t i = 0; i < field.vectors.size(); ++i) {
@@ -49,6 +51,7 @@ FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested
 Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
                                      const NoiseVolume& noise, FieldPrecision precision) {
   LIC3D_TRY(checkVolumeDims(context, field.dims, "field"));
+  LIC3D_TRY(checkSpacing(field.geometry));
   const FieldPrecision resolved = resolvePrecision(context, precision);
   // The texture, its staging copy and the LIC volume must fit the device's largest heap; a CPU
   // driver would otherwise accept the allocation and fail when the memory is first touched.
@@ -68,8 +71,14 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   texture.geometry = field.geometry;
   texture.maxMagnitude = maxMagnitude(field);
   texture.minMagnitude = minMagnitude(field);
+  texture.maxVoxelSpeed = maxVoxelSpeed(field);
   texture.precision = resolved;
-  const double scale = texture.maxMagnitude > 0.0 ? 1.0 / texture.maxMagnitude : 1.0;
+  // On isotropic grids voxelUnitScale is exactly 1 and maxVoxelSpeed is max|v|: the texels are
+  // v / max|v| bit for bit, as before anisotropic grids were converted.
+  const glm::dvec3 unit = voxelUnitScale(field.geometry);
+  const double speed = texture.maxVoxelSpeed > 0.0 ? texture.maxVoxelSpeed : 1.0;
+  const glm::dvec3 scale = unit / speed;
+  texture.texelToPhysical = speed / unit;
 
   ImageDesc desc;
   desc.extent = {static_cast<std::uint32_t>(field.dims.x), static_cast<std::uint32_t>(field.dims.y),

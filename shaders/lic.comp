@@ -12,18 +12,19 @@ layout(local_size_x_id = kLicConstLocalSizeX, local_size_y_id = kLicConstLocalSi
 layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2, 2 rk4
 layout(constant_id = kLicConstKernel) const uint KERNEL = 0;            // 0 box, 1 hann, 2 gauss
 layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nearest, 1 trilinear
-layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;      // 0 v/|v|, 1 v/max|v|
+layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
 // Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
 layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
 
-// xyz = v / max|v|, w = noise (see engine/volume_textures.h)
+// xyz = u / max|u| with u the field in voxel units, w = noise (engine/volume_textures.h):
+// integrating u in voxel coordinates follows the physical field on anisotropic grids.
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kLicBindingOutput, rg16) uniform writeonly image3D licImage;
 layout(set = 0, binding = kLicBindingMask) uniform usampler3D sparsityMask;
 
 layout(push_constant) uniform Push { LicPushConstants pc; };
 
-// (v / max|v|, noise) at continuous voxel position x (voxel centres at integers): hardware
+// (u / max|u|, noise) at continuous voxel position x (voxel centres at integers): hardware
 // trilinear interpolation with clamp-to-edge is the edge-clamped trilinear field of the semantics.
 vec4 fieldAndNoiseAt(vec3 x) { return textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0); }
 vec3 fieldAt(vec3 x) { return fieldAndNoiseAt(x).xyz; }
@@ -75,9 +76,11 @@ void main() {
   float w0 = weightOf(0);
   float sum = w0 * noiseAt(start, startTexel);
   float weights = w0;
+  // A voxel whose streamline touches a black voxel of the mask is hidden; its value is never
+  // shown (0, as in the CPU reference), so its streamline is not followed any further.
   bool masked = touchesBlack(start);
 
-  for (int direction = -1; direction <= 1; direction += 2) {
+  for (int direction = -1; direction <= 1 && !masked; direction += 2) {
     int steps = direction < 0 ? pc.licLength - pc.bias : pc.licLength + pc.bias;
     float sh = float(direction) * pc.step;
     vec3 x = start;
@@ -94,9 +97,12 @@ void main() {
       float w = weightOf(direction * i);
       sum += w * noiseAt(x, texel);
       weights += w;
-      masked = masked || touchesBlack(x);
+      if (touchesBlack(x)) {
+        masked = true;
+        break;
+      }
       v = texel.xyz;
     }
   }
-  imageStore(licImage, voxel, vec4(sum / weights, masked ? 0.0 : 1.0, 0.0, 0.0));
+  imageStore(licImage, voxel, masked ? vec4(0.0) : vec4(sum / weights, 1.0, 0.0, 0.0));
 }

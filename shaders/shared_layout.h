@@ -20,7 +20,7 @@ using mat4 = glm::mat4;
 #endif
 
 // ---- LIC compute pass -------------------------------------------------------------------------
-LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F/32F, xyz = v / max|v|, w = noise
+LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F/32F, xyz = voxel-unit v / max, w = noise
 LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
 LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
 
@@ -40,7 +40,7 @@ struct LicPushConstants {
   int licLength;          // L
   int bias;               // Lb = L - bias backward, Lf = L + bias forward
   float step;             // h in voxels
-  float criticalEpsilon;  // |v / max|v|| at or below this stops a streamline
+  float criticalEpsilon;  // a texel's |xyz| at or below this stops a streamline
   float hannDenominator;  // L + |bias| + 1
   float gaussScale;       // 1 / (0.5 L), 0 when L = 0
   float pad0;
@@ -59,7 +59,7 @@ struct HistogramPushConstants {
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
 LIC3D_CONST kSliceBindingVolume = 0;    // sampler3D: the LIC volume (r = LIC, g = drawn)
-LIC3D_CONST kSliceBindingField = 1;     // sampler3D: the field texture (xyz = v / max|v|)
+LIC3D_CONST kSliceBindingField = 1;     // sampler3D: the field texture (volume_textures.h)
 LIC3D_CONST kSliceBindingColormap = 2;  // sampler2D: one row per colour map
 LIC3D_CONST kSliceBindingUniforms = 3;  // uniform SliceUniforms
 LIC3D_CONST kSliceVerticesPerSlice = 12;  // a convex polygon of up to 6 corners as 4 triangles
@@ -91,21 +91,23 @@ struct SliceUniforms {
   vec4 eyePosition;      // xyz: the camera (this eye); w: distance between slices
   vec4 toViewer;         // xyz: unit direction from the volume to the camera; w: unused
   vec4 transfer;         // grey = clamp(x * intensity + y); z: reference distance; w: unused
-  vec4 magnitude;        // x: low end of the colour range, y: 1 / (high - low),
-                         // z: max|v| (the field texture's scale), w: unused
+  vec4 magnitude;        // x: low end of the colour range (physical |v|), y: 1 / (high - low),
+                         // zw: unused
   vec4 magnitudeOpacity; // x: exponent, y: threshold (normalised magnitude), zw: unused
   vec4 fog;              // x: distance where fog starts, y: 1 / (end - start), zw: unused
   vec4 fogColor;         // rgb
   vec4 light;            // xyz: unit direction towards the light; w: specular exponent
   vec4 lightTerms;       // x: ambient, y: diffuse, z: specular, w: unused
-  vec4 voxelSize;        // xyz: one voxel in world units (tangents to world space); w: unused
+  vec4 voxelSize;        // xyz: one voxel in world units (texel xyz, in voxel units, times this
+                         // points along the flow in world space); w: unused
+  vec4 texelToPhysical;  // xyz: a field texel's xyz times this is the physical vector; w: unused
   uvec4 modes[3];        // the 12 specialization constants in order, read only by the
                          // benchmark's runtime-mode build of slice.frag
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(LicPushConstants) == 64);
-static_assert(sizeof(SliceUniforms) == 2 * 64 + 17 * 16);
+static_assert(sizeof(SliceUniforms) == 2 * 64 + 18 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif

@@ -61,7 +61,8 @@ bool insideRegion(vec3 p) {
   return dot(p.xy, p.xy) <= 0.25 && abs(p.z) <= 0.5;
 }
 
-// The streamline's unit tangent at a texture coordinate, in world space.
+// The streamline's unit tangent at a texture coordinate, in world space: the texels hold the
+// field in voxel units, and one voxel is voxelSize world units long on each axis.
 vec3 tangentAt(vec3 uvw) {
   vec3 v = texture(fieldTexture, uvw).xyz * u.voxelSize.xyz;
   float len = length(v);
@@ -116,7 +117,8 @@ void main() {
 
   vec3 rgb = vec3(grey);
   if (COLOR_MODE == 1 || MAGNITUDE_OPACITY == 1) {
-    float speed = length(texture(fieldTexture, texCoord).xyz) * u.magnitude.z;
+    // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
+    float speed = length(texture(fieldTexture, texCoord).xyz * u.texelToPhysical.xyz);
     float t = clamp((speed - u.magnitude.x) * u.magnitude.y, 0.0, 1.0);
     if (COLOR_MODE == 1) {
       // The LIC intensity modulates the colour (thesis 5.1.2).

@@ -178,6 +178,111 @@ TEST_F(GpuTest, MagnitudeOpacityFadesSlowRegions) {
             std::abs(luminance(image.at(90, 64)) - luminance(glm::u8vec4(kBackground * 255.0f, 255))));
 }
 
+// ---- Anisotropic grids --------------------------------------------------------------------------
+
+// z voxels 2.5 times as long as x and y voxels.
+constexpr glm::dvec3 kTallVoxels{1.0, 1.0, 2.5};
+
+// Physical speed 1 everywhere, pointing along x in the left half and along z in the right half:
+// in voxel units the right half is 2.5 times slower, which magnitude colouring must not show.
+VectorField equalSpeedTwoDirections(Dims dims) {
+  VectorField field;
+  field.dims = dims;
+  field.geometry.spacing = kTallVoxels;
+  field.vectors.resize(voxelCount(dims));
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i)
+        field.vectors[voxelIndex(dims, i, j, k)] =
+            i < dims.x / 2 ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
+  return field;
+}
+
+// The colour range, the legend and the shader's speeds are physical |v| on anisotropic grids.
+TEST_F(GpuTest, MagnitudeColourShowsPhysicalSpeedOnAnisotropicGrids) {
+  const Dims dims{16, 16, 16};
+  const VectorField field = equalSpeedTwoDirections(dims);
+  LicRenderer renderer = rendererWithVolume(
+      context(), dims, [](int, int, int) { return 1.0f; }, &field);
+  const VolumeFacts facts = renderer.volumeFacts();
+  EXPECT_FLOAT_EQ(facts.minMagnitude, 1.0f);
+  EXPECT_FLOAT_EQ(facts.maxMagnitude, 1.0f);
+  // Texels hold u / max|u| with u = (v_x, v_y, v_z / 2.5) and max|u| = 1.
+  EXPECT_EQ(facts.texelToPhysical, glm::vec3(1.0f, 1.0f, 2.5f));
+
+  ViewParams view = frontView(128);
+  view.color = ColorMode::Magnitude;
+  view.autoColorRange = false;
+  view.colorLow = 0.0f;  // speed 1 is the middle of the map; 0.4 would be far from it
+  view.colorHigh = 2.0f;
+  const RgbaImage image = *renderer.render(LicParams{}, view);
+  int left = image.width, right = -1;
+  for (int x = 0; x < image.width; ++x)
+    if (!isBackground(image.at(x, 64))) {
+      left = std::min(left, x);
+      right = std::max(right, x);
+    }
+  ASSERT_LT(left + 20, right);
+  const int quarter = (right - left) / 4;
+  const glm::u8vec4 alongX = image.at(left + quarter, 64), alongZ = image.at(right - quarter, 64);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(alongX[c], alongZ[c], 3)
+        << "channel " << c << ": equal physical speeds, one colour";
+
+  // A legend over the same range as the automatic one: physical min and max |v|.
+  VectorField ramp = speedRamp(dims);  // along z, 0.1 .. 1.1
+  ramp.geometry.spacing = kTallVoxels;
+  LicRenderer rampRenderer = rendererWithVolume(
+      context(), dims, [](int, int, int) { return 1.0f; }, &ramp);
+  EXPECT_FLOAT_EQ(rampRenderer.volumeFacts().minMagnitude, 0.1f);
+  EXPECT_FLOAT_EQ(rampRenderer.volumeFacts().maxMagnitude, 1.1f);
+}
+
+// Illuminated lines shade by the world-space tangent alone. A constant field along the physical
+// direction (1, 0, 1) must be lit the same on tall voxels as on cubic ones; the texels hold
+// (1, 0, 0.4) in voxel units, which the voxel's world size turns back into (1, 0, 1). Scaling a
+// physical vector by the voxel size instead would light the direction (1, 0, 2.5), which the third
+// picture shows to shade visibly differently.
+TEST_F(GpuTest, LightingUsesThePhysicalTangentOnAnisotropicGrids) {
+  const Dims dims{16, 16, 16};
+  auto centreColour = [&](glm::vec3 v, glm::dvec3 spacing) {
+    VectorField field;
+    field.dims = dims;
+    field.geometry.spacing = spacing;
+    field.vectors.assign(voxelCount(dims), v);
+    LicRenderer renderer = rendererWithVolume(
+        context(), dims, [](int, int, int) { return 0.4f; }, &field);
+    ViewParams view = frontView(128);
+    view.lighting = Lighting::Lines;
+    return glm::vec3(renderer.render(LicParams{}, view)->at(64, 64));
+  };
+  const glm::vec3 tall = centreColour({1.0f, 0.0f, 1.0f}, kTallVoxels);
+  const glm::vec3 cubic = centreColour({1.0f, 0.0f, 1.0f}, glm::dvec3(1.0));
+  const glm::vec3 steeper = centreColour({1.0f, 0.0f, 2.5f}, glm::dvec3(1.0));
+  // Measured: grey 193 on tall and on cubic voxels, 141 for (1, 0, 2.5).
+  EXPECT_LE(glm::length(tall - cubic), 3.0f) << "tall " << tall.r << " cubic " << cubic.r;
+  EXPECT_GE(glm::length(steeper - cubic), 30.0f) << "steeper " << steeper.r << " cubic " << cubic.r;
+}
+
+// The box has physical proportions: its sides are N * spacing, the longest 1.
+TEST_F(GpuTest, AnisotropicBoxIsDrawnWithPhysicalProportions) {
+  const glm::vec3 mirror = boxHalfExtent({47, 47, 47}, GridGeometry{{0.05, 0.05, 0.125}});
+  EXPECT_NEAR(mirror.x, 0.2f, 1e-6f);
+  EXPECT_NEAR(mirror.y, 0.2f, 1e-6f);
+  EXPECT_NEAR(mirror.z, 0.5f, 1e-6f);
+
+  const Dims dims{16, 16, 16};
+  const VectorField field = equalSpeedTwoDirections(dims);
+  LicRenderer renderer = rendererWithVolume(
+      context(), dims, [](int, int, int) { return 1.0f; }, &field);
+  const RgbaImage image = *renderer.render(LicParams{}, frontView(128));
+  int width = 0, height = 0;
+  for (int x = 0; x < image.width; ++x) width += !isBackground(image.at(x, 64));
+  for (int y = 0; y < image.height; ++y) height += !isBackground(image.at(64, y));
+  ASSERT_GT(height, 20);
+  EXPECT_NEAR(static_cast<double>(width) / height, 1.0 / 2.5, 0.05) << width << " x " << height;
+}
+
 // ---- Clip planes and regions of interest -------------------------------------------------------
 
 TEST_F(GpuTest, ClipPlanesLeaveTheClippedRegionAtBackground) {

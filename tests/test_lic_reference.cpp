@@ -165,6 +165,142 @@ TEST(LicReference, ThreadCountDoesNotChangeTheResult) {
   EXPECT_EQ(one.values, many.values);
 }
 
+// ---- Anisotropic grids (docs/LIC_SEMANTICS.md) -------------------------------------------------
+
+// The magnetic mirror's grid (assets/data/example-femm-3d.vtk): z voxels are 2.5 times as long.
+constexpr glm::dvec3 kMirrorSpacing{0.05, 0.05, 0.125};
+
+VectorField onGrid(VectorField field, glm::dvec3 spacing) {
+  field.geometry.spacing = spacing;
+  return field;
+}
+
+TEST(LicReference, VoxelUnitScaleIsExactlyOneOnIsotropicGrids) {
+  EXPECT_EQ(voxelUnitScale(GridGeometry{glm::dvec3(0.37)}), glm::dvec3(1.0));
+  EXPECT_EQ(voxelUnitScale(GridGeometry{kMirrorSpacing}), glm::dvec3(1.0, 1.0, 0.4));
+  const VectorField field = onGrid(constantField({3, 3, 3}, {1.0f, 1.0f, 1.0f}), kMirrorSpacing);
+  EXPECT_DOUBLE_EQ(maxVoxelSpeed(field), std::sqrt(2.16));
+}
+
+// The physical diagonal (1,1,1) on the mirror's grid is (20, 20, 8) per unit time in voxels
+// (component / spacing), the direction (5, 5, 2): a streamline that ignored the spacing would run
+// along the voxel diagonal (1, 1, 1) instead, 19.5 degrees away.
+TEST(LicReference, StreamlinesOnAnisotropicGridsFollowThePhysicalDirection) {
+  const Dims dims{30, 30, 30};
+  const VectorField field = onGrid(constantField(dims, {1.0f, 1.0f, 1.0f}), kMirrorSpacing);
+  const FieldSampler sampler(field);
+  const glm::dvec3 expected = glm::normalize(glm::dvec3(5.0, 5.0, 2.0));
+  for (const Integrator integrator : {Integrator::Euler, Integrator::Rk2, Integrator::Rk4}) {
+    LicParams params;
+    params.integrator = integrator;
+    const std::vector<glm::dvec3> line =
+        traceStreamline(sampler, dims, params, {5.0, 5.0, 5.0}, +1, 20);
+    ASSERT_EQ(line.size(), 21u);
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      const glm::dvec3 step = line[i] - line[i - 1];
+      EXPECT_NEAR(glm::length(step - 0.5 * expected), 0.0, 1e-12) << toString(integrator) << i;
+      // Back in physical units the step points along the field.
+      const glm::dvec3 physical = glm::normalize(step * kMirrorSpacing);
+      EXPECT_NEAR(glm::length(physical - glm::normalize(glm::dvec3(1.0))), 0.0, 1e-12);
+    }
+  }
+}
+
+// Pearson correlation of a volume with itself shifted by whole voxels, over the voxels where both
+// lie in the grid.
+double shiftedCorrelation(const ScalarVolume& v, glm::ivec3 shift) {
+  double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (int k = 0; k + shift.z < v.dims.z; ++k)
+    for (int j = 0; j + shift.y < v.dims.y; ++j)
+      for (int i = 0; i + shift.x < v.dims.x; ++i) {
+        const double a = v.at(i, j, k), b = v.at(i + shift.x, j + shift.y, k + shift.z);
+        n += 1;
+        sa += a;
+        sb += b;
+        saa += a * a;
+        sbb += b * b;
+        sab += a * b;
+      }
+  const double cov = sab / n - (sa / n) * (sb / n);
+  return cov / std::sqrt((saa / n - (sa / n) * (sa / n)) * (sbb / n - (sb / n) * (sb / n)));
+}
+
+// White-noise LIC of a constant field smears the noise along straight lines: the volume is nearly
+// unchanged by a shift along them and uncorrelated with a shift across them. On the mirror's grid
+// the lines of the physical diagonal run along (5, 5, 2) voxels, not along the voxel diagonal;
+// on an isotropic grid the same field gives the opposite picture, so the measure tells the two
+// apart.
+TEST(LicReference, AnisotropicLicIsSmearedAlongTheVoxelSpaceLine) {
+  const Dims dims{32, 32, 32};
+  const NoiseVolume noise = makeWhiteNoise(dims, 3);
+  LicParams params;
+  params.length = 30;  // 15 voxels each way, twice the shift below
+  const glm::ivec3 alongLine{5, 5, 2}, alongVoxelDiagonal{4, 4, 4};  // 7.3 and 6.9 voxels
+
+  const VectorField mirror = onGrid(constantField(dims, {1.0f, 1.0f, 1.0f}), kMirrorSpacing);
+  const ScalarVolume anisotropic = *computeLicReference(mirror, noise, params);
+  // Measured: 0.90 along the line and -0.04 along the voxel diagonal, and the other way round
+  // (0.00 and 0.90) on the cubic grid.
+  EXPECT_GT(shiftedCorrelation(anisotropic, alongLine), 0.7);
+  EXPECT_LT(std::abs(shiftedCorrelation(anisotropic, alongVoxelDiagonal)), 0.15);
+
+  const VectorField cubic = onGrid(mirror, glm::dvec3(0.05));
+  const ScalarVolume isotropic = *computeLicReference(cubic, noise, params);
+  EXPECT_LT(std::abs(shiftedCorrelation(isotropic, alongLine)), 0.15);
+  EXPECT_GT(shiftedCorrelation(isotropic, alongVoxelDiagonal), 0.7);
+}
+
+// Magnitude mode scales steps by the voxel-unit speed |u| / max|u|: equally fast physical flow
+// along x (fine) and along z (2.5 times coarser) takes equally long physical steps, and the
+// fastest voxel-unit flow exactly h voxels.
+TEST(LicReference, MagnitudeStepsOnAnisotropicGridsAreProportionalToPhysicalSpeed) {
+  const Dims dims{40, 8, 40};
+  VectorField field = onGrid(constantField(dims, {1.0f, 0.0f, 0.0f}), kMirrorSpacing);
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 4; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i)
+        field.vectors[voxelIndex(dims, i, j, k)] = {0.0f, 0.0f, 1.0f};
+  const FieldSampler sampler(field);
+  LicParams params;
+  params.direction = DirectionMode::Magnitude;
+  const std::vector<glm::dvec3> alongX = traceStreamline(sampler, dims, params, {10, 1, 10}, +1, 5);
+  const std::vector<glm::dvec3> alongZ = traceStreamline(sampler, dims, params, {10, 6, 10}, +1, 5);
+  ASSERT_EQ(alongX.size(), 6u);
+  ASSERT_EQ(alongZ.size(), 6u);
+  EXPECT_NEAR(alongX[1].x - alongX[0].x, 0.5, 1e-12) << "the fastest flow steps h voxels";
+  EXPECT_NEAR(alongZ[1].z - alongZ[0].z, 0.5 * 0.4, 1e-12) << "z voxels are 2.5 times as long";
+  for (std::size_t i = 1; i < alongX.size(); ++i)
+    EXPECT_NEAR(glm::length((alongZ[i] - alongZ[i - 1]) * kMirrorSpacing),
+                glm::length((alongX[i] - alongX[i - 1]) * kMirrorSpacing), 1e-12);
+}
+
+// Isotropic grids keep the numbers they had before the conversion: the analytic fields come with
+// their own (cubic) spacing, which must not change a single bit against spacing 1.
+TEST(LicReference, IsotropicSpacingDoesNotChangeTheResult) {
+  const VectorField field = makeAnalyticField(AnalyticField::Tornado, {12, 10, 14});
+  ASSERT_NE(field.geometry.spacing, glm::dvec3(1.0));
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 4);
+  for (const DirectionMode direction : {DirectionMode::Normalized, DirectionMode::Magnitude}) {
+    LicParams params;
+    params.direction = direction;
+    const ScalarVolume own = *computeLicReference(field, noise, params);
+    const ScalarVolume unit = *computeLicReference(onGrid(field, glm::dvec3(1.0)), noise, params);
+    EXPECT_EQ(own.values, unit.values);
+  }
+}
+
+TEST(LicReference, RejectsGridsWithoutPositiveSpacing) {
+  const NoiseVolume noise = makeWhiteNoise({4, 4, 4}, 1);
+  for (const glm::dvec3 spacing : {glm::dvec3(1.0, 0.0, 1.0), glm::dvec3(-1.0, 1.0, 1.0),
+                                   glm::dvec3(1.0, 1.0, std::nan(""))}) {
+    const Result<ScalarVolume> out = computeLicReference(
+        onGrid(constantField({4, 4, 4}, {1, 0, 0}), spacing), noise, LicParams{});
+    ASSERT_FALSE(out.ok());
+    EXPECT_EQ(out.error().kind, ErrorKind::InvalidInput);
+    EXPECT_NE(out.error().message.find("spacing"), std::string::npos);
+  }
+}
+
 TEST(LicReference, RejectsBadParameters) {
   const VectorField field = constantField({4, 4, 4}, {1, 0, 0});
   const NoiseVolume noise = makeWhiteNoise({4, 4, 4}, 1);
