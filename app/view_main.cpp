@@ -43,6 +43,9 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot", options.screenshot,
                  "Scripted run: save the window as this PNG before quitting (needs --frames)");
 
+  app.add_flag("--soak", options.soak,
+               "Scripted endurance run (needs --frames): a LIC or view change every 10 frames, a "
+               "resize for 10 frames every 250; fails if RSS or device memory grows after the warm-up");
   app.add_option("--save-session", options.saveSession,
                  "Save every parameter as a session JSON file on quit (for `lic3d render "
                  "--session`)");
@@ -79,6 +82,10 @@ int main(int argc, char** argv) {
       return kExitBadInput;
     }
     if (auto r = checkOutputPath(options.screenshot, ".png"); !r) return reportError(r.error());
+  }
+  if (options.soak && options.frames == 0) {
+    std::fprintf(stderr, "lic3d-view: error: --soak needs --frames\n");
+    return kExitBadInput;
   }
   if (!options.saveSession.empty())
     if (auto r = checkOutputPath(options.saveSession, ".json"); !r) return reportError(r.error());

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <future>
 #include <optional>
+#include <vector>
+
+#include <unistd.h>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -31,6 +34,14 @@ constexpr std::uint32_t kFramesInFlight = 2;
 // GPU time the frame-paced LIC may take per frame: the UI stays responsive while the volume is
 // recomputed in slabs, even on a CPU driver.
 constexpr double kLicBudgetMs = 12.0;
+// Where the session goes when the app stops on an error.
+constexpr const char* kRecoveryFile = "lic3d-recovery.json";
+// --soak (tests/test_viewer.cpp, docs/RELIABILITY.md).
+constexpr std::uint64_t kSoakChangeEvery = 10;
+constexpr std::uint64_t kSoakResizeEvery = 250;
+constexpr std::uint64_t kSoakSampleEvery = 50;
+constexpr std::uint64_t kSoakWarmupFrames = 100;
+constexpr std::uint64_t kSoakRssSlack = 8u << 20;
 constexpr VkFormat kOffscreenFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Mouse and keyboard events between two frames.
@@ -162,6 +173,18 @@ class App {
   NoiseSource loadedNoise_;
   std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
   int exitStatus_ = cli::kExitOk;
+
+  // --soak: parameter changes, resizes and memory samples (see soakStep).
+  struct MemorySample {
+    std::uint64_t frame;
+    std::uint64_t rssBytes;
+    std::uint64_t deviceBytes;
+  };
+  std::vector<MemorySample> soakSamples_;
+  int soakBaseLength_ = 0;
+  int swapchainsCreated_ = 0;
+  void soakStep();
+  int soakVerdict() const;
 };
 
 App::~App() {
@@ -316,6 +339,7 @@ Result<void> App::init() {
 }
 
 Result<void> App::createSwapchain() {
+  ++swapchainsCreated_;
   VkDevice device = context_->device();
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
@@ -608,6 +632,7 @@ Result<bool> App::frame() {
   if (renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse) updateCamera(in);
   animate(seconds);
   LIC3D_TRY(handleActions(actions));
+  if (options_.soak) soakStep();
   if (auto r = validate(session_.view); !r) {
     stats_.message = r.error().message;
     session_.view = drawnSession_.view;
@@ -747,6 +772,78 @@ Result<bool> App::frame() {
   return !quitAfterThis;
 }
 
+// Resident set size of this process, from /proc/self/statm.
+std::uint64_t residentBytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  unsigned long long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%llu %llu", &size, &resident);
+  std::fclose(f);
+  return n == 2 ? resident * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE)) : 0;
+}
+
+// One frame of the soak: a parameter change every kSoakChangeEvery frames, alternately of the LIC
+// (recompute) and of the view (redraw), a window resize every kSoakResizeEvery frames, and a
+// memory sample every kSoakSampleEvery frames.
+void App::soakStep() {
+  if (options_.frames <= 0 || frameNumber_ >= static_cast<std::uint64_t>(options_.frames)) return;
+  if (soakBaseLength_ == 0) soakBaseLength_ = session_.lic.length;
+  const std::uint64_t n = frameNumber_;
+  if (n > 0 && n % kSoakChangeEvery == 0) {
+    if ((n / kSoakChangeEvery) % 2 == 1)
+      session_.lic.length = session_.lic.length == soakBaseLength_ ? soakBaseLength_ + 1 : soakBaseLength_;
+    else
+      session_.view.camera.azimuth = std::fmod(session_.view.camera.azimuth + 7.0f, 360.0f);
+  }
+  // A resize every kSoakResizeEvery frames, undone 10 frames later: both recreate the swapchain,
+  // and the memory samples (multiples of 50) all see the window at its own size.
+  if (n > 0 && (n % kSoakResizeEvery == 0 || n % kSoakResizeEvery == 10)) {
+    const bool larger = n % kSoakResizeEvery == 0;
+    glfwSetWindowSize(window_, options_.windowWidth + (larger ? 64 : 0),
+                      options_.windowHeight + (larger ? 48 : 0));
+  }
+  if (n % kSoakSampleEvery == 0)
+    soakSamples_.push_back({n, residentBytes(), context_->allocatedBytes()});
+}
+
+// After the warm-up, memory must not grow: the largest sample of the second half may exceed the
+// largest of the first half by kSoakRssSlack of RSS (allocator and driver caches) and not at all
+// in device memory (the allocator's own count).
+int App::soakVerdict() const {
+  std::vector<MemorySample> s;
+  for (const MemorySample& m : soakSamples_)
+    if (m.frame >= kSoakWarmupFrames) s.push_back(m);
+  if (s.size() < 4) {
+    std::fprintf(stderr, "lic3d-view: error: --soak needs --frames of at least %d\n",
+                 static_cast<int>(kSoakWarmupFrames + 4 * kSoakSampleEvery));
+    return cli::kExitBadInput;
+  }
+  const std::size_t half = s.size() / 2;
+  auto maxOf = [&](std::size_t from, std::size_t to, auto member) {
+    std::uint64_t m = 0;
+    for (std::size_t i = from; i < to; ++i) m = std::max(m, s[i].*member);
+    return m;
+  };
+  const std::uint64_t rss1 = maxOf(0, half, &MemorySample::rssBytes);
+  const std::uint64_t rss2 = maxOf(half, s.size(), &MemorySample::rssBytes);
+  const std::uint64_t dev1 = maxOf(0, half, &MemorySample::deviceBytes);
+  const std::uint64_t dev2 = maxOf(half, s.size(), &MemorySample::deviceBytes);
+  const double mib = 1.0 / (1 << 20);
+  std::printf("lic3d-view soak: %llu frames, samples every %d after %d warm-up frames; RSS max "
+              "%.1f MiB (first half) -> %.1f MiB (second half); device memory max %.1f -> %.1f MiB; "
+              "%d swapchains\n",
+              static_cast<unsigned long long>(frameNumber_), static_cast<int>(kSoakSampleEvery),
+              static_cast<int>(kSoakWarmupFrames), static_cast<double>(rss1) * mib,
+              static_cast<double>(rss2) * mib, static_cast<double>(dev1) * mib,
+              static_cast<double>(dev2) * mib, swapchainsCreated_);
+  if (rss2 > rss1 + kSoakRssSlack || dev2 > dev1) {
+    std::fprintf(stderr, "lic3d-view: error: memory grew during the soak (tolerance: %.0f MiB of "
+                         "RSS, no device memory)\n", static_cast<double>(kSoakRssSlack) * mib);
+    return cli::kExitFailure;
+  }
+  return cli::kExitOk;
+}
+
 int App::run() {
   if (auto r = init(); !r) return cli::reportError(r.error());
   drawnSession_ = session_;
@@ -754,6 +851,10 @@ int App::run() {
     Result<bool> more = frame();
     if (!more) {
       exitStatus_ = cli::reportError(more.error());
+      // Nothing the user set up is lost: the session goes to a recovery file first.
+      if (auto r = writeSession(kRecoveryFile, session_); r)
+        std::fprintf(stderr, "lic3d-view: the session was saved to %s (lic3d-view --session %s)\n",
+                     kRecoveryFile, kRecoveryFile);
       break;
     }
     if (!*more) break;
@@ -765,6 +866,7 @@ int App::run() {
       if (auto r = saveScreenshot(f); !r) exitStatus_ = cli::reportError(r.error());
       f.screenshot = f.scriptedShot = false;
     }
+  if (options_.soak && exitStatus_ == cli::kExitOk) exitStatus_ = soakVerdict();
   if (!options_.saveSession.empty()) {
     if (auto r = writeSession(options_.saveSession, session_); !r)
       exitStatus_ = cli::reportError(r.error());

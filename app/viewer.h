@@ -20,6 +20,9 @@ struct ViewerOptions {
   std::string screenshot;
   // On quit, save the session (every parameter as shown) to this JSON file, if given.
   std::string saveSession;
+  // With `frames`: change a LIC or a view parameter every 10 frames and resize the window every
+  // 250 (for 10 frames), sample RSS and device memory, and fail if they grow after the warm-up.
+  bool soak = false;
 };
 
 // Runs the app until the window closes; returns the process exit status.
