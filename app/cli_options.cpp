@@ -71,7 +71,8 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
   app.add_flag("--validation", options.validation,
                "Enable the Khronos validation layer with synchronization validation; any "
                "message makes the command fail (also LIC3D_VALIDATION=1)");
-  app.add_flag("-q,--quiet", options.quiet, "Print nothing but errors");
+  app.add_flag("-q,--quiet", options.quiet,
+               "Print nothing but errors and warnings about the input (no progress, no summary)");
 }
 
 void addInputOptions(CLI::App& app, SessionOptions& options) {
@@ -81,8 +82,11 @@ void addInputOptions(CLI::App& app, SessionOptions& options) {
                  "its values");
   app.add_option("--field", s.field.field,
                  "Vector field: an analytic field (" + fieldNameList() +
-                     ") or a file (.nrrd, .vtk)")
+                     ") or a file (.vtk, .vti, .nrrd, .nhdr, .raw)")
       ->capture_default_str();
+  app.add_option("--array", s.field.array,
+                 "The vector array of a .vtk or .vti file with several (default: the active or "
+                 "first one; the others are listed)");
   addText(app, "--grid", options.grid,
           "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)", "128");
   app.add_option("--noise", s.noise.file,
@@ -141,7 +145,14 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
                "Compute the LIC volume with the CPU reference (multi-threaded, double "
                "precision) instead of the GPU");
   options.output = defaultOutput;
-  app.add_option("-o,--output", options.output, "Output file")->capture_default_str();
+  const bool picture = std::string_view(defaultOutput).ends_with(".png");
+  options.outputOption =
+      app.add_option("-o,--output", options.output,
+                     picture ? "Output PNG; for --turntable or --animate-bias a pattern with one "
+                               "%d or %0Nd for the frame number (default then lic3d_%04d.png)"
+                             : "Output: the LIC volume as .nrrd or .vti (float32), or one slice "
+                               "as .png with --slice")
+          ->capture_default_str();
 }
 
 void addViewOptions(CLI::App& app, SessionOptions& options) {
@@ -403,8 +414,12 @@ Result<void> checkHostMemory(Dims dims) {
   return {};
 }
 
-Result<VectorField> loadField(const FieldSource& source, bool gridGiven) {
+Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info) {
   if (const auto analytic = parseAnalyticField(source.field)) {
+    if (!source.array.empty())
+      return inputError("--array " + source.array + ": " + source.field +
+                        " is an analytic field; --array picks a vector array of a .vtk or .vti "
+                        "file");
     LIC3D_TRY(checkHostMemory(source.grid));
     return makeAnalyticField(*analytic, source.grid);
   }
@@ -415,7 +430,7 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven) {
   if (!path.has_extension())
     return inputError("--field: '" + source.field + "' is neither an analytic field (" +
                       fieldNameList() + ") nor a file name with an extension");
-  return readVectorField(path, source.array);
+  return readVectorField(path, source.array, info);
 }
 
 Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {

@@ -13,10 +13,14 @@
 #include "error.h"
 #include "session.h"
 #include "volume.h"
+#include "volume_io.h"
 
 namespace lic3d::cli {
 
 enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitBadInput = 2 };
+
+// `lic3d --version`, and the "Software" text of every PNG lic3d writes.
+inline constexpr char kVersionText[] = "lic3d 0.1.0";
 
 // Bad input exits with 2; anything the user cannot fix by changing arguments exits with 1.
 int exitCodeFor(const Error& error);
@@ -48,6 +52,7 @@ struct ComputeOptions {
   SessionOptions inputs;
   bool cpu = false;
   std::string output;
+  CLI::Option* outputOption = nullptr;  // to tell a given -o from the default
 };
 
 // An option taking one of the names of E (enum_names.h).
@@ -82,7 +87,10 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
 
 // Refuses grids whose host-side arrays would not fit this machine's memory.
 Result<void> checkHostMemory(Dims dims);
-Result<VectorField> loadField(const FieldSource& source, bool gridGiven);
+// A file field also fills `info` (when given): the array read, the file's vector arrays and the
+// count of NaN or infinite vectors read as zero.
+Result<VectorField> loadField(const FieldSource& source, bool gridGiven,
+                              FieldReadInfo* info = nullptr);
 Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);
 // The output must have `extension` and lie in an existing folder: checked before any work.
 Result<void> checkOutputPath(const std::string& path, const char* extension);

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "batch.h"
 #include "cli_options.h"
 
 namespace lic3d::cli {
@@ -25,8 +26,10 @@ struct BenchOptions {
 };
 
 int runDevices(const GlobalOptions& global);
-int runCompute(const GlobalOptions& global, const ComputeOptions& options);
-int runRender(const GlobalOptions& global, const ComputeOptions& options);
+int runCompute(const GlobalOptions& global, const ComputeOptions& options,
+               const BatchOptions& batch);
+int runRender(const GlobalOptions& global, const ComputeOptions& options,
+              const BatchOptions& batch);
 int runBench(const GlobalOptions& global, const BenchOptions& options);
 
 }  // namespace lic3d::cli

@@ -59,12 +59,12 @@ int main(int argc, char** argv) {
 
   CLI::App app{"lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
                "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices."};
-  app.set_version_flag("--version", "lic3d 0.1.0");
+  app.set_version_flag("--version", kVersionText);
   app.require_subcommand(1);
   app.fallthrough();
   app.footer("Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
              "files.");
-  const char* globalNote =
+  const std::string globalNote =
       "Global options (--device, --validation, --quiet) may also follow the command. Exit "
       "status: 0 success, 1 failure, 2 bad arguments or input files.";
 
@@ -75,18 +75,26 @@ int main(int argc, char** argv) {
   app.add_subcommand("view",
                      "Open the interactive desktop app (lic3d-view) with the render options");
 
+  const std::string summaryNote =
+      " On success the last line on stdout is `lic3d-summary {JSON}` (docs/BATCH.md).";
+
   ComputeOptions compute;
-  CLI::App* computeCommand =
-      app.add_subcommand("compute", "Compute a LIC volume and write it as float32 NRRD");
+  BatchOptions computeBatch;
+  CLI::App* computeCommand = app.add_subcommand(
+      "compute", "Compute a LIC volume and write it as float32 NRRD or VTK image data (.vti), "
+                 "or one slice of it as a 16-bit PNG");
   addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
-  computeCommand->footer(globalNote);
+  addComputeBatchOptions(*computeCommand, computeBatch);
+  computeCommand->footer(globalNote + summaryNote);
 
   ComputeOptions render;
-  CLI::App* renderCommand =
-      app.add_subcommand("render", "Compute a LIC volume and render it to a PNG image");
+  BatchOptions renderBatch;
+  CLI::App* renderCommand = app.add_subcommand(
+      "render", "Compute a LIC volume and render it to a PNG image, or the frames of an animation");
   addComputeOptions(*renderCommand, render, "lic3d.png");
   addViewOptions(*renderCommand, render.inputs);
-  renderCommand->footer(globalNote);
+  addRenderBatchOptions(*renderCommand, renderBatch);
+  renderCommand->footer(globalNote + summaryNote);
 
   BenchOptions bench;
   CLI::App* benchCommand = app.add_subcommand(
@@ -149,11 +157,11 @@ int main(int argc, char** argv) {
     if (devices->parsed()) return runDevices(global);
     if (computeCommand->parsed()) {
       if (auto r = finishSessionOptions(compute.inputs, false); !r) return reportError(r.error());
-      return runCompute(global, compute);
+      return runCompute(global, compute, computeBatch);
     }
     if (renderCommand->parsed()) {
       if (auto r = finishSessionOptions(render.inputs, true); !r) return reportError(r.error());
-      return runRender(global, render);
+      return runRender(global, render, renderBatch);
     }
     if (benchCommand->parsed()) return runBench(global, bench);
   } catch (const std::bad_alloc&) {

@@ -4,6 +4,13 @@
 #include <unistd.h>
 
 namespace lic3d::cli {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
 
 Progress::Progress(std::string what, bool quiet)
     : what_(std::move(what)),
@@ -29,10 +36,35 @@ void Progress::update(double fraction) {
 void Progress::finish() {
   if (quiet_ || finished_) return;
   finished_ = true;
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   std::fprintf(stderr, "%slic3d: %s done in %.2f s\n", terminal_ ? "\r" : "", what_.c_str(),
-               seconds);
+               secondsSince(start_));
+}
+
+FrameProgress::FrameProgress(int total, bool quiet)
+    : total_(total),
+      quiet_(quiet),
+      terminal_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+FrameProgress::~FrameProgress() { finish(); }
+
+void FrameProgress::frameDone(int frame) {
+  ++done_;
+  if (quiet_) return;
+  const double elapsed = secondsSince(start_);
+  const double left = elapsed / done_ * (total_ - done_);
+  // "\033[K" clears what a longer earlier line left on the terminal.
+  std::fprintf(stderr, "%slic3d: frame %d: %d/%d done, %.1f s elapsed, ETA %.1f s%s",
+               terminal_ ? "\r" : "", frame, done_, total_, elapsed, left,
+               terminal_ ? "\033[K" : "\n");
+  std::fflush(stderr);
+}
+
+void FrameProgress::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (quiet_ || !terminal_ || done_ == 0) return;
+  std::fputc('\n', stderr);  // keep the live line
 }
 
 }  // namespace lic3d::cli

@@ -1,11 +1,12 @@
 #pragma once
-// Progress of long work on stderr: a live percentage on a terminal, a few lines in a log.
+// Progress of long work on stderr: a live line on a terminal, a few plain lines in a log.
 
 #include <chrono>
 #include <string>
 
 namespace lic3d::cli {
 
+// One computation, as a percentage.
 class Progress {
  public:
   Progress(std::string what, bool quiet);
@@ -19,6 +20,26 @@ class Progress {
   bool terminal_;
   bool finished_ = false;
   int lastReported_ = -1;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The frames of a batch render: frames done of the total, the time so far and the estimated time
+// left (the mean time per frame so far times the frames left). A log gets one line per frame, a
+// terminal one line rewritten in place.
+class FrameProgress {
+ public:
+  FrameProgress(int total, bool quiet);
+  ~FrameProgress();
+  // Frame `frame` (its number in the whole animation) is written.
+  void frameDone(int frame);
+  void finish();
+
+ private:
+  int total_;
+  int done_ = 0;
+  bool quiet_;
+  bool terminal_;
+  bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
 };
 

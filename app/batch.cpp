@@ -1,0 +1,478 @@
+#include "batch.h"
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <initializer_list>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <system_error>
+
+#include "colormap.h"
+#include "nrrd.h"
+#include "session.h"
+#include "vti.h"
+
+namespace lic3d::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kDefaultFramePattern[] = "lic3d_%04d.png";
+
+bool parseInt(std::string_view text, int& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end && !text.empty();
+}
+
+std::string extensionOf(const std::string& path) { return fs::path(path).extension().string(); }
+
+// checkOutputPath for one of several extensions, the message naming the flag.
+Result<void> checkOutputPathOneOf(const std::string& path, const std::string& flag,
+                                  std::initializer_list<const char*> extensions) {
+  const std::string extension = extensionOf(path);
+  std::string list;
+  for (const char* e : extensions) {
+    if (extension == e) {
+      if (auto r = checkOutputPath(path, e); !r) return inputError(flag + ": " + r.error().message);
+      return {};
+    }
+    list += (list.empty() ? "" : ", ") + std::string(e);
+  }
+  return inputError(flag + " " + path + ": expected a file name ending in " + list);
+}
+
+// The one frame-number conversion of a pattern: where it starts and ends and its zero-padded
+// width (0 for plain %d). Only %d and %0Nd (N = 1..9) are frame numbers, as ffmpeg's image2
+// reader takes them; %% is a literal '%'. Anything else is refused, so a pattern never reaches a
+// printf-like formatter with a conversion that could misread its arguments.
+struct Conversion {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  int width = 0;
+};
+
+Result<Conversion> findConversion(const std::string& pattern) {
+  const std::string problem = "-o " + pattern +
+                              ": an animation writes one PNG per frame, so -o "
+                              "needs a pattern with one %d or %0Nd for the frame number (e.g. "
+                              "frame_%04d.png)";
+  std::optional<Conversion> found;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    Conversion c;
+    c.begin = i;
+    std::size_t j = i + 1;
+    if (j + 1 < pattern.size() && pattern[j] == '0' && pattern[j + 1] >= '1' &&
+        pattern[j + 1] <= '9') {
+      c.width = pattern[j + 1] - '0';
+      j += 2;
+    }
+    if (j >= pattern.size() || pattern[j] != 'd')
+      return inputError(problem + "; '" +
+                        pattern.substr(i, std::min<std::size_t>(4, pattern.size() - i)) +
+                        "...' is not one (write %% for a literal %)");
+    if (found) return inputError(problem + "; it has more than one");
+    c.end = j + 1;
+    found = c;
+    i = j;
+  }
+  if (!found) return inputError(problem);
+  return *found;
+}
+
+// %% becomes %.
+std::string unescapePercent(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+  }
+  return out;
+}
+
+bool isExecutableFile(const fs::path& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+         ::access(path.c_str(), X_OK) == 0;
+}
+
+// Runs `args` (args[0] a path) and waits; the exit status, or -1 when it could not start, or 128
+// + the signal that ended it.
+int runProgram(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t child = fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    // ffmpeg's own output (errors only, with -loglevel error) goes to lic3d's stderr; stdout
+    // stays free for the summary line.
+    dup2(STDERR_FILENO, STDOUT_FILENO);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+std::uint8_t toByte(float value) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
+  app.add_option("--turntable", options.turntable,
+                 "Render N frames of a full turn: the azimuth advances 360/N per frame from "
+                 "--azimuth; -o is a pattern with %d or %04d (default lic3d_%04d.png)")
+      ->check(CLI::Range(1, 1000000));
+  app.add_option("--animate-bias", options.animateBias,
+                 "Render N frames of the bias cycle -L..L..-L (the texture flows along the "
+                 "field, frame N would be frame 0 again); the LIC volume is recomputed per frame")
+      ->check(CLI::Range(1, 1000000));
+  options.frames.option = app.add_option(
+      "--frames", options.frames.text,
+      "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
+      "whole animation: one piece of a job array");
+  app.add_option("--video", options.video,
+                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264) "
+                 "or .webm (VP9); needs every frame of the animation");
+  app.add_option("--fps", options.fps, "Frames per second of --video")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+  app.add_option("--rgba-volume", options.rgbaVolume,
+                 "Also write the colour-mapped volume as 8-bit RGBA (.vti or .nrrd): grey or "
+                 "colour and the opacity per voxel, as the slices draw it (docs/BATCH.md)");
+}
+
+void addComputeBatchOptions(CLI::App& app, BatchOptions& options) {
+  options.slice.option = app.add_option(
+      "--slice", options.slice.text,
+      "With -o FILE.png: write the LIC slice AXIS:INDEX (x, y or z; INDEX defaults to the "
+      "middle) as a 16-bit grey PNG");
+}
+
+Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute) {
+  FramePlan plan;
+  if (options.turntable > 0 && options.animateBias > 0)
+    return inputError("--turntable and --animate-bias: give one animation per run");
+  if (options.turntable > 0) {
+    plan.animation = Animation::Turntable;
+    plan.count = options.turntable;
+  } else if (options.animateBias > 0) {
+    plan.animation = Animation::Bias;
+    plan.count = options.animateBias;
+    if (compute.inputs.session.lic.length == 0)
+      return inputError("--animate-bias cycles the bias through -L..L: it needs --length > 0");
+  }
+  plan.first = 0;
+  plan.end = plan.count;
+
+  if (options.frames.given()) {
+    const std::string& text = options.frames.text;
+    if (plan.animation == Animation::None)
+      return inputError("--frames " + text +
+                        ": picks frames of an animation; use it with --turntable N or "
+                        "--animate-bias N");
+    const std::size_t colon = text.find(':');
+    int a = 0, b = 0;
+    if (colon == std::string::npos || !parseInt(std::string_view(text).substr(0, colon), a) ||
+        !parseInt(std::string_view(text).substr(colon + 1), b))
+      return inputError("--frames: expected A:B (two whole numbers), got '" + text + "'");
+    if (!(0 <= a && a < b && b <= plan.count))
+      return inputError("--frames " + text + ": need 0 <= A < B <= " + std::to_string(plan.count) +
+                        " (the animation has " + std::to_string(plan.count) + " frames)");
+    plan.first = a;
+    plan.end = b;
+  }
+
+  if (plan.animation == Animation::None) {
+    plan.output = compute.output;
+    LIC3D_TRY(checkOutputPath(plan.output, ".png"));
+    return plan;
+  }
+  const bool outputGiven = compute.outputOption && compute.outputOption->count() > 0;
+  plan.output = outputGiven ? compute.output : kDefaultFramePattern;
+  LIC3D_TRY(findConversion(plan.output));
+  LIC3D_TRY(checkOutputPath(framePath(plan.output, plan.first), ".png"));
+  return plan;
+}
+
+Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& plan,
+                                const Session& session) {
+  LIC3D_TRY(pngText(session));
+  if (!options.rgbaVolume.empty()) {
+    if (plan.animation == Animation::Bias)
+      return inputError(
+          "--rgba-volume writes one volume, but --animate-bias changes it every "
+          "frame: render a single --bias instead");
+    LIC3D_TRY(checkOutputPathOneOf(options.rgbaVolume, "--rgba-volume", {".vti", ".nrrd"}));
+  }
+  if (!options.video.empty()) {
+    if (plan.animation == Animation::None)
+      return inputError("--video " + options.video +
+                        ": encodes the frames of an animation; add --turntable N or "
+                        "--animate-bias N");
+    if (!plan.complete())
+      return inputError("--video needs every frame, but --frames renders " +
+                        std::to_string(plan.first) + ".." + std::to_string(plan.end - 1) + " of " +
+                        std::to_string(plan.count) +
+                        ": encode the frames with ffmpeg once all jobs are done (docs/BATCH.md)");
+    LIC3D_TRY(checkOutputPathOneOf(options.video, "--video", {".mp4", ".webm"}));
+    LIC3D_TRY(findFfmpeg());
+  }
+  return {};
+}
+
+int cycledBias(int length, int frame, int count) {
+  const double phase = static_cast<double>(((frame % count) + count) % count) / count;
+  const double bias =
+      phase <= 0.5 ? -length + 4.0 * length * phase : 3.0 * length - 4.0 * length * phase;
+  return std::clamp(static_cast<int>(std::lround(bias)), -length, length);
+}
+
+Session frameSession(const Session& base, const FramePlan& plan, int frame) {
+  Session s = base;
+  if (plan.animation == Animation::Turntable)
+    s.view.camera.azimuth =
+        static_cast<float>(static_cast<double>(base.view.camera.azimuth) +
+                           360.0 * static_cast<double>(frame) / static_cast<double>(plan.count));
+  else if (plan.animation == Animation::Bias)
+    s.lic.bias = cycledBias(base.lic.length, frame, plan.count);
+  return s;
+}
+
+std::string framePath(const std::string& pattern, int frame) {
+  const Result<Conversion> c = findConversion(pattern);
+  if (!c) return pattern;
+  std::string number = std::to_string(frame);
+  if (static_cast<int>(number.size()) < c->width)
+    number.insert(0, static_cast<std::size_t>(c->width) - number.size(), '0');
+  return unescapePercent(std::string_view(pattern).substr(0, c->begin)) + number +
+         unescapePercent(std::string_view(pattern).substr(c->end));
+}
+
+Result<fs::path> findFfmpeg() {
+  const char* path = std::getenv("PATH");
+  std::string_view folders = path ? path : "";
+  while (true) {
+    const std::size_t colon = folders.find(':');
+    const std::string_view folder = folders.substr(0, colon);
+    const fs::path candidate = fs::path(folder.empty() ? "." : std::string(folder)) / "ffmpeg";
+    if (isExecutableFile(candidate)) return candidate;
+    if (colon == std::string_view::npos) break;
+    folders.remove_prefix(colon + 1);
+  }
+  return inputError(
+      "--video: ffmpeg is not on PATH; install it (Debian: apt-get install "
+      "ffmpeg) or leave out --video and encode the frames later");
+}
+
+Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double fps,
+                         const std::string& video) {
+  const fs::path target(video);
+  const bool webm = target.extension() == ".webm";
+  // ffmpeg writes beside the target under a temporary name (the format is given, since the name
+  // does not end in it), which is renamed when it succeeded: no partial video is ever left.
+  const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
+                                                     std::to_string(getpid()));
+  // "./" keeps ffmpeg from reading a relative name with a colon ("take:2_%d.png") as a protocol.
+  auto forFfmpeg = [](const fs::path& p) {
+    return p.is_absolute() ? p.string() : "./" + p.string();
+  };
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%g", fps);
+  std::vector<std::string> args = {
+      ffmpeg.string(), "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
+      "-start_number", std::to_string(plan.first), "-i", forFfmpeg(plan.output), "-frames:v",
+      std::to_string(plan.rendered()),
+      // H.264 and VP9 in 4:2:0 need even sizes; frames are opaque, so alpha is dropped.
+      "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2,format=yuv420p"};
+  if (webm) {
+    for (const char* a : {"-c:v", "libvpx-vp9", "-crf", "30", "-b:v", "0", "-f", "webm"})
+      args.emplace_back(a);
+  } else {
+    for (const char* a : {"-c:v", "libx264", "-crf", "18", "-movflags", "+faststart", "-f", "mp4"})
+      args.emplace_back(a);
+  }
+  args.push_back(forFfmpeg(temporary));
+  const int status = runProgram(args);
+  std::error_code ec;
+  if (status != 0) {
+    fs::remove(temporary, ec);
+    return runtimeError("--video " + video + ": ffmpeg (" + ffmpeg.string() + ") " +
+                        (status < 0 ? std::string("could not be started")
+                                    : "failed with exit status " + std::to_string(status)) +
+                        "; the frames are kept");
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    return runtimeError("--video " + video +
+                        ": cannot rename ffmpeg's output into place: " + ec.message());
+  }
+  return {};
+}
+
+Result<PngText> pngText(const Session& session) {
+  PngText text;
+  try {
+    text.emplace_back("lic3d-session", sessionToJson(session));
+  } catch (const std::exception& e) {
+    return inputError(std::string("cannot record the parameters in the PNG as JSON: ") + e.what());
+  }
+  text.emplace_back("Software", kVersionText);
+  return text;
+}
+
+Result<void> checkComputeOutput(const std::string& path, const BatchOptions& options) {
+  const std::string extension = extensionOf(path);
+  if (options.slice.given()) {
+    LIC3D_TRY(parseSlice(options.slice.text));
+    if (extension != ".png")
+      return inputError("--slice " + options.slice.text + " writes a PNG: use -o FILE.png, not " +
+                        path);
+    return checkOutputPath(path, ".png");
+  }
+  if (extension == ".png")
+    return inputError("-o " + path +
+                      ": compute writes the LIC volume (.nrrd or .vti); for a 16-bit PNG of one "
+                      "slice add --slice AXIS[:INDEX], e.g. --slice z:64");
+  return checkOutputPathOneOf(path, "-o", {".nrrd", ".vti"});
+}
+
+Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume) {
+  // Voxels that sparsity hides are NaN: "no value" to ParaView and VisIt.
+  ScalarVolume marked;
+  const ScalarVolume* out = &volume;
+  if (!volume.drawn.empty()) {
+    marked = volume;
+    for (std::size_t i = 0; i < marked.values.size(); ++i)
+      if (!marked.drawn[i]) marked.values[i] = std::numeric_limits<float>::quiet_NaN();
+    out = &marked;
+  }
+  if (extensionOf(path) == ".vti") return writeScalarVti(path, *out, "lic");
+  return writeScalarNrrd(path, *out);
+}
+
+Result<LicSlice> parseSlice(const std::string& text) {
+  LicSlice slice;
+  const std::size_t colon = text.find(':');
+  const std::string axis = text.substr(0, colon);
+  if (axis != "x" && axis != "y" && axis != "z")
+    return inputError("--slice: expected AXIS or AXIS:INDEX with AXIS x, y or z, got '" + text +
+                      "'");
+  slice.axis = axis[0] - 'x';
+  if (colon != std::string::npos &&
+      (!parseInt(std::string_view(text).substr(colon + 1), slice.index) || slice.index < 0))
+    return inputError("--slice: the index of '" + text + "' is not a whole number >= 0");
+  return slice;
+}
+
+Result<void> writeLicSlicePng(const std::string& path, const ScalarVolume& volume, LicSlice slice,
+                              const Session& session) {
+  const Dims d = volume.dims;
+  const int size = d[slice.axis];
+  const int index = slice.index < 0 ? size / 2 : slice.index;
+  if (index >= size)
+    return inputError("--slice " + std::string(1, static_cast<char>('x' + slice.axis)) + ":" +
+                      std::to_string(index) + ": the grid has " + std::to_string(size) +
+                      " slices along that axis (0.." + std::to_string(size - 1) + ")");
+  // The image's columns and rows run along the two other axes, in order.
+  const int across = slice.axis == 0 ? 1 : 0;
+  const int up = slice.axis == 2 ? 1 : 2;
+  const int width = d[across], height = d[up];
+  std::vector<std::uint16_t> values(static_cast<std::size_t>(width) * height);
+  for (int row = 0; row < height; ++row)
+    for (int column = 0; column < width; ++column) {
+      Dims voxel(0);
+      voxel[slice.axis] = index;
+      voxel[across] = column;
+      voxel[up] = height - 1 - row;
+      const std::size_t i = voxelIndex(d, voxel.x, voxel.y, voxel.z);
+      const bool hidden = !volume.drawn.empty() && !volume.drawn[i];
+      const float v = hidden ? 0.0f : std::clamp(volume.values[i], 0.0f, 1.0f);
+      values[static_cast<std::size_t>(row) * width + column] =
+          static_cast<std::uint16_t>(std::lround(v * 65535.0f));
+    }
+  LIC3D_TRY_ASSIGN(const PngText text, pngText(session));
+  return writePngGray16(path, width, height, values, text);
+}
+
+RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
+                           const ViewParams& view, const VolumeFacts& facts) {
+  // The slice pass's own numbers for this view, so that the volume and the pictures agree: grey =
+  // transfer.x * I + transfer.y, t = (|v| - magnitude.x) * magnitude.y.
+  const SliceFrame frame = makeSliceFrame(view, facts, Eye::Mono, 1.0f);
+  const glm::vec4 transfer = frame.uniforms.transfer;
+  const glm::vec4 magnitude = frame.uniforms.magnitude;
+  const bool byMagnitude = view.color == ColorMode::Magnitude;
+  const bool magnitudeOpacity = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f;
+
+  RgbaVolume out;
+  out.dims = lic.dims;
+  out.geometry = field.geometry;
+  out.rgba.resize(4 * lic.values.size());
+  for (std::size_t i = 0; i < lic.values.size(); ++i) {
+    const float grey = std::clamp(transfer.x * lic.values[i] + transfer.y, 0.0f, 1.0f);
+    float alpha = view.opacityMode == OpacityMode::Intensity ? view.alpha * grey : view.alpha;
+    if (!lic.drawn.empty() && !lic.drawn[i]) alpha = 0.0f;
+    glm::vec3 rgb(grey);
+    if (byMagnitude || magnitudeOpacity) {
+      const float speed = glm::length(field.vectors[i]);
+      const float t = std::clamp((speed - magnitude.x) * magnitude.y, 0.0f, 1.0f);
+      if (byMagnitude) rgb = sampleColormap(view.colormap, t) * grey;
+      if (magnitudeOpacity)
+        alpha *= t < view.magnitudeThreshold ? 0.0f : std::pow(t, view.magnitudeOpacity);
+    }
+    out.rgba[4 * i + 0] = toByte(rgb.r);
+    out.rgba[4 * i + 1] = toByte(rgb.g);
+    out.rgba[4 * i + 2] = toByte(rgb.b);
+    out.rgba[4 * i + 3] = toByte(alpha);
+  }
+  return out;
+}
+
+Result<void> writeRgbaVolumeFile(const std::string& path, const RgbaVolume& volume) {
+  if (extensionOf(path) == ".vti") return writeRgbaVti(path, volume);
+  return writeRgbaNrrd(path, volume);
+}
+
+std::string summaryLine(const RunSummary& summary) {
+  using Json = nlohmann::ordered_json;
+  Json field = {{"source", summary.field}};
+  if (!summary.array.empty()) field["array"] = summary.array;
+  field["grid"] = {summary.grid.x, summary.grid.y, summary.grid.z};
+  const GridGeometry& g = summary.geometry;
+  field["spacing"] = {g.spacing.x, g.spacing.y, g.spacing.z};
+  field["origin"] = {g.origin.x, g.origin.y, g.origin.z};
+  field["non_finite_vectors"] = summary.nonFiniteVectors;
+  const Json line = {{"command", summary.command},
+                     {"frames", summary.frames},
+                     {"seconds", std::round(summary.seconds * 1000.0) / 1000.0},
+                     {"outputs", summary.outputs},
+                     {"device", summary.device},
+                     {"field", field}};
+  // File names need not be UTF-8: invalid bytes become U+FFFD rather than failing the run.
+  return "lic3d-summary " + line.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace lic3d::cli

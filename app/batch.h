@@ -1,0 +1,123 @@
+#pragma once
+// Batch work of `lic3d render` and `lic3d compute`: animations (turntable, bias cycle) and the
+// frame ranges that split them over job arrays, outputs chosen by file extension (LIC and RGBA
+// volumes, a LIC slice as 16-bit PNG), the parameters every PNG carries, video through ffmpeg,
+// and the one-line JSON summary scripts read. docs/BATCH.md is the user's side of this file.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_options.h"
+#include "rgba_image.h"
+#include "slice_pass.h"
+#include "volume.h"
+#include "volume_io.h"
+
+namespace lic3d::cli {
+
+// The options beyond a single picture.
+struct BatchOptions {
+  int turntable = 0;    // frames of one full turn of the camera; 0: no turntable
+  int animateBias = 0;  // frames of one bias cycle -L..L..-L; 0: none
+  TextOption frames;    // A:B, frames A..B-1 of the animation
+  std::string video;    // .mp4 or .webm made by ffmpeg from the frames
+  double fps = 30.0;
+  std::string rgbaVolume;  // render: the colour-mapped volume, .vti or .nrrd
+  TextOption slice;        // compute: AXIS[:INDEX], the LIC slice written as PNG
+};
+
+// --turntable, --animate-bias, --frames, --video, --fps, --rgba-volume.
+void addRenderBatchOptions(CLI::App& app, BatchOptions& options);
+// --slice.
+void addComputeBatchOptions(CLI::App& app, BatchOptions& options);
+
+enum class Animation { None, Turntable, Bias };
+
+// Which frames one run renders and where they go.
+struct FramePlan {
+  Animation animation = Animation::None;
+  int count = 1;  // N: frames of the whole animation
+  int first = 0;  // this run renders first..end-1; numbering is the animation's
+  int end = 1;
+  std::string output;  // the PNG, or for an animation a pattern with one %d or %0Nd
+
+  int rendered() const { return end - first; }
+  bool complete() const { return first == 0 && end == count; }
+};
+
+// Checks the batch flags and the output (before any work: InvalidInput naming the flag). An
+// animation without -o writes lic3d_%04d.png; one with -o needs a pattern there.
+Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute);
+// --rgba-volume and --video: extensions, folders and ffmpeg on PATH.
+Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& plan,
+                                const Session& session);
+
+// The parameters of frame `frame`: a turntable turns the azimuth by 360/N per frame from the
+// given one; a bias cycle runs the bias from -L up to L and back down, so that frame N would be
+// frame 0 again.
+Session frameSession(const Session& base, const FramePlan& plan, int frame);
+int cycledBias(int length, int frame, int count);
+
+// `pattern` with its frame-number conversion replaced (checked by planFrames).
+std::string framePath(const std::string& pattern, int frame);
+
+// ffmpeg from PATH; InvalidInput saying so when there is none.
+Result<std::filesystem::path> findFfmpeg();
+// Encodes the frames of `plan` (all of them) into `video` (H.264 in .mp4, VP9 in .webm) at
+// `fps`, through a temporary file renamed when ffmpeg succeeded. A failing ffmpeg is Runtime.
+Result<void> encodeVideo(const std::filesystem::path& ffmpeg, const FramePlan& plan, double fps,
+                         const std::string& video);
+
+// The PNG text of a picture made from `session`: "lic3d-session" (sessionToJson) and
+// "Software". An error when the session cannot be written as JSON (a file name that is not
+// UTF-8).
+Result<PngText> pngText(const Session& session);
+
+// compute's -o: .nrrd or .vti (the LIC volume, float32, with spacing and origin; voxels that
+// sparsity hides are NaN) or .png with --slice. Checked before any work.
+Result<void> checkComputeOutput(const std::string& path, const BatchOptions& options);
+Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume);
+
+// A slice through the LIC volume: axis 0, 1, 2 for x, y, z; index -1 means the middle one.
+struct LicSlice {
+  int axis = 2;
+  int index = -1;
+};
+Result<LicSlice> parseSlice(const std::string& text);
+// The slice as a 16-bit grey PNG: LIC value v in [0,1] as round(65535 v), hidden voxels 0. Rows
+// run along the slice's second axis from its top (highest index) down, columns along its first
+// (z: x right, y up; y: x right, z up; x: y right, z up). An index outside the grid is
+// InvalidInput naming --slice.
+Result<void> writeLicSlicePng(const std::string& path, const ScalarVolume& volume, LicSlice slice,
+                              const Session& session);
+
+// The colour-mapped LIC volume as 8-bit RGBA, per voxel what the slice shader assigns before
+// lighting, fog, clipping and the region of interest: grey = the grey transfer (contrast,
+// window, gain, brightness) of the LIC value; RGB = grey, or with --color magnitude the colour
+// map at |v| over the colour range times grey; A = the opacity per voxel of depth: alpha (times
+// grey with --opacity intensity, times the magnitude opacity), 0 where sparsity hides the voxel.
+// Not premultiplied.
+RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
+                           const ViewParams& view, const VolumeFacts& facts);
+Result<void> writeRgbaVolumeFile(const std::string& path, const RgbaVolume& volume);
+
+// The machine-readable last line of render and compute on stdout:
+// `lic3d-summary {"command":...,"frames":...,"seconds":...,"outputs":[...],"device":...,
+// "field":{...}}`.
+struct RunSummary {
+  std::string command;
+  int frames = 0;  // PNG frames rendered (0 for compute)
+  double seconds = 0.0;
+  std::vector<std::string> outputs;
+  std::string device;
+  std::string field;  // the field's name or file
+  std::string array;  // the array read from a file; empty otherwise
+  Dims grid{0};
+  GridGeometry geometry;
+  std::size_t nonFiniteVectors = 0;
+};
+std::string summaryLine(const RunSummary& summary);
+
+}  // namespace lic3d::cli
