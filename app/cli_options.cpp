@@ -10,6 +10,7 @@
 
 #include "analytic_fields.h"
 #include "field_io.h"
+#include "memory_budget.h"
 #include "enum_names.h"
 #include "noise.h"
 
@@ -56,7 +57,11 @@ TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
 }  // namespace
 
 int exitCodeFor(const Error& error) {
-  return error.kind == ErrorKind::InvalidInput ? kExitBadInput : kExitFailure;
+  switch (error.kind) {
+    case ErrorKind::InvalidInput: return kExitBadInput;
+    case ErrorKind::ResourceLimit: return kExitResourceLimit;
+    default: return kExitFailure;
+  }
 }
 
 int reportError(const Error& error) {
@@ -400,18 +405,30 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
 }
 
 Result<void> checkHostMemory(Dims dims) {
-  // The field (12 bytes per voxel), the noise (1) and the packed texels with their staging copy
-  // (up to 32) live in host memory at once.
-  const double needed = static_cast<double>(voxelCount(dims)) * 45.0;
-  const double available = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
-                           static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  if (available > 0.0 && needed > 0.9 * available)
-    return inputError("a " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                      std::to_string(dims.z) + " grid needs about " +
-                      std::to_string(static_cast<long long>(needed / (1 << 30))) +
-                      " GiB of memory; this machine has " +
-                      std::to_string(static_cast<long long>(available / (1 << 30))) + " GiB");
-  return {};
+  // Before the field is made: its host copies alone must fit (the device is checked later, with
+  // the whole request, by checkRequestMemory). The float texture is the larger of the two.
+  MemoryRequest request;
+  request.dims = dims;
+  request.precision = FieldPrecision::Float;
+  return checkMemoryBudget(request, hostMemoryBudget(), "the field");
+}
+
+Result<void> checkRequestMemory(const Context& context, const Session& session, Dims dims,
+                                const RequestShape& shape) {
+  MemoryRequest request;
+  request.dims = dims;
+  request.precision = resolvePrecision(context, session.precision);
+  request.sparsity = session.lic.sparsity.distribution != SparsityDistribution::None;
+  request.doubleBuffered = shape.doubleBuffered;
+  request.volumeReadback = shape.volumeReadback;
+  if (shape.frame) {
+    const bool sideBySide = session.view.stereo == StereoMode::SideBySide;
+    request.frameWidth = shape.frameWidth > 0 ? shape.frameWidth
+                                              : session.view.width * (sideBySide ? 2 : 1);
+    request.frameHeight = shape.frameHeight > 0 ? shape.frameHeight : session.view.height;
+  }
+  return checkMemoryBudget(request, queryMemoryBudget(context),
+                           "the LIC of " + session.field.field);
 }
 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info) {

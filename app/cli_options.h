@@ -15,9 +15,13 @@
 #include "volume.h"
 #include "volume_io.h"
 
+namespace lic3d {
+class Context;
+}
+
 namespace lic3d::cli {
 
-enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitBadInput = 2 };
+enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitBadInput = 2, kExitResourceLimit = 3 };
 
 // `lic3d --version`, and the "Software" text of every PNG lic3d writes.
 inline constexpr char kVersionText[] = "lic3d 0.1.0";
@@ -87,6 +91,19 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
 
 // Refuses grids whose host-side arrays would not fit this machine's memory.
 Result<void> checkHostMemory(Dims dims);
+
+// What a command keeps resident besides the field, the noise and one LIC volume.
+struct RequestShape {
+  bool doubleBuffered = false;  // the app's second LIC volume
+  bool volumeReadback = false;  // `compute` reads the volume back
+  bool frame = false;           // a frame of the session's size (or frameWidth x frameHeight)
+  int frameWidth = 0;
+  int frameHeight = 0;
+};
+// ResourceLimit error (exit status 3) if the request does not fit the device and the host:
+// checked before anything of it is allocated on the device.
+Result<void> checkRequestMemory(const Context& context, const Session& session, Dims dims,
+                                const RequestShape& shape);
 // A file field also fills `info` (when given): the array read, the file's vector arrays and the
 // count of NaN or infinite vectors read as zero.
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven,

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "analytic_fields.h"
 #include "file_util.h"
@@ -208,14 +209,30 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   if (auto r = checkComputeOutput(options.output, batch); !r) return reportError(r.error());
   if (batch.slice.given())
     if (auto r = pngText(session); !r) return reportError(r.error());
+  // On the GPU, the device comes first, so that an analytic field too large for it is refused
+  // before it is made.
+  std::optional<Result<Context>> context;
+  if (!options.cpu) {
+    context.emplace(openContext(global));
+    if (!*context) return reportError(context->error());
+    if (parseAnalyticField(session.field.field))
+      if (auto r = checkRequestMemory(**context, session, session.field.grid,
+                                      {.volumeReadback = true});
+          !r)
+        return finish(**context, reportError(r.error()));
+  }
+  auto fail = [&](const Error& error) {
+    const int status = reportError(error);
+    return context ? finish(**context, status) : status;
+  };
   Result<Inputs> inputs = loadInputs(options);
-  if (!inputs) return reportError(inputs.error());
+  if (!inputs) return fail(inputs.error());
   reportFieldFile(global, session.field, *inputs);
   if (batch.slice.given()) {
     // The index against the grid, before any work.
     const LicSlice slice = *parseSlice(batch.slice.text);
     if (slice.index >= inputs->field.dims[slice.axis])
-      return reportError(inputError(
+      return fail(inputError(
           "--slice " + batch.slice.text + ": the grid " + gridText(inputs->field.dims) +
           " has " + std::to_string(inputs->field.dims[slice.axis]) + " slices along " +
           std::string(1, static_cast<char>('x' + slice.axis)) + " (0.." +
@@ -236,11 +253,13 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     return kExitOk;
   }
 
-  Result<Context> context = openContext(global);
-  if (!context) return reportError(context.error());
+  Context& device = **context;
+  if (auto r = checkRequestMemory(device, session, inputs->field.dims, {.volumeReadback = true});
+      !r)
+    return fail(r.error());
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(*context, {session.precision});
+    Result<LicRenderer> renderer = LicRenderer::create(device, {session.precision});
     Result<void> done = renderer ? renderer->setInputs(inputs->field, inputs->noise)
                                  : Result<void>(renderer.error());
     if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
@@ -251,11 +270,11 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (!done) status = reportError(done.error());
     else if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%s, on %s)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str(), context->deviceInfo().name.c_str());
+                   fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str());
   }
-  status = finish(*context, status);
+  status = finish(device, status);
   if (status == kExitOk) {
-    summary.device = context->deviceInfo().name;
+    summary.device = device.deviceInfo().name;
     printSummary(global, summary, start);
   }
   return status;
@@ -269,11 +288,17 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   const Result<FramePlan> plan = planFrames(batch, options);
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
-  Result<Inputs> inputs = loadInputs(options);
-  if (!inputs) return reportError(inputs.error());
-  reportFieldFile(global, session.field, *inputs);
   Result<Context> context = openContext(global);
   if (!context) return reportError(context.error());
+  // An analytic field's grid is known before it is made: refuse what cannot fit first.
+  if (parseAnalyticField(session.field.field))
+    if (auto r = checkRequestMemory(*context, session, session.field.grid, {.frame = true}); !r)
+      return finish(*context, reportError(r.error()));
+  Result<Inputs> inputs = loadInputs(options);
+  if (!inputs) return finish(*context, reportError(inputs.error()));
+  reportFieldFile(global, session.field, *inputs);
+  if (auto r = checkRequestMemory(*context, session, inputs->field.dims, {.frame = true}); !r)
+    return finish(*context, reportError(r.error()));
 
   RunSummary summary = makeSummary("render", session.field, *inputs);
   int status = kExitOk;

@@ -450,6 +450,19 @@ Result<void> App::finishLoading() {
     if (!renderer_->hasVolume()) return std::move(loaded).error();  // nothing to show at all
     return {};
   }
+  // The new field must fit beside everything the app keeps; if not, the old volume stays.
+  const VkExtent2D extent = swapchain_.extent();
+  if (auto r = cli::checkRequestMemory(*context_, session_, loaded->field.dims,
+                                       {.doubleBuffered = true,
+                                        .frame = true,
+                                        .frameWidth = static_cast<int>(extent.width),
+                                        .frameHeight = static_cast<int>(extent.height)});
+      !r) {
+    if (!renderer_->hasVolume()) return std::move(r).error();  // nothing to keep: exit status 3
+    stats_.alert = r.error().message + ". The previous field stays loaded.";
+    ui_.pendingField = session_.field;
+    return {};
+  }
   if (auto r = validate(session_.lic.sparsity, loaded->field.dims); !r) {
     session_.lic.sparsity = SparsityParams{};
     stats_.message = r.error().message + " (sparsity turned off)";
@@ -498,6 +511,7 @@ Result<void> App::handleActions(const Actions& actions) {
     const ViewParams defaults;
     session_.view.camera = defaults.camera;
   }
+  if (actions.dismissAlert) stats_.alert.clear();
   if (actions.saveSession) {
     const Result<void> r = writeSession(ui_.sessionPath, session_);
     stats_.message = r ? "saved " + ui_.sessionPath : r.error().message;

@@ -22,6 +22,7 @@ struct Stats {
   bool waitingForMask = false;
   bool loading = false;
   std::string message;  // the last error or notice, shown until replaced
+  std::string alert;    // a refused request, shown in a dialog until dismissed
   float minMagnitude = 0.0f, maxMagnitude = 1.0f;
 };
 
@@ -33,6 +34,7 @@ struct Actions {
   bool renderImage = false;      // offscreen at the chosen size, without the UI
   bool resetView = false;
   bool reloadField = false;      // the field or noise source changed
+  bool dismissAlert = false;
 };
 
 struct UiState {

@@ -14,6 +14,7 @@ enum class ErrorKind {
   InvalidInput,  // a bad flag, value or file: the user can fix it (CLI exit status 2)
   Unsupported,   // no usable device, missing layer or feature (CLI exit status 1)
   Runtime,       // a Vulkan call failed at run time: out of memory, device lost (exit status 1)
+  ResourceLimit,  // the request needs more memory than the device or host has (exit status 3)
 };
 
 struct Error {
@@ -24,6 +25,9 @@ struct Error {
 inline Error inputError(std::string message) { return {ErrorKind::InvalidInput, std::move(message)}; }
 inline Error unsupportedError(std::string message) { return {ErrorKind::Unsupported, std::move(message)}; }
 inline Error runtimeError(std::string message) { return {ErrorKind::Runtime, std::move(message)}; }
+inline Error resourceLimitError(std::string message) {
+  return {ErrorKind::ResourceLimit, std::move(message)};
+}
 
 // A value or the Error that explains why there is none.
 template <class T>

@@ -4,6 +4,7 @@
 
 #include "gpu_submit.h"
 #include "lic_reference.h"
+#include "memory_budget.h"
 
 namespace lic3d {
 namespace {
@@ -53,16 +54,13 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   LIC3D_TRY(checkVolumeDims(context, field.dims, "field"));
   LIC3D_TRY(checkSpacing(field.geometry));
   const FieldPrecision resolved = resolvePrecision(context, precision);
-  // The texture, its staging copy and the LIC volume must fit the device's largest heap; a CPU
-  // driver would otherwise accept the allocation and fail when the memory is first touched.
-  const double texelBytes = resolved == FieldPrecision::Half ? 8.0 : 16.0;
-  const double needed = static_cast<double>(voxelCount(field.dims)) * (2.0 * texelBytes + 2.0);
-  const double available = static_cast<double>(context.deviceInfo().deviceLocalBytes);
-  if (needed > available)
-    return inputError("a " + gridText(field.dims) + " volume needs " +
-                      std::to_string(static_cast<long long>(needed / (1 << 20))) + " MiB of " +
-                      context.deviceInfo().name + "'s memory, which has " +
-                      std::to_string(static_cast<long long>(available / (1 << 20))) + " MiB");
+  // The texture, its staging copy and the LIC volume must fit (a CPU driver would otherwise
+  // accept the allocation and fail when the memory is first touched). Front ends check their
+  // whole request earlier; this guards every other caller.
+  MemoryRequest request;
+  request.dims = field.dims;
+  request.precision = resolved;
+  LIC3D_TRY(checkMemoryBudget(request, queryMemoryBudget(context), "the field"));
   if (noise.dims != field.dims)
     return inputError("the noise grid (" + gridText(noise.dims) + ") must match the field grid (" +
                       gridText(field.dims) + ")");

@@ -852,5 +852,23 @@ TEST_F(CliTest, RealDataSetsRenderAsPictures) {
   }
 }
 
+// A request the device cannot hold is refused with exit status 3 before anything is allocated:
+// under a 4 GB address-space limit, making the 700^3 field (4 GB of vectors) would fail with
+// status 1 instead. The message names the request, the bytes and the largest grid that fits.
+TEST_F(CliTest, RequestsThatCannotFitAreRefusedBeforeAllocating) {
+  for (const char* command : {"render --grid 700 -o big.png", "compute --grid 700 -o big.nrrd",
+                              "render --grid 2048 -o big.png"}) {
+    const CommandRun r = run(command, "ulimit -v 4000000;");
+    EXPECT_EQ(r.status, 3) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find("MiB"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the largest cubic grid that fits is "), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("big.png")) || fs::exists(path("big.nrrd")));
+  }
+  // The same limit leaves room for a grid that fits.
+  const CommandRun small = run("render --grid 16 --width 32 --height 32 -q -o small.png",
+                               "ulimit -v 4000000;");
+  EXPECT_EQ(small.status, 0) << small.output;
+}
+
 }  // namespace
 }  // namespace lic3d
