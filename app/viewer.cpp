@@ -184,6 +184,7 @@ class App {
   int soakBaseLength_ = 0;
   int swapchainsCreated_ = 0;
   void soakStep();
+  void saveRecovery() const;
   int soakVerdict() const;
 };
 
@@ -858,17 +859,24 @@ int App::soakVerdict() const {
   return cli::kExitOk;
 }
 
+// Nothing the user set up is lost when the app stops on an error: the session goes to a file.
+void App::saveRecovery() const {
+  if (auto r = writeSession(kRecoveryFile, session_); r)
+    std::fprintf(stderr, "lic3d-view: the session was saved to %s (lic3d-view --session %s)\n",
+                 kRecoveryFile, kRecoveryFile);
+}
+
 int App::run() {
-  if (auto r = init(); !r) return cli::reportError(r.error());
+  if (auto r = init(); !r) {
+    if (r.error().kind == ErrorKind::Runtime) saveRecovery();
+    return cli::reportError(r.error());
+  }
   drawnSession_ = session_;
   while (true) {
     Result<bool> more = frame();
     if (!more) {
       exitStatus_ = cli::reportError(more.error());
-      // Nothing the user set up is lost: the session goes to a recovery file first.
-      if (auto r = writeSession(kRecoveryFile, session_); r)
-        std::fprintf(stderr, "lic3d-view: the session was saved to %s (lic3d-view --session %s)\n",
-                     kRecoveryFile, kRecoveryFile);
+      saveRecovery();
       break;
     }
     if (!*more) break;

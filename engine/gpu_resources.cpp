@@ -1,10 +1,26 @@
 #include "gpu_resources.h"
 
+#include <atomic>
+#include <cstdlib>
 #include <utility>
 
 #include "vk_check.h"
 
 namespace lic3d {
+namespace {
+
+// Test hook (docs/RELIABILITY.md): LIC3D_FAIL_ALLOCATION=N makes the N-th device memory allocation
+// of the process fail with VK_ERROR_OUT_OF_DEVICE_MEMORY, as a full device would. Read once.
+bool injectedAllocationFailure() {
+  static const long failAt = [] {
+    const char* text = std::getenv("LIC3D_FAIL_ALLOCATION");
+    return text ? std::strtol(text, nullptr, 10) : 0L;
+  }();
+  static std::atomic<long> count{0};
+  return failAt > 0 && ++count == failAt;
+}
+
+}  // namespace
 
 // ---- DeviceMemory ------------------------------------------------------------------------------
 
@@ -31,7 +47,9 @@ Result<DeviceMemory> DeviceMemory::allocate(const Context& context,
   info.allocationSize = needs.size;
   info.memoryTypeIndex = type;
   DeviceMemory memory;
-  const VkResult result = vkAllocateMemory(context.device(), &info, nullptr, &memory.memory_);
+  const VkResult result = injectedAllocationFailure()
+                              ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                              : vkAllocateMemory(context.device(), &info, nullptr, &memory.memory_);
   if (result != VK_SUCCESS)
     return runtimeError("cannot allocate " + std::to_string(needs.size) + " bytes of GPU memory for " +
                         name + ": vkAllocateMemory returned " + vkResultName(result));

@@ -870,5 +870,48 @@ TEST_F(CliTest, RequestsThatCannotFitAreRefusedBeforeAllocating) {
   EXPECT_EQ(small.status, 0) << small.output;
 }
 
+// Every device allocation of a render, made to fail in turn through the allocator's test hook
+// (LIC3D_FAIL_ALLOCATION=N): each run names the call and its result, exits with status 1, leaves
+// no output file and no validation message (everything made so far is released cleanly).
+TEST_F(CliTest, EveryAllocationFailureIsReportedAndLeavesNothing) {
+  const std::string args = "--validation render --grid 8 --width 32 --height 32 -q -o out.png";
+  int failures = 0;
+  for (int n = 1; n <= 60; ++n) {
+    const CommandRun r = run(args, "LIC3D_FAIL_ALLOCATION=" + std::to_string(n));
+    if (r.status == 0) break;  // past the last allocation
+    ++failures;
+    EXPECT_EQ(r.status, 1) << "allocation " << n << ": " << r.output;
+    EXPECT_NE(r.output.find("vkAllocateMemory returned VK_ERROR_OUT_OF_DEVICE_MEMORY"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("alidation"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("out.png"))) << "allocation " << n;
+    EXPECT_EQ(listFolder(), std::vector<std::string>{}) << "allocation " << n;
+  }
+  EXPECT_GT(failures, 5) << "the hook should reach every allocation of a render";
+  EXPECT_TRUE(fs::exists(path("out.png"))) << "the run past the last allocation succeeds";
+}
+
+// Killed at any moment, a batch render never leaves a truncated file under a real name: each
+// frame is written to a temporary name in the same folder and renamed once complete.
+TEST_F(CliTest, KillingABatchRenderLeavesOnlyCompleteFrames) {
+  int complete = 0;
+  for (const char* delay : {"0.3", "0.6", "0.9", "1.3", "1.8"}) {
+    for (const fs::directory_entry& e : fs::directory_iterator(folder())) fs::remove(e.path());
+    run(std::string("--device 0 render --grid 20 --width 96 --height 96 --turntable 40 -q "
+                    "-o frame_%02d.png"),
+        std::string("timeout -s KILL ") + delay);
+    for (const fs::directory_entry& e : fs::directory_iterator(folder())) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("frame_", 0) != 0 || e.path().extension() != ".png") continue;
+      const test::RgbaPixels frame = test::readRgbaPng(e.path());
+      EXPECT_EQ(frame.width, 96) << name << " is not a complete PNG (killed after " << delay
+                                 << " s)";
+      ++complete;
+    }
+  }
+  EXPECT_GT(complete, 0) << "no frame was finished before the kills: lengthen the delays";
+}
+
 }  // namespace
 }  // namespace lic3d

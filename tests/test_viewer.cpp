@@ -169,6 +169,30 @@ TEST_F(ViewerTest, SoakNeedsFrames) {
   EXPECT_EQ(r.status, 2) << r.output;
 }
 
+// A device allocation that fails while the app runs (the allocator's test hook) stops it with
+// the call named, and the session is saved to lic3d-recovery.json first.
+TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
+  writeBytes("in.json", R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 9}})");
+  bool sawRecovery = false;
+  for (int n : {12, 14, 16}) {
+    std::filesystem::remove(path("lic3d-recovery.json"));
+    const CommandRun failed = runShell("cd '" + folder().string() + "' && LIC3D_FAIL_ALLOCATION=" +
+                                       std::to_string(n) +
+                                       " xvfb-run -a -s '-screen 0 1280x800x24' '" +
+                                       std::string(LIC3D_VIEWER) +
+                                       "' --window-size 320x240 --session in.json --frames 3");
+    if (failed.status == 0) continue;
+    EXPECT_EQ(failed.status, 1) << failed.output;
+    EXPECT_NE(failed.output.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << failed.output;
+    Result<Session> saved = readSession(path("lic3d-recovery.json"));
+    ASSERT_TRUE(saved) << failed.output;
+    EXPECT_EQ(saved->field.field, "abc");
+    EXPECT_EQ(saved->lic.length, 9);
+    sawRecovery = true;
+  }
+  EXPECT_TRUE(sawRecovery) << "none of the injected failures hit the running app";
+}
+
 TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
   for (const char* args : {"--window-size 10x10", "--screenshot shot.png", "--frames 2 --screenshot shot.jpg",
                            "--session missing.json"}) {
