@@ -63,10 +63,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();
   app.footer("Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
-             "files.");
+             "files, 3 not enough memory for the request.");
   const std::string globalNote =
       "Global options (--device, --validation, --quiet) may also follow the command. Exit "
-      "status: 0 success, 1 failure, 2 bad arguments or input files.";
+      "status: 0 success, 1 failure, 2 bad arguments or input files, 3 not enough memory for "
+      "the request.";
 
   GlobalOptions global;
   addGlobalOptions(app, global);

@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
                "animation, F12 screenshot, H or Tab hide panels, F1 help, Esc quit."};
   app.set_version_flag("--version", "lic3d-view 0.1.0");
   app.footer("Also started by `lic3d view ...`. Exit status: 0 success, 1 failure (no display, "
-             "no device, GPU or validation error), 2 bad arguments or input files.");
+             "no device, GPU or validation error), 2 bad arguments or input files, 3 not enough "
+             "memory for the request.");
 
   GlobalOptions global;
   addGlobalOptions(app, global);
