@@ -226,6 +226,9 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
           "auto");
   app.add_flag("--legend", view.legend,
                "Draw the colour legend into the image (with --color magnitude)");
+  app.add_flag("--axes", view.axes,
+               "Draw the box's edges and label each axis with its physical range (the grid's "
+               "origin and spacing)");
   app.add_option("--magnitude-opacity", view.magnitudeOpacity,
                  "Opacity x (normalised |v|)^E so slow regions fade (thesis 5.1.3); 0 is off")
       ->check(CLI::Range(0.0, 100.0))

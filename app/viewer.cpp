@@ -20,6 +20,7 @@
 
 #include "gpu_submit.h"
 #include "gpu_timer.h"
+#include "legend.h"
 #include "lic_renderer.h"
 #include "rgba_image.h"
 #include "slice_geometry.h"
@@ -134,6 +135,7 @@ class App {
   Result<void> finishLoading();
   Result<bool> frame();
   void updateCamera(const Input& in);
+  void drawAxes() const;
   void animate(double seconds);
   Result<void> handleActions(const Actions& actions);
   Result<void> saveScreenshot(const Frame& f);
@@ -496,6 +498,31 @@ void App::updateCamera(const Input& in) {
   if (in.scroll != 0.0) camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
 }
 
+// The box's edges and axis ranges (--axes) over the volume, in ImGui's background layer.
+void App::drawAxes() const {
+  if (!session_.view.axes || !renderer_->hasVolume() || session_.view.stereo == StereoMode::SideBySide)
+    return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  if (display.x < 1.0f || display.y < 1.0f) return;
+  const VolumeFacts facts = renderer_->volumeFacts();
+  const SliceFrame frame = makeSliceFrame(session_.view, facts, Eye::Mono, display.x / display.y);
+  const BoxAxes axes =
+      projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims, facts.geometry,
+                     static_cast<int>(display.x), static_cast<int>(display.y));
+  const glm::vec3 bg = session_.view.background;
+  const bool dark = 0.2126f * bg.r + 0.7152f * bg.g + 0.0722f * bg.b > 0.5f;
+  const ImU32 line = dark ? IM_COL32(0, 0, 0, 160) : IM_COL32(255, 255, 255, 160);
+  const ImU32 ink = dark ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
+  for (const AxisLabel& label : axes.labels) {
+    const float width = ImGui::CalcTextSize(label.text.c_str()).x;
+    const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f, 2.0f,
+                               std::max(2.0f, display.x - width - 2.0f));
+    draw->AddText(ImVec2(x, label.at.y - 0.5f * ImGui::GetFontSize()), ink, label.text.c_str());
+  }
+}
+
 void App::animate(double seconds) {
   if (!ui_.playing) return;
   LicParams& lic = session_.lic;
@@ -640,6 +667,7 @@ Result<bool> App::frame() {
   stats_.computeFraction = status.fraction;
   stats_.waitingForMask = status.waitingForMask;
   stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
+  drawAxes();
   Actions actions = drawUi(session_, ui_, stats_);
   ImGui::Render();
   actions.resetView = actions.resetView || in.resetView;

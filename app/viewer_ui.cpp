@@ -126,6 +126,8 @@ void colourPanel(ViewParams& v, const Stats& stats) {
   }
   ImGui::Checkbox("legend", &v.legend);
   tip("Show the colour legend");
+  ImGui::Checkbox("axes", &v.axes);
+  tip("The box's edges, each axis labelled with its physical range (origin, spacing)");
   ImGui::SliderFloat("magnitude opacity", &v.magnitudeOpacity, 0.0f, 4.0f);
   tip("Opacity x (normalised |v|)^E: slow regions fade (thesis 5.1.3); 0 is off");
   ImGui::SliderFloat("threshold", &v.magnitudeThreshold, 0.0f, 1.0f);

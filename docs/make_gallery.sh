@@ -124,7 +124,7 @@ realdata "Carotid artery, blood velocity measured by MRI, 76×49×45: noise outs
 # Cut open at the coil axis (y = 0.5), the field lines bulge between the two coils (red rings).
 realdata "Magnetic mirror, FEM field of two coils, 47×47×47, spacing 0.05, 0.05, 0.125: cut open at the axis, colour by \|B\| in tesla" \
   example-femm-3d.vtk femm --color magnitude --color-range 0,0.01 --clip 0,1,0,0.5,0,1 \
-  --azimuth 60 --elevation 20 --legend
+  --azimuth 60 --elevation 20 --legend --axes
 
 mv "$page" GALLERY.md
 echo "wrote docs/GALLERY.md and $(ls "$OUT" | wc -l) pictures in docs/$OUT"

@@ -1,6 +1,7 @@
 #include "legend.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -36,6 +37,11 @@ std::string formatValue(float v) {
   return text;
 }
 
+glm::u8vec4 inkFor(glm::vec3 background, std::uint8_t alpha) {
+  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
+  return luminance > 0.5f ? glm::u8vec4(0, 0, 0, alpha) : glm::u8vec4(255, 255, 255, alpha);
+}
+
 }  // namespace
 
 int textWidth(std::string_view text, int scale) {
@@ -60,8 +66,7 @@ void drawText(RgbaImage& image, int x, int y, std::string_view text, glm::u8vec4
 LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high,
                      std::string_view title, glm::vec3 background) {
   const int scale = std::max(1, image.height / 360);
-  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
-  const glm::u8vec4 ink = luminance > 0.5f ? glm::u8vec4(0, 0, 0, 255) : glm::u8vec4(255, 255, 255, 255);
+  const glm::u8vec4 ink = inkFor(background, 255);
 
   const std::string labels[3] = {formatValue(high), formatValue(0.5f * (low + high)),
                                  formatValue(low)};
@@ -95,6 +100,93 @@ LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high,
   drawText(image, textX, box.y1 - half, labels[2], ink, scale);
   drawText(image, box.x0, box.y0 - 3 * half - margin, title, ink, scale);
   return box;
+}
+
+BoxAxes projectBoxAxes(const glm::mat4& viewProjection, glm::vec3 halfExtent, Dims dims,
+                       const GridGeometry& geometry, int width, int height, bool keepRightFree) {
+  BoxAxes axes;
+  auto corner = [&](int i) {
+    return glm::vec3(i & 1 ? halfExtent.x : -halfExtent.x, i & 2 ? halfExtent.y : -halfExtent.y,
+                     i & 4 ? halfExtent.z : -halfExtent.z);
+  };
+  // Pixels of a world point; false behind the camera.
+  auto project = [&](glm::vec3 p, glm::vec2& pixel) {
+    const glm::vec4 clip = viewProjection * glm::vec4(p, 1.0f);
+    if (clip.w <= 1e-6f) return false;
+    pixel = glm::vec2((clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(width),
+                      (clip.y / clip.w * 0.5f + 0.5f) * static_cast<float>(height));
+    return true;
+  };
+  for (int i = 0; i < 8; ++i)
+    for (int axis = 0; axis < 3; ++axis) {
+      const int j = i | (1 << axis);
+      if (j == i) continue;
+      glm::vec2 a, b;
+      if (project(corner(i), a) && project(corner(j), b)) axes.edges.push_back({a, b});
+    }
+  const char* names[3] = {"x", "y", "z"};
+  glm::vec2 centre;
+  if (!project(glm::vec3(0.0f), centre)) return axes;
+  for (int axis = 0; axis < 3; ++axis) {
+    // Of the four edges along this axis, label the one on the outline: farthest from the centre
+    // on screen, so the text sits beside the volume rather than over it.
+    bool found = false;
+    glm::vec2 best{0.0f};
+    for (int k = 0; k < 4; ++k) {
+      glm::vec3 middle = corner((k & 1 ? 1 : 0) << ((axis + 1) % 3) | (k & 2 ? 1 : 0) << ((axis + 2) % 3));
+      middle[axis] = 0.0f;
+      glm::vec2 at;
+      if (!project(middle, at)) continue;
+      // With a legend at the right edge, outline edges left of the centre win.
+      auto score = [&](glm::vec2 p) {
+        return glm::length(p - centre) - (keepRightFree && p.x > centre.x ? 1e6f : 0.0f);
+      };
+      if (!found || score(at) > score(best)) best = at;
+      found = true;
+    }
+    if (!found) continue;
+    const double first = geometry.origin[axis];
+    const double last = first + geometry.spacing[axis] * (dims[axis] - 1);
+    char text[96];
+    std::snprintf(text, sizeof text, "%s %.4g .. %.4g", names[axis], first, last);
+    axes.labels.push_back({best, text, best.x < centre.x});
+  }
+  return axes;
+}
+
+void drawBoxAxes(RgbaImage& image, const BoxAxes& axes, glm::vec3 background) {
+  const int scale = std::max(1, image.height / 360);
+  const glm::u8vec4 line = inkFor(background, 160);
+  for (const auto& [a, b] : axes.edges) {
+    const glm::vec2 d = b - a;
+    const int steps = static_cast<int>(std::ceil(std::max(std::abs(d.x), std::abs(d.y)))) + 1;
+    for (int k = 0; k <= steps; ++k) {
+      const glm::vec2 p = a + d * (static_cast<float>(k) / static_cast<float>(steps));
+      const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
+      fillRect(image, x, y, x + scale, y + scale, line);
+    }
+  }
+  const glm::u8vec4 ink = inkFor(background, 255);
+  std::vector<glm::ivec4> placed;  // x0, y0, x1, y1 of the labels drawn so far
+  for (const AxisLabel& label : axes.labels) {
+    const int width = textWidth(label.text, scale);
+    const int height = 12 * scale;
+    const int x = std::clamp(label.leftOfBox ? static_cast<int>(label.at.x) - width - 6 * scale
+                                             : static_cast<int>(label.at.x) + 6 * scale,
+                             2, std::max(2, image.width - width - 2));
+    int y = static_cast<int>(label.at.y) - 5 * scale;
+    // Labels of edges that meet would overlap: move this one down until it is clear.
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const glm::ivec4& r : placed)
+        if (x < r.z && r.x < x + width && y < r.w && r.y < y + height) {
+          y = r.w + scale;
+          moved = true;
+        }
+    }
+    drawText(image, x, y, label.text, ink, scale);
+    placed.push_back({x, y, x + width, y + height});
+  }
 }
 
 }  // namespace lic3d

@@ -413,6 +413,15 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
     const float high = view.autoColorRange ? facts.maxMagnitude : view.colorHigh;
     drawLegend(image, view.colormap, low, high, "|v|", view.background);
   }
+  if (view.axes && view.stereo != StereoMode::SideBySide) {
+    const VolumeFacts facts = volumeFacts();
+    const SliceFrame frame = makeSliceFrame(view, facts, Eye::Mono,
+                                            static_cast<float>(width) / static_cast<float>(view.height));
+    const bool legend = view.legend && view.color == ColorMode::Magnitude;
+    drawBoxAxes(image, projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims,
+                                      facts.geometry, width, view.height, legend),
+                view.background);
+  }
   return image;
 }
 

@@ -149,6 +149,7 @@ std::string sessionToJson(const Session& s) {
       {"auto_color_range", v.autoColorRange},
       {"color_range", toArray(glm::vec2(v.colorLow, v.colorHigh))},
       {"legend", v.legend},
+      {"axes", v.axes},
       {"magnitude_opacity", v.magnitudeOpacity},
       {"magnitude_threshold", v.magnitudeThreshold},
       {"clip_min", toArray(v.clipMin)},
@@ -252,6 +253,7 @@ Result<Session> sessionFromJson(const std::string& text, const std::string& sour
       v.colorLow = range.x;
       v.colorHigh = range.y;
       r.boolean("legend", v.legend);
+      r.boolean("axes", v.axes);
       r.number("magnitude_opacity", v.magnitudeOpacity);
       r.number("magnitude_threshold", v.magnitudeThreshold);
       r.vector("clip_min", v.clipMin);

@@ -66,6 +66,9 @@ struct ViewParams {
   float colorLow = 0.0f;
   float colorHigh = 1.0f;
   bool legend = false;
+  // The box's edges with each axis labelled by its physical range (origin to the last voxel
+  // centre, in the file's units), drawn over the picture.
+  bool axes = false;
 
   // Thesis 5.1.3: alpha *= t^exponent, t = |v| normalised over the colour range; 0 is off.
   // Voxels with t below the threshold vanish.

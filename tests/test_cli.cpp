@@ -89,7 +89,7 @@ TEST_F(CliTest, HelpListsEveryOption) {
                         "--elevation", "--distance", "--fov", "--ortho", "--alpha", "--opacity",
                         "--filter", "--background", "--contrast", "--window", "--gain",
                         "--brightness", "--color", "--colormap", "--color-range", "--legend",
-                        "--magnitude-opacity", "--magnitude-threshold", "--clip", "--roi",
+                        "--magnitude-opacity", "--magnitude-threshold", "--clip", "--roi", "--axes",
                         "--roi-center", "--roi-size", "--roi-rotate", "--roi-outside", "--fog",
                         "--fog-color", "--stereo", "--eye-separation", "--zero-parallax",
                         "--lighting", "--turntable", "--animate-bias", "--frames", "--video",
@@ -911,6 +911,23 @@ TEST_F(CliTest, KillingABatchRenderLeavesOnlyCompleteFrames) {
     }
   }
   EXPECT_GT(complete, 0) << "no frame was finished before the kills: lengthen the delays";
+}
+
+// --axes draws the box's outline and the axis ranges over the picture: a few percent of the
+// pixels change, the rest of the picture stays as it was.
+TEST_F(CliTest, AxesOutlineTheBoxWithoutChangingThePicture) {
+  const std::string common = "render -q --grid 12 --width 200 --height 200 ";
+  ASSERT_EQ(run(common + "-o plain.png").status, 0);
+  ASSERT_EQ(run(common + "--axes -o axes.png").status, 0);
+  const test::RgbaPixels plain = test::readRgbaPng(path("plain.png"));
+  const test::RgbaPixels axes = test::readRgbaPng(path("axes.png"));
+  ASSERT_EQ(plain.rgba.size(), axes.rgba.size());
+  int changed = 0;
+  for (std::size_t i = 0; i < plain.rgba.size(); i += 4)
+    changed += plain.rgba[i] != axes.rgba[i] || plain.rgba[i + 1] != axes.rgba[i + 1];
+  const double fraction = changed / (200.0 * 200.0);
+  EXPECT_GT(fraction, 0.01);
+  EXPECT_LT(fraction, 0.15);
 }
 
 }  // namespace

@@ -51,6 +51,7 @@ Session unusualSession() {
   v.colorLow = 0.5f;
   v.colorHigh = 2.5f;
   v.legend = true;
+  v.axes = true;
   v.magnitudeOpacity = 0.5f;
   v.magnitudeThreshold = 0.25f;
   v.clipMin = {0.125f, 0.25f, 0.375f};

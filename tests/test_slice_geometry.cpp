@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "camera.h"
+#include "legend.h"
 #include "slice_geometry.h"
 
 namespace lic3d {
@@ -73,6 +74,31 @@ TEST(Camera, ZUpAndVulkanClipSpace) {
   // Looking from +x with z up, +y is to the right.
   const glm::vec4 right = m.viewProjection * glm::vec4(0, 0.4f, 0, 1);
   EXPECT_GT(right.x / right.w, 0.0f);
+}
+
+// --axes: the box's 12 edges on screen, each axis labelled with its physical range.
+TEST(BoxAxes, TwelveEdgesInsideTheFittedViewAndPhysicalRanges) {
+  const Dims dims{47, 47, 47};
+  GridGeometry geometry;
+  geometry.spacing = {0.05, 0.05, 0.125};
+  geometry.origin = {-1.15, -1.15, -0.375};
+  const glm::vec3 half = boxHalfExtent(dims, geometry);
+  const CameraMatrices camera = computeCamera(CameraParams{}, half, 1.0f);
+  const BoxAxes axes = projectBoxAxes(camera.viewProjection, half, dims, geometry, 400, 400);
+  ASSERT_EQ(axes.edges.size(), 12u);
+  for (const auto& [a, b] : axes.edges)
+    for (glm::vec2 p : {a, b}) {
+      EXPECT_GE(p.x, 0.0f);
+      EXPECT_LE(p.x, 400.0f);
+      EXPECT_GE(p.y, 0.0f);
+      EXPECT_LE(p.y, 400.0f);
+    }
+  ASSERT_EQ(axes.labels.size(), 3u);
+  EXPECT_EQ(axes.labels[0].text, "x -1.15 .. 1.15");
+  EXPECT_EQ(axes.labels[1].text, "y -1.15 .. 1.15");
+  EXPECT_EQ(axes.labels[2].text, "z -0.375 .. 5.375");
+  // The z edge is tall: its label sits beside the box, away from the centre.
+  EXPECT_GT(std::abs(axes.labels[2].at.x - 200.0f), 20.0f);
 }
 
 }  // namespace
