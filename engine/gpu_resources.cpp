@@ -2,8 +2,11 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <utility>
+#include <vector>
 
+#include "memory_budget.h"
 #include "vk_check.h"
 
 namespace lic3d {
@@ -20,7 +23,53 @@ bool injectedAllocationFailure() {
   return failAt > 0 && ++count == failAt;
 }
 
+
+bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> extensions(count);
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) != VK_SUCCESS)
+    return false;
+  for (const VkExtensionProperties& e : extensions)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
 }  // namespace
+
+MemoryBudget queryMemoryBudget(const Context& context) {
+  MemoryBudget b;
+  VkPhysicalDevice physical = context.physicalDevice();
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(physical, &properties);
+  b.unifiedMemory = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+
+  VkPhysicalDeviceMaintenance3Properties maintenance3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties2.pNext = &maintenance3;
+  vkGetPhysicalDeviceProperties2(physical, &properties2);
+  b.maxAllocation = maintenance3.maxMemoryAllocationSize;
+
+  VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+  VkPhysicalDeviceMemoryProperties2 memory{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+  b.fromBudgetExtension = hasDeviceExtension(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+  if (b.fromBudgetExtension) memory.pNext = &budget;
+  vkGetPhysicalDeviceMemoryProperties2(physical, &memory);
+  for (std::uint32_t i = 0; i < memory.memoryProperties.memoryHeapCount; ++i) {
+    const VkMemoryHeap& heap = memory.memoryProperties.memoryHeaps[i];
+    if (!(heap.flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
+    const std::uint64_t available =
+        b.fromBudgetExtension
+            ? (budget.heapBudget[i] > budget.heapUsage[i] ? budget.heapBudget[i] - budget.heapUsage[i] : 0)
+            : heap.size;
+    b.deviceBytes = std::max<std::uint64_t>(b.deviceBytes, available);
+  }
+  b.hostBytes = hostAvailableBytes();
+  return b;
+}
+
 
 // ---- DeviceMemory ------------------------------------------------------------------------------
 

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 
 #include <unistd.h>
 
-#include "vulkan_context.h"
 
 namespace lic3d {
 namespace {
@@ -22,6 +20,17 @@ std::string mib(std::uint64_t bytes) {
 std::string gridText(Dims d) {
   return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
+
+// A CPU driver's one heap holds the device volumes and the staging buffers, and that heap is
+// the host's memory; a discrete GPU's staging buffers live in host memory.
+std::uint64_t deviceBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
+  return b.unifiedMemory ? e.deviceBytes + e.stagingBytes : e.deviceBytes;
+}
+std::uint64_t hostBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
+  return e.hostBytes + e.stagingBytes + (b.unifiedMemory ? e.deviceBytes : 0);
+}
+
+}  // namespace
 
 // MemAvailable from /proc/meminfo (what the host can give without swapping), else physical pages.
 std::uint64_t hostAvailableBytes() {
@@ -40,28 +49,6 @@ std::uint64_t hostAvailableBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
 }
-
-bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
-  std::uint32_t count = 0;
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS) return false;
-  std::vector<VkExtensionProperties> extensions(count);
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) != VK_SUCCESS)
-    return false;
-  for (const VkExtensionProperties& e : extensions)
-    if (std::strcmp(e.extensionName, name) == 0) return true;
-  return false;
-}
-
-// A CPU driver's one heap holds the device volumes and the staging buffers, and that heap is
-// the host's memory; a discrete GPU's staging buffers live in host memory.
-std::uint64_t deviceBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
-  return b.unifiedMemory ? e.deviceBytes + e.stagingBytes : e.deviceBytes;
-}
-std::uint64_t hostBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
-  return e.hostBytes + e.stagingBytes + (b.unifiedMemory ? e.deviceBytes : 0);
-}
-
-}  // namespace
 
 MemoryEstimate estimateMemory(const MemoryRequest& r) {
   MemoryEstimate e;
@@ -102,39 +89,6 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
     add("frame image (host)", pixels * 4, host);
   }
   return e;
-}
-
-MemoryBudget queryMemoryBudget(const Context& context) {
-  MemoryBudget b;
-  VkPhysicalDevice physical = context.physicalDevice();
-  VkPhysicalDeviceProperties properties{};
-  vkGetPhysicalDeviceProperties(physical, &properties);
-  b.unifiedMemory = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-
-  VkPhysicalDeviceMaintenance3Properties maintenance3{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
-  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  properties2.pNext = &maintenance3;
-  vkGetPhysicalDeviceProperties2(physical, &properties2);
-  b.maxAllocation = maintenance3.maxMemoryAllocationSize;
-
-  VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
-  VkPhysicalDeviceMemoryProperties2 memory{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
-  b.fromBudgetExtension = hasDeviceExtension(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
-  if (b.fromBudgetExtension) memory.pNext = &budget;
-  vkGetPhysicalDeviceMemoryProperties2(physical, &memory);
-  for (std::uint32_t i = 0; i < memory.memoryProperties.memoryHeapCount; ++i) {
-    const VkMemoryHeap& heap = memory.memoryProperties.memoryHeaps[i];
-    if (!(heap.flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
-    const std::uint64_t available =
-        b.fromBudgetExtension
-            ? (budget.heapBudget[i] > budget.heapUsage[i] ? budget.heapBudget[i] - budget.heapUsage[i] : 0)
-            : heap.size;
-    b.deviceBytes = std::max<std::uint64_t>(b.deviceBytes, available);
-  }
-  b.hostBytes = hostAvailableBytes();
-  return b;
 }
 
 MemoryBudget hostMemoryBudget() {

@@ -54,7 +54,10 @@ struct MemoryBudget {
   bool fromBudgetExtension = false;  // VK_EXT_memory_budget, else the heap size
 };
 
+// The device's budget (in gpu_resources.cpp, with the rest of the Vulkan layer).
 MemoryBudget queryMemoryBudget(const Context& context);
+// MemAvailable of /proc/meminfo, else the physical memory.
+std::uint64_t hostAvailableBytes();
 // Host memory only (no device yet): MemAvailable, else the physical memory.
 MemoryBudget hostMemoryBudget();
 
