@@ -26,6 +26,12 @@ std::string gridText(Dims d) {
 std::uint64_t deviceBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
   return b.unifiedMemory ? e.deviceBytes + e.stagingBytes : e.deviceBytes;
 }
+// maxMemoryAllocationSize is where allocations *may* start to fail: GPU drivers (NVIDIA reports
+// 4 GiB) allocate the 8 GiB texture of a 1024^3 field beyond it, so it is a limit for CPU drivers
+// only, whose allocations are host allocations; elsewhere a failed allocation is reported as such.
+bool singleAllocationLimited(const MemoryBudget& b) {
+  return b.unifiedMemory && b.maxAllocation > 0;
+}
 std::uint64_t hostBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
   return e.hostBytes + e.stagingBytes + (b.unifiedMemory ? e.deviceBytes : 0);
 }
@@ -109,7 +115,7 @@ Result<void> checkMemoryBudget(const MemoryRequest& request, const MemoryBudget&
   else if (budget.hostBytes > 0 && hostNeeded > budget.hostBytes)
     problem = "needs " + mib(hostNeeded) + " of host memory; " + mib(budget.hostBytes) +
               " are available";
-  else if (budget.maxAllocation > 0 && e.largestImage > budget.maxAllocation)
+  else if (singleAllocationLimited(budget) && e.largestImage > budget.maxAllocation)
     problem = "needs a single allocation of " + mib(e.largestImage) + "; the device allows " +
               mib(budget.maxAllocation);
   if (problem.empty()) return {};
@@ -126,7 +132,7 @@ int largestCubicGrid(MemoryRequest request, const MemoryBudget& budget) {
     const MemoryEstimate e = estimateMemory(request);
     return (budget.deviceBytes == 0 || deviceBytesNeeded(e, budget) <= budget.deviceBytes) &&
            (budget.hostBytes == 0 || hostBytesNeeded(e, budget) <= budget.hostBytes) &&
-           (budget.maxAllocation == 0 || e.largestImage <= budget.maxAllocation);
+           (!singleAllocationLimited(budget) || e.largestImage <= budget.maxAllocation);
   };
   int low = 0, high = 1 << 14;  // fits(low) holds (or low == 0); fits(high) does not
   if (fits(high)) return high;

@@ -200,7 +200,6 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --grid 8,8",
       "render --grid 8,x,8",
       "render --grid 5000",
-      "render --grid 2048",                       // more memory than any test machine has
       "render --width 0",
       "render --background 1,2",
       "render --background 300,0,0",
