@@ -586,26 +586,6 @@ Result<void> readRaw(FileReader& reader, const Layout& layout, const ChunkSink& 
   return {};
 }
 
-class InflateStream {
- public:
-  InflateStream() = default;
-  InflateStream(const InflateStream&) = delete;
-  InflateStream& operator=(const InflateStream&) = delete;
-  ~InflateStream() {
-    if (initialized_) inflateEnd(&stream_);
-  }
-  bool init() {
-    // 15 + 32: the largest window, with the zlib or gzip header detected automatically.
-    initialized_ = inflateInit2(&stream_, 15 + 32) == Z_OK;
-    return initialized_;
-  }
-  z_stream& stream() { return stream_; }
-
- private:
-  z_stream stream_{};
-  bool initialized_ = false;
-};
-
 // The gzip counterpart of readRaw. The stream must hold exactly the promised bytes: shorter is
 // truncation, longer means the header and data disagree. Bytes after the stream's end are ignored.
 Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink& sink) {

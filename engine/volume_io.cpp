@@ -66,34 +66,20 @@ std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t n
   return {};
 }
 
-namespace {
+InflateStream::~InflateStream() {
+  if (initialized_) inflateEnd(&stream_);
+}
 
-class Inflater {
- public:
-  Inflater() = default;
-  Inflater(const Inflater&) = delete;
-  Inflater& operator=(const Inflater&) = delete;
-  ~Inflater() {
-    if (initialized_) inflateEnd(&stream_);
-  }
-  bool init() {
-    // 15 + 32: the largest window, with the zlib or gzip header detected automatically.
-    initialized_ = inflateInit2(&stream_, 15 + 32) == Z_OK;
-    return initialized_;
-  }
-  z_stream& stream() { return stream_; }
-
- private:
-  z_stream stream_{};
-  bool initialized_ = false;
-};
-
-}  // namespace
+bool InflateStream::init() {
+  // 15 + 32: the largest window, with the zlib or gzip header detected automatically.
+  initialized_ = inflateInit2(&stream_, 15 + 32) == Z_OK;
+  return initialized_;
+}
 
 Result<void> inflateExactly(const std::filesystem::path& path, std::string_view what,
                             std::string_view compressed, std::span<char> output) {
   const std::string prefix = std::string(what) + ": ";
-  Inflater inflater;
+  InflateStream inflater;
   if (!inflater.init()) return runtimeError("zlib: cannot initialise inflate for " + path.string());
   z_stream& zs = inflater.stream();
   // zlib counts in uInt; blocks and outputs beyond 4 GiB are fed in pieces.

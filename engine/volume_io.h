@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include <zlib.h>
+
 #include "error.h"
 #include "volume.h"
 
@@ -60,6 +62,21 @@ CellCentredGrid cellCentredGrid(Dims pointDims, const GridGeometry& pointGeometr
 // An empty string when nx x ny x nz is a grid lic3d reads (each axis in [1, kMaxAxisSize], at most
 // kMaxVoxels voxels), else the problem in words.
 std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz);
+
+// A zlib inflate stream (zlib or gzip header detected), ended when it goes out of scope.
+class InflateStream {
+ public:
+  InflateStream() = default;
+  InflateStream(const InflateStream&) = delete;
+  InflateStream& operator=(const InflateStream&) = delete;
+  ~InflateStream();
+  bool init();
+  z_stream& stream() { return stream_; }
+
+ private:
+  z_stream stream_{};
+  bool initialized_ = false;
+};
 
 // Inflates one whole zlib or gzip stream into exactly `output.size()` bytes; an error (naming
 // `path` and `what`) when the stream is corrupt, shorter, longer or not ended.
