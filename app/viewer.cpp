@@ -718,20 +718,8 @@ Result<bool> App::frame() {
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
                VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
-  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  color.imageView = offscreen_.view();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  const glm::vec3 bg = session_.view.background;
-  color.clearValue.color = {{bg.r, bg.g, bg.b, 1.0f}};
-  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  rendering.renderArea = {{0, 0}, extent};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &color;
   if (f.timed) f.timer.begin(cmd, 1);
-  vkCmdBeginRendering(cmd, &rendering);
+  beginClearedRendering(cmd, offscreen_.view(), extent, session_.view.background);
   const Result<void> drawn = renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <vulkan/vulkan.h>
 
 #include "error.h"
@@ -23,6 +24,11 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
                   VkAccessFlags2 dstAccess);
+
+// Begins dynamic rendering into one colour attachment (in COLOR_ATTACHMENT_OPTIMAL) cleared to
+// the opaque colour `clear`, over the whole extent.
+void beginClearedRendering(VkCommandBuffer cmd, VkImageView view, VkExtent2D extent,
+                           glm::vec3 clear);
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
