@@ -55,9 +55,12 @@ void fieldPanel(UiState& ui, Actions& actions) {
   tip("An analytic field: tornado (Crawfis), corner (thesis 4.5), solenoidal (thesis 6.2), "
       "vortex, ABC flow");
   text("file", f.field, "Or a field file: .nrrd or .vtk (press Load)");
-  ImGui::InputInt3("grid", &f.grid.x);
-  f.grid = glm::clamp(f.grid, glm::ivec3(1), glm::ivec3(2048));
-  tip("Voxels of an analytic field along x, y, z");
+  // A file brings its own grid: the grid is edited for analytic fields only.
+  if (parseAnalyticField(f.field)) {
+    ImGui::InputInt3("grid", &f.grid.x);
+    f.grid = glm::clamp(f.grid, glm::ivec3(1), glm::ivec3(2048));
+    tip("Voxels of an analytic field along x, y, z");
+  }
   text("array", f.array, "The vector array to read from a file with several (empty: the first)");
   NoiseSource& n = ui.pendingNoise;
   int seed = static_cast<int>(n.seed);
