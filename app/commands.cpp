@@ -254,9 +254,11 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   }
 
   Context& device = **context;
-  if (auto r = checkRequestMemory(device, session, inputs->field.dims, {.volumeReadback = true});
-      !r)
-    return fail(r.error());
+  // A file's grid is known once it is read (an analytic one was checked above).
+  if (inputs->fromFile)
+    if (auto r = checkRequestMemory(device, session, inputs->field.dims, {.volumeReadback = true});
+        !r)
+      return fail(r.error());
   int status = kExitOk;
   {
     Result<LicRenderer> renderer = LicRenderer::create(device, {session.precision});
@@ -297,8 +299,9 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   Result<Inputs> inputs = loadInputs(options);
   if (!inputs) return finish(*context, reportError(inputs.error()));
   reportFieldFile(global, session.field, *inputs);
-  if (auto r = checkRequestMemory(*context, session, inputs->field.dims, {.frame = true}); !r)
-    return finish(*context, reportError(r.error()));
+  if (inputs->fromFile)
+    if (auto r = checkRequestMemory(*context, session, inputs->field.dims, {.frame = true}); !r)
+      return finish(*context, reportError(r.error()));
 
   RunSummary summary = makeSummary("render", session.field, *inputs);
   int status = kExitOk;
