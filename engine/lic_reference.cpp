@@ -74,6 +74,11 @@ glm::dvec3 voxelUnitScale(const GridGeometry& geometry) {
 }
 
 double maxVoxelSpeed(const VectorField& field) {
+  if (field.piece) return field.piece->wholeMaxVoxelSpeed;
+  return maxVoxelSpeedOverVoxels(field);
+}
+
+double maxVoxelSpeedOverVoxels(const VectorField& field) {
   const glm::dvec3 scale = voxelUnitScale(field.geometry);
   double largest = 0.0;
   for (const glm::vec3& v : field.vectors) {
@@ -185,7 +190,9 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   const FieldSampler sampler(field);
   std::optional<SparsityMask> mask;
   if (params.sparsity.distribution != SparsityDistribution::None) {
-    LIC3D_TRY_ASSIGN(mask, makeSparsityMask(params.sparsity, field.dims));
+    LIC3D_TRY_ASSIGN(mask, field.piece
+                               ? makeSparsityMaskPiece(params.sparsity, *field.piece, field.dims)
+                               : makeSparsityMask(params.sparsity, field.dims));
     out.drawn.resize(out.values.size());
   }
 

@@ -28,8 +28,12 @@ using ProgressCallback = std::function<void(double fraction)>;
 Result<void> checkSpacing(const GridGeometry& geometry);
 // min(spacing) / spacing per axis, for a geometry that passes checkSpacing.
 glm::dvec3 voxelUnitScale(const GridGeometry& geometry);
-// The largest |v * voxelUnitScale| over the grid's voxels: what magnitude steps are scaled by.
+// What directions and magnitude steps are normalised by: the largest |v * voxelUnitScale| over
+// the grid's voxels, or for a piece of a larger field the whole field's (FieldPiece), so that
+// every piece steps as the whole would.
 double maxVoxelSpeed(const VectorField& field);
+// The largest |v * voxelUnitScale| over this field's own voxels, piece or not.
+double maxVoxelSpeedOverVoxels(const VectorField& field);
 
 // Edge-clamped trilinear interpolation of a field at continuous voxel positions, in voxel units.
 class FieldSampler {

@@ -69,6 +69,8 @@ Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume&
   job_.reset();
   finished_.reset();
   shownParams_.reset();
+  if (field.piece != piece_) maskParams_.reset();  // a piece's mask is cut from the whole one
+  piece_ = field.piece;
   if (field.dims != field_.dims) {
     maskParams_.reset();  // the mask and the volumes live on the field's grid
     mask_ = Image();
@@ -161,7 +163,7 @@ LicStatus LicRenderer::licStatus() const {
 Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
   LIC3D_TRY(validate(params));
   if (!field_.image) return inputError("no vector field and noise were set");
-  LIC3D_TRY(validate(params.sparsity, field_.dims));
+  LIC3D_TRY(validate(params.sparsity, piece_ ? piece_->wholeDims : field_.dims));
   if (!force && job_ && job_->params == params) return {};
   Job job;
   job.params = params;
@@ -169,7 +171,11 @@ Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
                   !(maskParams_ && *maskParams_ == params.sparsity);
   if (job.needsMask) {
     // Some distributions take seconds (best candidate): never on the thread that draws.
-    job.mask = std::async(std::launch::async, makeSparsityMask, params.sparsity, field_.dims).share();
+    job.mask = std::async(std::launch::async, [sparsity = params.sparsity, dims = field_.dims,
+                                               piece = piece_] {
+                 return piece ? makeSparsityMaskPiece(sparsity, *piece, dims)
+                              : makeSparsityMask(sparsity, dims);
+               }).share();
   }
   job_ = std::move(job);
   return {};

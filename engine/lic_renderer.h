@@ -173,6 +173,7 @@ class LicRenderer {
   Image mask_;       // the sparsity mask of maskParams_ on the field's grid
   Image emptyMask_;  // 1x1x1, bound when sparsity is off
   std::optional<SparsityParams> maskParams_;
+  std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
   std::uint64_t maskBuilds_ = 0;
   Image target_;
   Buffer targetReadback_;

@@ -26,6 +26,21 @@ NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
   return noise;
 }
 
+NoiseVolume makeWhiteNoisePiece(Dims wholeDims, Dims offset, Dims dims, std::uint64_t seed) {
+  NoiseVolume noise;
+  noise.dims = dims;
+  noise.type = NoiseType::UInt8;
+  noise.bytes.resize(voxelCount(dims));
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) {
+        const std::size_t whole = voxelIndex(wholeDims, offset.x + i, offset.y + j, offset.z + k);
+        noise.bytes[voxelIndex(dims, i, j, k)] =
+            static_cast<std::uint8_t>(noiseHash(seed, whole) >> 56);
+      }
+  return noise;
+}
+
 NoiseVolume makeSeedNoise(Dims dims, std::size_t spots, std::uint64_t seed) {
   NoiseVolume noise;
   noise.dims = dims;

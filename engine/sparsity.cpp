@@ -1151,4 +1151,24 @@ Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims) {
   return mask;
 }
 
+Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const FieldPiece& piece,
+                                           Dims dims) {
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 1 || piece.offset[a] < 0 || piece.offset[a] + dims[a] > piece.wholeDims[a])
+      return inputError("a piece of a field must lie inside the whole grid");
+  LIC3D_TRY_ASSIGN(const SparsityMask whole, makeSparsityMask(params, piece.wholeDims));
+  SparsityMask mask;
+  mask.dims = dims;
+  mask.black.resize(voxelCount(dims));
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) {
+        const std::uint8_t black = whole.black[voxelIndex(
+            piece.wholeDims, piece.offset.x + i, piece.offset.y + j, piece.offset.z + k)];
+        mask.black[voxelIndex(dims, i, j, k)] = black;
+        mask.blackCount += black;
+      }
+  return mask;
+}
+
 }  // namespace lic3d

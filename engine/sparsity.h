@@ -173,4 +173,10 @@ struct SparsityMask {
 // checkerboard blackens its pattern; None leaves every voxel white. Validates first.
 Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims);
 
+// The part of the whole grid's mask that a piece of `dims` covers (validated against the whole
+// grid): every piece of a distributed run masks exactly as the whole would. The whole mask is
+// made first, so each piece pays for all of it.
+Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const FieldPiece& piece,
+                                           Dims dims);
+
 }  // namespace lic3d

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -30,11 +31,23 @@ struct GridGeometry {
   bool operator==(const GridGeometry&) const = default;
 };
 
+// Where a field cut from a larger one lies in it: one piece of a distributed run (the ParaView
+// plugin under MPI), its ghost layers included. LIC on a piece normalises by the whole field's
+// largest |u| and masks with the whole grid's sparsity mask, so at every voxel whose streamlines
+// stay inside the piece it gives the whole field's value (docs/LIC_SEMANTICS.md, "Pieces").
+struct FieldPiece {
+  Dims wholeDims{0};
+  Dims offset{0};                   // of the piece's voxel (0,0,0) in the whole grid
+  double wholeMaxVoxelSpeed = 0.0;  // maxVoxelSpeed (lic_reference.h) of the whole field
+  bool operator==(const FieldPiece&) const = default;
+};
+
 // A 3D vector field sampled at voxel centres (VTK "point data").
 struct VectorField {
   Dims dims{0};
   GridGeometry geometry;
-  std::vector<glm::vec3> vectors;  // voxelCount(dims) entries
+  std::vector<glm::vec3> vectors;   // voxelCount(dims) entries
+  std::optional<FieldPiece> piece;  // set when this is a piece of a larger field
 
   const glm::vec3& at(int i, int j, int k) const { return vectors[voxelIndex(dims, i, j, k)]; }
 };
