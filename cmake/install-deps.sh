@@ -11,6 +11,7 @@ packages="
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libpugixml-dev libgtest-dev
   xvfb xauth
   clang-14 libclang-rt-14-dev
+  paraview paraview-dev python3-paraview openmpi-bin libopenmpi-dev libdouble-conversion-dev
 "
 
 missing=""

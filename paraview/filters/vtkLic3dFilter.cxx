@@ -1,0 +1,437 @@
+#include "vtkLic3dFilter.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+// The lic3d engine.
+#include "field_piece.h"
+#include "lic_reference.h"
+#include "lic_renderer.h"
+#include "noise.h"
+#include "vulkan_context.h"
+
+vtkStandardNewMacro(vtkLic3dFilter);
+
+// The device and the renderer live as long as the filter: later updates (a parameter changed in
+// the GUI) reuse them.
+struct vtkLic3dFilter::Engine {
+  std::optional<lic3d::Context> context;
+  std::optional<lic3d::LicRenderer> renderer;  // destroyed before the context
+  std::string device;
+  int precision = -1;
+
+  lic3d::Result<lic3d::ScalarVolume> compute(const lic3d::VectorField& field,
+                                             const lic3d::NoiseVolume& noise,
+                                             const lic3d::LicParams& params,
+                                             const std::string& wanted, int wantedPrecision,
+                                             const lic3d::ProgressCallback& progress);
+};
+
+namespace {
+using Extent = std::array<int, 6>;
+
+bool isEmpty(const Extent& e) { return e[1] < e[0] || e[3] < e[2] || e[5] < e[4]; }
+
+lic3d::Dims dimsOf(const Extent& e) { return {e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1}; }
+
+// The input's own part: the box of its cells that are not ghosts (readers that split, and the
+// GhostCellsGenerator, mark ghost cells in vtkGhostType), as a point extent. Not UPDATE_EXTENT:
+// for a piece request on image data that spans every piece.
+Extent ownExtent(vtkImageData* input, const Extent& extent) {
+  vtkUnsignedCharArray* ghosts = input->GetCellGhostArray();
+  if (!ghosts) {
+    return extent;
+  }
+  const lic3d::Dims points = dimsOf(extent);
+  const lic3d::Dims cells = glm::max(points - 1, lic3d::Dims(1));
+  lic3d::Dims low(cells), high(-1);
+  const unsigned char* flags = ghosts->GetPointer(0);
+  for (int k = 0; k < cells.z; ++k) {
+    for (int j = 0; j < cells.y; ++j) {
+      const unsigned char* row = flags + lic3d::voxelIndex(cells, 0, j, k);
+      for (int i = 0; i < cells.x; ++i) {
+        if (row[i] & vtkDataSetAttributes::DUPLICATECELL) {
+          continue;
+        }
+        low = glm::min(low, lic3d::Dims(i, j, k));
+        high = glm::max(high, lic3d::Dims(i, j, k));
+      }
+    }
+  }
+  Extent own{0, -1, 0, -1, 0, -1};
+  if (high.x < 0) {
+    return own;
+  }
+  for (int a = 0; a < 3; ++a) {
+    own[2 * a] = extent[2 * a] + low[a];
+    own[2 * a + 1] = extent[2 * a] + high[a] + (points[a] > 1 ? 1 : 0);
+  }
+  return own;
+}
+
+// What every process contributes to the whole run: its largest |u| and whether it failed, so that
+// a failing piece fails all of them instead of leaving the others waiting.
+struct Shared {
+  double maxVoxelSpeed = 0.0;
+  bool failed = false;
+};
+
+Shared shareAcrossProcesses(Shared mine) {
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() <= 1) {
+    return mine;
+  }
+  const double send[2] = {mine.maxVoxelSpeed, mine.failed ? 1.0 : 0.0};
+  double receive[2] = {0.0, 0.0};
+  controller->AllReduce(send, receive, 2, vtkCommunicator::MAX_OP);
+  return {receive[0], receive[1] > 0.0};
+}
+
+std::string selectedArrayName(vtkInformation* info) {
+  const char* name = info ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  return name ? name : "";
+}
+
+// No array chosen (a script that did not set Vectors before the input had data): the active point
+// vectors, else the first 3-component point array, as lic3d's file readers choose.
+vtkDataArray* defaultVectors(vtkImageData* input) {
+  vtkPointData* points = input->GetPointData();
+  if (vtkDataArray* active = points->GetVectors()) {
+    return active;
+  }
+  for (int i = 0; i < points->GetNumberOfArrays(); ++i) {
+    vtkDataArray* array = points->GetArray(i);
+    if (array && array->GetNumberOfComponents() == 3) {
+      return array;
+    }
+  }
+  return nullptr;
+}
+
+int processCount() {
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return controller ? controller->GetNumberOfProcesses() : 1;
+}
+
+}  // namespace
+
+vtkLic3dFilter::vtkLic3dFilter() : Gpu(new Engine) {
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+                               vtkDataSetAttributes::VECTORS);
+}
+
+vtkLic3dFilter::~vtkLic3dFilter() = default;
+
+void vtkLic3dFilter::PrintSelf(ostream& os, vtkIndent indent) {
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Length: " << this->Length << "\n"
+     << indent << "Step: " << this->Step << "\n"
+     << indent << "Bias: " << this->Bias << "\n"
+     << indent << "Integrator: " << this->Integrator << "\n"
+     << indent << "Kernel: " << this->Kernel << "\n"
+     << indent << "NoiseFilter: " << this->NoiseFilter << "\n"
+     << indent << "Direction: " << this->Direction << "\n"
+     << indent << "NoiseSeed: " << this->NoiseSeed << "\n"
+     << indent << "SparsityDistribution: " << this->SparsityDistribution << "\n"
+     << indent << "SparsityPoints: " << this->SparsityPoints << "\n"
+     << indent << "SparsityRadius: " << this->SparsityRadius << "\n"
+     << indent << "SparsityRatio: " << this->SparsityRatio << "\n"
+     << indent << "SparsitySeed: " << this->SparsitySeed << "\n"
+     << indent << "Device: " << this->Device << "\n"
+     << indent << "FieldPrecision: " << this->FieldPrecision << "\n";
+}
+
+int vtkLic3dFilter::FillInputPortInformation(int, vtkInformation* info) {
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkLic3dFilter::RequestInformation(vtkInformation*, vtkInformationVector**,
+                                       vtkInformationVector* outputVector) {
+  // Whole extent, origin and spacing are the input's (copied by the executive).
+  vtkDataObject::SetPointDataActiveScalarInfo(outputVector->GetInformationObject(0), VTK_FLOAT, 1);
+  return 1;
+}
+
+namespace {
+lic3d::LicParams licParams(int length, double step, int bias, int integrator, int kernel,
+                           int noiseFilter, int direction, int distribution, int points,
+                           double radius, double ratio, int seed) {
+  lic3d::LicParams params;
+  params.length = length;
+  params.step = static_cast<float>(step);
+  params.bias = bias;
+  params.integrator = static_cast<lic3d::Integrator>(std::clamp(integrator, 0, 2));
+  params.kernel = static_cast<lic3d::Kernel>(std::clamp(kernel, 0, 2));
+  params.noiseFilter = static_cast<lic3d::NoiseFilter>(std::clamp(noiseFilter, 0, 1));
+  params.direction = static_cast<lic3d::DirectionMode>(std::clamp(direction, 0, 1));
+  params.sparsity.distribution =
+      static_cast<lic3d::SparsityDistribution>(std::clamp(distribution, 0, 6));
+  params.sparsity.points = points;
+  params.sparsity.radius = static_cast<float>(radius);
+  params.sparsity.ratio = static_cast<float>(ratio);
+  params.sparsity.seed = static_cast<std::uint64_t>(seed);
+  return params;
+}
+}  // namespace
+
+int vtkLic3dFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                                        vtkInformationVector* outputVector) {
+  // Ghost layers for the streamlines of the voxels this process keeps (and for those of the
+  // ghost layers asked of this filter).
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const lic3d::LicParams params =
+      licParams(this->Length, this->Step, this->Bias, this->Integrator, this->Kernel,
+                this->NoiseFilter, this->Direction, 0, 0, 0.0, 0.05, 1);
+  const int asked = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(),
+              asked + lic3d::licGhostLayers(params));
+  return 1;
+}
+
+lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
+    const lic3d::VectorField& field, const lic3d::NoiseVolume& noise,
+    const lic3d::LicParams& params, const std::string& wanted, int wantedPrecision,
+    const lic3d::ProgressCallback& progress) {
+  // The device and the renderer are kept between updates unless their settings changed.
+  if (!this->context || this->device != wanted || this->precision != wantedPrecision) {
+    this->renderer.reset();
+    this->context.reset();
+    lic3d::ContextOptions options;
+    options.device = wanted;
+    LIC3D_TRY_ASSIGN(lic3d::Context made, lic3d::Context::create(options));
+    this->context.emplace(std::move(made));
+    lic3d::RendererOptions rendererOptions;
+    rendererOptions.fieldPrecision =
+        static_cast<lic3d::FieldPrecision>(std::clamp(wantedPrecision, 0, 2));
+    lic3d::Result<lic3d::LicRenderer> created =
+        lic3d::LicRenderer::create(*this->context, rendererOptions);
+    if (!created) {
+      this->context.reset();
+      return created.error();
+    }
+    this->renderer.emplace(std::move(*created));
+    this->device = wanted;
+    this->precision = wantedPrecision;
+  }
+  auto run = [&]() -> lic3d::Result<lic3d::ScalarVolume> {
+    LIC3D_TRY(this->renderer->setInputs(field, noise));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, this->renderer->updateLic(params, progress));
+    return this->renderer->readLicVolume();
+  };
+  lic3d::Result<lic3d::ScalarVolume> lic = run();
+  // With LIC3D_VALIDATION=1 (the tests) the Khronos validation layer is on: any message fails.
+  if (this->context->validationEnabled() && this->context->validationMessageCount() > 0) {
+    const std::size_t count = this->context->validationMessageCount();
+    this->context->clearValidationMessages();
+    return lic3d::runtimeError(std::to_string(count) +
+                               " Vulkan validation message(s), printed above");
+  }
+  return lic;
+}
+
+int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                vtkInformationVector* outputVector) {
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  output->Initialize();
+
+  const lic3d::LicParams params = licParams(
+      this->Length, this->Step, this->Bias, this->Integrator, this->Kernel, this->NoiseFilter,
+      this->Direction, this->SparsityDistribution, this->SparsityPoints, this->SparsityRadius,
+      this->SparsityRatio, this->SparsitySeed);
+  const int ghostLayers = lic3d::licGhostLayers(params);
+  const int askedGhosts =
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
+
+  Extent whole{}, extent{0, -1, 0, -1, 0, -1};
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  if (input && input->GetNumberOfPoints() > 0) {
+    input->GetExtent(extent.data());
+  }
+  const bool empty = isEmpty(extent);
+
+  // Everything that can fail before the collective step fails here, on this process only.
+  std::string failure;
+  lic3d::VectorField field;
+  std::size_t nonFinite = 0;
+  vtkDataArray* vectors = nullptr;
+  Extent own{0, -1, 0, -1, 0, -1};
+  if (!empty) {
+    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    const std::string name = selectedArrayName(this->GetInputArrayInformation(0));
+    vectors =
+        name.empty() ? defaultVectors(input) : this->GetInputArrayToProcess(0, input, association);
+    if (const lic3d::Result<void> valid = lic3d::validate(params); !valid) {
+      failure = valid.error().message;
+    } else if (!vectors) {
+      failure = name.empty() ? "3D LIC needs a 3-component point array (Vectors)"
+                             : "the input has no array '" + name + "'";
+    } else if (vectors->GetNumberOfComponents() != 3) {
+      failure = std::string("the array '") + (vectors->GetName() ? vectors->GetName() : "") +
+                "' has " + std::to_string(vectors->GetNumberOfComponents()) +
+                " components; 3D LIC needs 3";
+    } else if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS) {
+      failure =
+          std::string("the array '") + (vectors->GetName() ? vectors->GetName() : "") +
+          "' is cell data: 3D LIC needs vectors at the points (apply Cell Data to Point Data)";
+    } else {
+      own = ownExtent(input, extent);
+      field.dims = dimsOf(extent);
+      const double* spacing = input->GetSpacing();
+      const double* origin = input->GetOrigin();
+      for (int a = 0; a < 3; ++a) {
+        field.geometry.spacing[a] = spacing[a];
+        field.geometry.origin[a] = origin[a] + extent[2 * a] * spacing[a];
+      }
+      field.vectors.resize(lic3d::voxelCount(field.dims));
+      for (vtkIdType i = 0; i < static_cast<vtkIdType>(field.vectors.size()); ++i) {
+        double v[3];
+        vectors->GetTuple(i, v);
+        if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+          ++nonFinite;
+          v[0] = v[1] = v[2] = 0.0;
+        }
+        field.vectors[static_cast<std::size_t>(i)] =
+            glm::vec3(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+      }
+      if (const lic3d::Result<void> spacingOk = lic3d::checkSpacing(field.geometry); !spacingOk) {
+        failure = spacingOk.error().message;
+      }
+    }
+  }
+
+  // Every process takes part, an empty one too: the whole field's largest |u|.
+  const bool valid = failure.empty() && !empty && !isEmpty(own);
+  Shared mine;
+  mine.failed = !failure.empty();
+  mine.maxVoxelSpeed = valid ? lic3d::maxVoxelSpeedOverVoxels(field) : 0.0;
+  const Shared all = shareAcrossProcesses(mine);
+  if (!failure.empty()) {
+    vtkErrorMacro(<< failure);
+    return 0;
+  }
+  if (all.failed) {
+    vtkErrorMacro(<< "3D LIC failed on another process");
+    return 0;
+  }
+  if (!valid) {
+    return 1;  // an empty piece gives an empty output
+  }
+
+  if (nonFinite > 0) {
+    vtkWarningMacro(<< nonFinite
+                    << " vector(s) with a NaN or infinite component were read as zero "
+                       "(streamlines stop there)");
+  }
+  if (vtkMatrix3x3* direction = input->GetDirectionMatrix();
+      direction && !direction->IsIdentity()) {
+    vtkWarningMacro(<< "the image's direction matrix is not the identity: LIC follows the "
+                       "vectors along the grid's index axes");
+  }
+
+  // The voxels this process writes: its own part and the ghost layers asked of this filter.
+  Extent out = own;
+  for (int a = 0; a < 3; ++a) {
+    out[2 * a] = std::max(own[2 * a] - askedGhosts, extent[2 * a]);
+    out[2 * a + 1] = std::min(own[2 * a + 1] + askedGhosts, extent[2 * a + 1]);
+  }
+  // Where the piece borders another, its ghost layers must hold the streamlines of those voxels.
+  int shortest = ghostLayers;
+  for (int a = 0; a < 3; ++a) {
+    if (out[2 * a] > whole[2 * a]) {
+      shortest = std::min(shortest, out[2 * a] - extent[2 * a]);
+    }
+    if (out[2 * a + 1] < whole[2 * a + 1]) {
+      shortest = std::min(shortest, extent[2 * a + 1] - out[2 * a + 1]);
+    }
+  }
+  if (shortest < ghostLayers) {
+    vtkWarningMacro(<< "this piece has " << shortest
+                    << " ghost layer(s) where the streamlines need " << ghostLayers
+                    << ": voxels near its border differ from a serial run (read .vti/.pvti, or "
+                       "put a GhostCellsGenerator before 3D LIC)");
+  }
+  if (processCount() > 1 && Extent(own) == whole) {
+    vtkWarningMacro(<< "this process holds the whole grid: the reader does not split its data "
+                       "among processes (the legacy .vtk reader does not); convert the file to "
+                       ".vti to distribute the work");
+  }
+
+  const lic3d::Dims dims = field.dims;
+  const lic3d::Dims wholeDims = dimsOf(whole);
+  const lic3d::Dims offset(extent[0] - whole[0], extent[2] - whole[2], extent[4] - whole[4]);
+  const auto seed = static_cast<std::uint64_t>(this->NoiseSeed);
+  lic3d::NoiseVolume noise;
+  if (dims == wholeDims) {
+    noise = lic3d::makeWhiteNoise(dims, seed);
+  } else {
+    field.piece = lic3d::FieldPiece{wholeDims, offset, all.maxVoxelSpeed};
+    noise = lic3d::makeWhiteNoisePiece(wholeDims, offset, dims, seed);
+  }
+
+  const lic3d::ProgressCallback progress = [this](double f) { this->UpdateProgress(f); };
+  lic3d::Result<lic3d::ScalarVolume> lic =
+      this->CpuReference
+          ? lic3d::computeLicReference(field, noise, params, 0, progress)
+          : this->Gpu->compute(field, noise, params, this->Device, this->FieldPrecision, progress);
+  if (!lic) {
+    vtkErrorMacro(<< lic.error().message);
+    return 0;
+  }
+
+  // The output: LIC (NaN where sparsity hides the voxel) and |v| on `out`.
+  output->SetExtent(out.data());
+  output->SetOrigin(input->GetOrigin());
+  output->SetSpacing(input->GetSpacing());
+  output->SetDirectionMatrix(input->GetDirectionMatrix());
+  const lic3d::Dims outDims = dimsOf(out);
+  const vtkIdType count = static_cast<vtkIdType>(lic3d::voxelCount(outDims));
+  vtkNew<vtkFloatArray> licArray;
+  licArray->SetName("LIC");
+  licArray->SetNumberOfValues(count);
+  vtkNew<vtkFloatArray> magnitude;
+  magnitude->SetName("Magnitude");
+  magnitude->SetNumberOfValues(count);
+  const lic3d::ScalarVolume& volume = *lic;
+  vtkIdType to = 0;
+  for (int k = out[4]; k <= out[5]; ++k) {
+    for (int j = out[2]; j <= out[3]; ++j) {
+      for (int i = out[0]; i <= out[1]; ++i, ++to) {
+        const std::size_t from =
+            lic3d::voxelIndex(dims, i - extent[0], j - extent[2], k - extent[4]);
+        const bool drawn = volume.drawn.empty() || volume.drawn[from] != 0;
+        licArray->SetValue(to, drawn ? volume.values[from] : std::nanf(""));
+        magnitude->SetValue(to, static_cast<float>(glm::length(glm::dvec3(field.vectors[from]))));
+      }
+    }
+  }
+  output->GetPointData()->SetScalars(licArray);
+  output->GetPointData()->AddArray(magnitude);
+  if (out != own) {
+    output->GenerateGhostArray(own.data());
+  }
+  return 1;
+}
