@@ -117,9 +117,9 @@ void expectPiecesMatchWhole(const VectorField& field, const LicParams& params) {
 }
 
 TEST(FieldPiece, CpuPiecesMatchTheWholeField) {
-  const VectorField tornado = makeAnalyticField(AnalyticField::Tornado, {24, 20, 16});
+  const VectorField tornado = makeAnalyticField(AnalyticField::Tornado, {20, 16, 12});
   LicParams params;
-  params.length = 10;
+  params.length = 8;
   expectPiecesMatchWhole(tornado, params);
   params.bias = 4;  // the forward side reaches further
   params.integrator = Integrator::Rk4;
@@ -130,10 +130,10 @@ TEST(FieldPiece, CpuPiecesMatchTheWholeField) {
 // Magnitude steps scale by the whole field's max|u|, which the pieces take from FieldPiece; the
 // sparsity mask is cut from the whole grid's.
 TEST(FieldPiece, CpuPiecesMatchWithMagnitudeStepsAndSparsity) {
-  VectorField field = rampedTornado({24, 20, 16});
+  VectorField field = rampedTornado({20, 16, 12});
   field.geometry.spacing = {1.0, 1.5, 0.75};  // anisotropic: u differs from v
   LicParams params;
-  params.length = 10;
+  params.length = 8;
   params.direction = DirectionMode::Magnitude;
   params.noiseFilter = NoiseFilter::Nearest;
   params.sparsity.distribution = SparsityDistribution::Poisson;
@@ -142,9 +142,9 @@ TEST(FieldPiece, CpuPiecesMatchWithMagnitudeStepsAndSparsity) {
 
 // The comparison is sharp: one ghost layer too few, or each piece's own max|u|, changes voxels.
 TEST(FieldPiece, FewerGhostLayersOrALocalMaximumChangeTheResult) {
-  const VectorField tornado = makeAnalyticField(AnalyticField::Tornado, {24, 20, 16});
+  const VectorField tornado = makeAnalyticField(AnalyticField::Tornado, {20, 16, 12});
   LicParams params;
-  params.length = 10;
+  params.length = 8;
   const PieceRun thin =
       test::runInPieces(tornado, params, {2, 2, 2}, licGhostLayers(params) - 2, cpuReference());
   ASSERT_TRUE(thin.ok) << thin.error;
@@ -157,7 +157,7 @@ TEST(FieldPiece, FewerGhostLayersOrALocalMaximumChangeTheResult) {
     alone.piece.reset();
     return computeLicReference(alone, noise, p);
   };
-  const PieceRun local = test::runInPieces(rampedTornado({24, 20, 16}), params, {2, 2, 2},
+  const PieceRun local = test::runInPieces(rampedTornado({20, 16, 12}), params, {2, 2, 2},
                                            licGhostLayers(params), ownMaximum);
   ASSERT_TRUE(local.ok) << local.error;
   EXPECT_GT(local.difference.max, 1e-2);
