@@ -25,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kDefaultFramePattern[] = "lic3d_%04d.png";
-
 bool parseInt(std::string_view text, int& value) {
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
@@ -137,6 +135,19 @@ std::uint8_t toByte(float value) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
 }
 
+void addTimeAnimationOptions(CLI::App& app, BatchOptions& options) {
+  app.add_option("--animate-time", options.animateTime,
+                 "Render N frames of the field's time (docs/TIME.md): over one period of an "
+                 "analytic field (a loop: frame N would be frame 0), or over a series of files "
+                 "from the first to the last step (N = the number of files: one frame per step); "
+                 "with --animate-bias too, the bias cycles as well")
+      ->check(CLI::Range(1, 1000000));
+  options.timeRange.option = app.add_option(
+      "--time-range", options.timeRange.text,
+      "T0,T1: the times --animate-time covers instead (a loop when T1 - T0 is the field's "
+      "period)");
+}
+
 }  // namespace
 
 void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
@@ -148,19 +159,39 @@ void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
                  "Render N frames of the bias cycle -L..L..-L (the texture flows along the "
                  "field, frame N would be frame 0 again); the LIC volume is recomputed per frame")
       ->check(CLI::Range(1, 1000000));
+  addTimeAnimationOptions(app, options);
   options.frames.option = app.add_option(
       "--frames", options.frames.text,
       "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
       "whole animation: one piece of a job array");
   app.add_option("--video", options.video,
-                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264) "
-                 "or .webm (VP9); needs every frame of the animation");
+                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
+                 ".webm (VP9) or .gif; needs every frame of the animation");
   app.add_option("--fps", options.fps, "Frames per second of --video")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
   app.add_option("--rgba-volume", options.rgbaVolume,
                  "Also write the colour-mapped volume as 8-bit RGBA (.vti or .nrrd): grey or "
                  "colour and the opacity per voxel, as the slices draw it (docs/BATCH.md)");
+}
+
+void addImageBatchOptions(CLI::App& app, BatchOptions& options) {
+  app.add_option("--animate-bias", options.animateBias,
+                 "Render N frames of the bias cycle -L..L..-L (the texture flows along the "
+                 "field, frame N would be frame 0 again); with --animate-time, one bias cycle "
+                 "lasts N frames")
+      ->check(CLI::Range(1, 1000000));
+  addTimeAnimationOptions(app, options);
+  options.frames.option = app.add_option(
+      "--frames", options.frames.text,
+      "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
+      "whole animation: one piece of a job array");
+  app.add_option("--video", options.video,
+                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
+                 ".webm (VP9) or .gif; needs every frame of the animation");
+  app.add_option("--fps", options.fps, "Frames per second of --video")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
 }
 
 void addComputeBatchOptions(CLI::App& app, BatchOptions& options) {
@@ -170,11 +201,50 @@ void addComputeBatchOptions(CLI::App& app, BatchOptions& options) {
       "middle) as a 16-bit grey PNG");
 }
 
-Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute) {
+double FramePlan::timeOf(int frame) const {
+  const int steps = timeLoops ? count : count - 1;
+  if (steps <= 0) return timeStart;
+  return timeStart + (timeEnd - timeStart) * static_cast<double>(frame) / steps;
+}
+
+Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute,
+                             const TimeDomain& domain, const char* defaultPattern) {
   FramePlan plan;
   if (options.turntable > 0 && options.animateBias > 0)
     return inputError("--turntable and --animate-bias: give one animation per run");
-  if (options.turntable > 0) {
+  if (options.turntable > 0 && options.animateTime > 0)
+    return inputError("--turntable and --animate-time: give one animation per run");
+  if (options.timeRange.given() && options.animateTime == 0)
+    return inputError("--time-range sets the times of --animate-time N: add it");
+  if (options.animateTime > 0) {
+    const std::string& field = compute.inputs.session.field.field;
+    if (!domain.timeDependent)
+      return inputError("--animate-time: " + field +
+                        " does not change with time (the tornado, the 2D wave and series of "
+                        "files do)");
+    plan.animation = Animation::Time;
+    plan.count = options.animateTime;
+    plan.timeStart = domain.start;
+    plan.timeEnd = domain.end;
+    plan.timeLoops = domain.periodic;
+    if (options.timeRange.given()) {
+      const std::string& text = options.timeRange.text;
+      LIC3D_TRY_ASSIGN(const std::vector<float> range, parseFloatList(text, "--time-range", 2));
+      if (!(range[0] < range[1]))
+        return inputError("--time-range: need T0 < T1, got '" + text + "'");
+      plan.timeStart = range[0];
+      plan.timeEnd = range[1];
+    }
+    if (!plan.timeLoops && plan.count < 2)
+      return inputError(
+          "--animate-time over a series of files needs 2 frames or more (its "
+          "first and last step)");
+    if (options.animateBias > 0) {
+      if (compute.inputs.session.lic.length == 0)
+        return inputError("--animate-bias cycles the bias through -L..L: it needs --length > 0");
+      plan.biasCycle = options.animateBias;
+    }
+  } else if (options.turntable > 0) {
     plan.animation = Animation::Turntable;
     plan.count = options.turntable;
   } else if (options.animateBias > 0) {
@@ -190,8 +260,8 @@ Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& 
     const std::string& text = options.frames.text;
     if (plan.animation == Animation::None)
       return inputError("--frames " + text +
-                        ": picks frames of an animation; use it with --turntable N or "
-                        "--animate-bias N");
+                        ": picks frames of an animation; use it with --turntable N, "
+                        "--animate-bias N or --animate-time N");
     const std::size_t colon = text.find(':');
     int a = 0, b = 0;
     if (colon == std::string::npos || !parseInt(std::string_view(text).substr(0, colon), a) ||
@@ -210,7 +280,7 @@ Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& 
     return plan;
   }
   const bool outputGiven = compute.outputOption && compute.outputOption->count() > 0;
-  plan.output = outputGiven ? compute.output : kDefaultFramePattern;
+  plan.output = outputGiven ? compute.output : defaultPattern;
   LIC3D_TRY(findConversion(plan.output));
   LIC3D_TRY(checkOutputPath(framePath(plan.output, plan.first), ".png"));
   return plan;
@@ -220,23 +290,23 @@ Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& pl
                                 const Session& session) {
   LIC3D_TRY(pngText(session));
   if (!options.rgbaVolume.empty()) {
-    if (plan.animation == Animation::Bias)
+    if (plan.animation == Animation::Bias || plan.animation == Animation::Time)
       return inputError(
-          "--rgba-volume writes one volume, but --animate-bias changes it every "
-          "frame: render a single --bias instead");
+          "--rgba-volume writes one volume, but --animate-bias and --animate-time change it "
+          "every frame: render a single --bias or --time instead");
     LIC3D_TRY(checkOutputPathOneOf(options.rgbaVolume, "--rgba-volume", {".vti", ".nrrd"}));
   }
   if (!options.video.empty()) {
     if (plan.animation == Animation::None)
       return inputError("--video " + options.video +
-                        ": encodes the frames of an animation; add --turntable N or "
-                        "--animate-bias N");
+                        ": encodes the frames of an animation; add --turntable N, "
+                        "--animate-bias N or --animate-time N");
     if (!plan.complete())
       return inputError("--video needs every frame, but --frames renders " +
                         std::to_string(plan.first) + ".." + std::to_string(plan.end - 1) + " of " +
                         std::to_string(plan.count) +
                         ": encode the frames with ffmpeg once all jobs are done (docs/BATCH.md)");
-    LIC3D_TRY(checkOutputPathOneOf(options.video, "--video", {".mp4", ".webm"}));
+    LIC3D_TRY(checkOutputPathOneOf(options.video, "--video", {".mp4", ".webm", ".gif"}));
     LIC3D_TRY(findFfmpeg());
   }
   return {};
@@ -257,6 +327,10 @@ Session frameSession(const Session& base, const FramePlan& plan, int frame) {
                            360.0 * static_cast<double>(frame) / static_cast<double>(plan.count));
   else if (plan.animation == Animation::Bias)
     s.lic.bias = cycledBias(base.lic.length, frame, plan.count);
+  else if (plan.animation == Animation::Time) {
+    s.time = plan.timeOf(frame);
+    if (plan.biasCycle > 0) s.lic.bias = cycledBias(base.lic.length, frame, plan.biasCycle);
+  }
   return s;
 }
 
@@ -290,6 +364,7 @@ Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double f
                          const std::string& video) {
   const fs::path target(video);
   const bool webm = target.extension() == ".webm";
+  const bool gif = target.extension() == ".gif";
   // ffmpeg writes beside the target under a temporary name (the format is given, since the name
   // does not end in it), which is renamed when it succeeded: no partial video is ever left.
   const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
@@ -305,8 +380,13 @@ Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double f
       "-start_number", std::to_string(plan.first), "-i", forFfmpeg(plan.output), "-frames:v",
       std::to_string(plan.rendered()),
       // H.264 and VP9 in 4:2:0 need even sizes; frames are opaque, so alpha is dropped.
-      "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2,format=yuv420p"};
-  if (webm) {
+      "-vf",
+      gif ? "split[a][b];[a]palettegen=max_colors=256[p];[b][p]paletteuse=dither=none"
+          : "pad=ceil(iw/2)*2:ceil(ih/2)*2,format=yuv420p"};
+  if (gif) {
+    // One palette made from all frames; GIF loops forever, as the animations are made to.
+    for (const char* a : {"-loop", "0", "-f", "gif"}) args.emplace_back(a);
+  } else if (webm) {
     for (const char* a : {"-c:v", "libvpx-vp9", "-crf", "30", "-b:v", "0", "-f", "webm"})
       args.emplace_back(a);
   } else {

@@ -21,6 +21,8 @@ namespace lic3d::cli {
 struct BatchOptions {
   int turntable = 0;    // frames of one full turn of the camera; 0: no turntable
   int animateBias = 0;  // frames of one bias cycle -L..L..-L; 0: none
+  int animateTime = 0;  // frames of a time animation (docs/TIME.md); 0: none
+  TextOption timeRange;  // T0,T1 of the time animation
   TextOption frames;    // A:B, frames A..B-1 of the animation
   std::string video;    // .mp4 or .webm made by ffmpeg from the frames
   double fps = 30.0;
@@ -28,12 +30,15 @@ struct BatchOptions {
   TextOption slice;        // compute: AXIS[:INDEX], the LIC slice written as PNG
 };
 
-// --turntable, --animate-bias, --frames, --video, --fps, --rgba-volume.
+// --turntable, --animate-bias, --animate-time, --time-range, --frames, --video, --fps,
+// --rgba-volume.
 void addRenderBatchOptions(CLI::App& app, BatchOptions& options);
+// render2d's: --animate-bias, --animate-time, --time-range, --frames, --video, --fps.
+void addImageBatchOptions(CLI::App& app, BatchOptions& options);
 // --slice.
 void addComputeBatchOptions(CLI::App& app, BatchOptions& options);
 
-enum class Animation { None, Turntable, Bias };
+enum class Animation { None, Turntable, Bias, Time };
 
 // Which frames one run renders and where they go.
 struct FramePlan {
@@ -42,21 +47,32 @@ struct FramePlan {
   int first = 0;  // this run renders first..end-1; numbering is the animation's
   int end = 1;
   std::string output;  // the PNG, or for an animation a pattern with one %d or %0Nd
+  // Time animations: frame f is at timeStart + (timeEnd - timeStart) * f / N when the range
+  // loops (frame N would be frame 0), else * f / (N - 1) (both ends are frames). With
+  // --animate-bias as well, the bias cycles every biasCycle frames.
+  double timeStart = 0.0;
+  double timeEnd = 0.0;
+  bool timeLoops = true;
+  int biasCycle = 0;
 
   int rendered() const { return end - first; }
   bool complete() const { return first == 0 && end == count; }
+  double timeOf(int frame) const;
 };
 
 // Checks the batch flags and the output (before any work: InvalidInput naming the flag). An
-// animation without -o writes lic3d_%04d.png; one with -o needs a pattern there.
-Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute);
+// animation without -o writes lic3d_%04d.png (`defaultPattern`); one with -o needs a pattern
+// there. `domain` is the field's (a time animation needs a time-dependent field).
+Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& compute,
+                             const TimeDomain& domain = {},
+                             const char* defaultPattern = "lic3d_%04d.png");
 // --rgba-volume and --video: extensions, folders and ffmpeg on PATH.
 Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& plan,
                                 const Session& session);
 
 // The parameters of frame `frame`: a turntable turns the azimuth by 360/N per frame from the
 // given one; a bias cycle runs the bias from -L up to L and back down, so that frame N would be
-// frame 0 again.
+// frame 0 again; a time animation sets the time (and cycles the bias with --animate-bias).
 Session frameSession(const Session& base, const FramePlan& plan, int frame);
 int cycledBias(int length, int frame, int count);
 

@@ -42,7 +42,9 @@ Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  for (int i = 0; i < std::max(1, options.warmup); ++i) {
+  // At least the requested warm-up runs, and at least a quarter of a second of them: a GPU that
+  // idled while the host prepared the inputs needs that long to raise its clocks again.
+  for (int i = 0; i < std::max(1, options.warmup) || elapsed() < 0.25; ++i) {
     LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, once());
     if (elapsed() / (i + 1) * options.repeats > budgetLeft) {
       timing.skipped = "over the time budget";
@@ -65,7 +67,7 @@ Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
 
 // Field and noise texture, LIC volume (R16) and the texture's upload staging.
 double residentBytes(int n, FieldPrecision precision) {
-  const double texel = precision == FieldPrecision::Half ? 8.0 : 16.0;
+  const double texel = fieldTexelBytes(precision);
   return static_cast<double>(n) * n * n * (2.0 * texel + 2.0);
 }
 
@@ -103,16 +105,18 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
 
   std::printf("lic3d bench on %s (%s, %s), %s\n", device.name.c_str(), deviceTypeName(device.type),
               device.driver.c_str(), report["date"].get<std::string>().c_str());
-  std::printf("LIC compute: %s field, rk2, box kernel, h = 0.5, trilinear noise, %s-precision "
+  const LicParams defaults;
+  std::printf("LIC compute: %s field, rk2 (%s scheme), box kernel, h = 0.5, trilinear noise, %s "
               "field texture; median of %d after %d warm-up (GPU timestamps)\n",
-              options.field.c_str(),
-              resolvePrecision(context, options.precision) == FieldPrecision::Half ? "half" : "float",
+              options.field.c_str(), std::string(toString(defaults.scheme)).c_str(),
+              std::string(fieldTextureFormatName(resolvePrecision(context, options.precision))).c_str(),
               options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
 
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
   const FieldPrecision precision = renderer.fieldPrecision();
-  report["field_precision"] = precision == FieldPrecision::Half ? "half" : "float";
+  report["field_precision"] = fieldTextureFormatName(precision);
+  report["scheme"] = toString(defaults.scheme);
   report["lic"] = nlohmann::json::array();
   for (const int n : sizes) {
     if (residentBytes(n, precision) > 0.8 * memory) {
@@ -374,6 +378,134 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
   return report;
 }
 
+// Pearson correlation of two volumes on the same grid.
+double correlation(const ScalarVolume& a, const ScalarVolume& b) {
+  const std::size_t n = a.values.size();
+  double ma = 0.0, mb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    ma += a.values[i];
+    mb += b.values[i];
+  }
+  ma /= static_cast<double>(n);
+  mb /= static_cast<double>(n);
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double da = a.values[i] - ma, db = b.values[i] - mb;
+    ab += da * db;
+    aa += da * da;
+    bb += db * db;
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : 1.0;
+}
+
+struct KernelVariant {
+  const char* name;
+  bool naive;
+  StepScheme scheme;
+  FieldPrecision precision;
+  double fetchesPerSample;  // trilinear texture fetches per streamline sample (RK2)
+};
+
+// The naive kernel and every shipped one, timed in the same process on the same field and noise:
+// ratios hold on machines whose absolute speed varies from run to run.
+Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& options) {
+  if (!hasRuntimeModeShaders())
+    return unsupportedError("bench --kernels needs a build configured with "
+                            "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
+  LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 2048));
+  LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
+                   parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
+  const auto fieldKind = parseAnalyticField(options.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+  const FieldPrecision automatic = resolvePrecision(context, FieldPrecision::Auto);
+  const std::vector<KernelVariant> variants{
+      {"naive (half + R8 noise)", true, StepScheme::Exact, FieldPrecision::Half, 3.0},
+      {"exact, half", false, StepScheme::Exact, FieldPrecision::Half, 2.0},
+      {"exact, float", false, StepScheme::Exact, FieldPrecision::Float, 2.0},
+      {"ab2, half", false, StepScheme::Ab2, FieldPrecision::Half, 1.0},
+      {"ab2, float", false, StepScheme::Ab2, FieldPrecision::Float, 1.0},
+      {"ab2, byte", false, StepScheme::Ab2, FieldPrecision::Byte, 1.0},
+  };
+  const LicParams defaults;
+  auto isDefault = [&](const KernelVariant& v) {
+    return !v.naive && v.scheme == defaults.scheme && v.precision == automatic;
+  };
+
+  const DeviceInfo& device = context.deviceInfo();
+  nlohmann::json report;
+  report["device"] = device.name;
+  report["driver"] = device.driver;
+  report["date"] = today();
+  report["field"] = options.field;
+  report["repeats"] = options.repeats;
+  report["rows"] = nlohmann::json::array();
+  std::printf("lic3d bench --kernels on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
+              today().c_str());
+  std::printf("%s field, RK2, box kernel, h = 0.5, trilinear noise; median of %d after %d "
+              "warm-up (GPU timestamps); r = correlation of the volumes; * = the default here\n",
+              options.field.c_str(), options.repeats, options.warmup);
+  double budgetLeft = options.budgetSeconds;
+  for (const int n : sizes) {
+    const Dims dims(n);
+    const VectorField field = makeAnalyticField(*fieldKind, dims);
+    const NoiseVolume noise = makeWhiteNoise(dims, options.seed);
+    const double samples = static_cast<double>(voxelCount(dims));
+    for (const int length : lengths) {
+      std::printf("\n%d^3, L = %d\n%-26s %11s %9s %10s %10s %12s\n", n, length, "kernel",
+                  "median ms", "speed-up", "r (naive)", "r (exact)", "Gfetches/s");
+      std::optional<ScalarVolume> naiveVolume, exactVolume;
+      double naiveMs = 0.0;
+      for (const KernelVariant& v : variants) {
+        nlohmann::json row{{"n", n}, {"length", length}, {"kernel", v.name},
+                           {"scheme", toString(v.scheme)},
+                           {"precision", fieldTextureFormatName(v.precision)},
+                           {"default", isDefault(v)}};
+        RendererOptions rendererOptions;
+        rendererOptions.fieldPrecision = v.precision;
+        rendererOptions.naiveLicKernel = v.naive;
+        LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, rendererOptions));
+        if (Result<void> r = renderer.setInputs(field, noise); !r) {
+          std::printf("%-26s (skipped: %s)\n", v.name, r.error().message.c_str());
+          row["skipped"] = r.error().message;
+          report["rows"].push_back(row);
+          continue;
+        }
+        LicParams params;
+        params.length = length;
+        params.scheme = v.scheme;
+        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
+                           return renderer.timeLicDispatch(params);
+                         }));
+        if (!t.measured) {
+          std::printf("%-26s (skipped: %s)\n", v.name, t.skipped.c_str());
+          row["skipped"] = t.skipped;
+          report["rows"].push_back(row);
+          continue;
+        }
+        LIC3D_TRY_ASSIGN(ScalarVolume volume, renderer.readLicVolume());
+        if (v.naive) naiveMs = t.medianMs;
+        const double rNaive = naiveVolume ? correlation(*naiveVolume, volume) : 1.0;
+        const double rExact = exactVolume ? correlation(*exactVolume, volume) : 1.0;
+        const double fetches = samples * (2.0 * length + 1.0) * v.fetchesPerSample;
+        const double speedUp = naiveMs > 0.0 ? naiveMs / t.medianMs : 0.0;
+        std::printf("%-25s%s %11.3f %9.2f %10.5f %10.5f %12.1f\n", v.name, isDefault(v) ? "*" : " ",
+                    t.medianMs, speedUp, rNaive, rExact, fetches / (t.medianMs * 1e6));
+        std::fflush(stdout);
+        row["median_ms"] = t.medianMs;
+        row["min_ms"] = t.minMs;
+        row["speed_up"] = speedUp;
+        row["r_naive"] = rNaive;
+        row["r_exact"] = rExact;
+        row["gfetches_per_s"] = fetches / (t.medianMs * 1e6);
+        report["rows"].push_back(row);
+        if (v.naive) naiveVolume = std::move(volume);
+        else if (!exactVolume && v.scheme == StepScheme::Exact) exactVolume = std::move(volume);
+      }
+    }
+  }
+  return report;
+}
+
 }  // namespace
 
 int runBench(const GlobalOptions& global, const BenchOptions& options) {
@@ -387,6 +519,7 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
   if (!context) return reportError(context.error());
   const Result<nlohmann::json> report = options.variants        ? runVariants(*context, options)
                                          : options.distributions ? runDistributions(*context, options)
+                                         : options.kernels       ? runKernels(*context, options)
                                                                  : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {

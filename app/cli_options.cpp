@@ -13,6 +13,7 @@
 #include "memory_budget.h"
 #include "enum_names.h"
 #include "noise.h"
+#include "time_series.h"
 
 namespace lic3d::cli {
 namespace {
@@ -43,6 +44,13 @@ std::vector<std::string_view> splitCommas(std::string_view text) {
 std::string fieldNameList() {
   std::string names;
   for (std::string_view n : analyticFieldNames()) names += (names.empty() ? "" : "|") + std::string(n);
+  return names;
+}
+
+std::string field2DNameList() {
+  std::string names;
+  for (std::string_view n : analyticField2DNames())
+    names += (names.empty() ? "" : "|") + std::string(n);
   return names;
 }
 
@@ -80,20 +88,30 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
                "Print nothing but errors and warnings about the input (no progress, no summary)");
 }
 
-void addInputOptions(CLI::App& app, SessionOptions& options) {
+void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
   Session& s = options.session;
+  options.planar = planar;
   app.add_option("--session", options.sessionFile,
                  "Start from a session file (JSON, as the viewer saves it); other flags override "
                  "its values");
   app.add_option("--field", s.field.field,
-                 "Vector field: an analytic field (" + fieldNameList() +
-                     ") or a file (.vtk, .vti, .nrrd, .nhdr, .raw)")
+                 planar ? "Vector field: a 2D analytic field (" + field2DNameList() +
+                              "), a plane of a 3D one (" + fieldNameList() +
+                              ", see --slice), a file (.vtk, .vti, .nrrd, .nhdr, .raw; 2D, or a "
+                              "plane of a 3D one), or a time series of files: step_%03d.vti or "
+                              "'step_*.vti' (docs/TIME.md)"
+                        : "Vector field: an analytic field (" + fieldNameList() +
+                              "), a file (.vtk, .vti, .nrrd, .nhdr, .raw), or a time series of "
+                              "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
       ->capture_default_str();
   app.add_option("--array", s.field.array,
                  "The vector array of a .vtk or .vti file with several (default: the active or "
                  "first one; the others are listed)");
   addText(app, "--grid", options.grid,
-          "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)", "128");
+          planar ? "Grid of an analytic field: N (N^2 for a 2D field, N^3 for a 3D one), NX,NY "
+                   "(2D) or NX,NY,NZ (3D), 1..2048 each"
+                 : "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)",
+          "128");
   app.add_option("--noise", s.noise.file,
                  "Noise volume (.nrrd: uchar, ushort or float) on the field's grid (default: "
                  "seeded white noise)");
@@ -119,6 +137,10 @@ void addInputOptions(CLI::App& app, SessionOptions& options) {
   addEnumOption(app, "--direction", params.direction,
                 "Step direction: normalized (v/|v|) or magnitude (v/max|v|, shorter streamlines "
                 "where the flow is slow)");
+  addEnumOption(app, "--scheme", params.scheme,
+                "How rk2 steps: exact (every step an RK2 step: two texture fetches per sample) or "
+                "ab2 (a first RK2 step, then two-step Adams-Bashforth steps of h from the "
+                "directions already fetched: one fetch per sample)");
 
   SparsityParams& sparsity = params.sparsity;
   addEnumOption(app, "--sparsity", sparsity.distribution,
@@ -139,9 +161,23 @@ void addInputOptions(CLI::App& app, SessionOptions& options) {
       ->capture_default_str();
   app.add_option("--sparsity-seed", sparsity.seed, "Seed of the random sparsity distributions")
       ->capture_default_str();
+  options.time =
+      app.add_option("--time", s.time,
+                     "Time of an unsteady field (docs/TIME.md): the tornado's and the wave's time "
+                     "parameter, or for a series of files the position in steps (1.5: halfway "
+                     "between the second and the third file)")
+          ->check(CLI::Range(-1e12, 1e12))
+          ->capture_default_str();
+  app.add_option("--time-steps", s.timeSteps,
+                 "A time-dependent analytic field (tornado) as a series of K steps over its "
+                 "period, blended on the GPU as a series of files is (0: sampled at each time "
+                 "exactly)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   addEnumOption(app, "--field-precision", s.precision,
                 "Precision of the field and noise texture on the device: auto (float on CPU "
-                "drivers, half on GPUs), half (RGBA16F) or float (RGBA32F)");
+                "drivers, half on GPUs), half (RGBA16F), float (RGBA32F) or byte (RGBA8: 8-bit "
+                "direction with square-root magnitude, 8-bit noise; a quarter of float's memory)");
 }
 
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput) {
@@ -273,6 +309,66 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
                 "illuminated lines, lit from the tangent alone");
 }
 
+void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane) {
+  PlaneParams& p = options.session.plane;
+  ViewParams& view = options.session.view;
+  app.add_option("--width", p.width,
+                 "Width of the LIC image in pixels (default: the field's grid; with --height "
+                 "alone, keeping the grid's aspect). Larger than the grid, the noise is finer "
+                 "than the field and the picture stays sharp")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--height", p.height, "Height of the LIC image in pixels (see --width)")
+      ->check(CLI::Range(1, 16384));
+  addText(app, "--slice", plane.slice,
+          "The plane of a 3D field (analytic or file): AXIS or AXIS:INDEX, x, y or z, INDEX in "
+          "voxels (default z, the middle layer)");
+  addText(app, "--contrast", options.contrast,
+          "on: stretch the image's LIC values to mean 0.5 and deviation 0.25; off: grey = LIC "
+          "value",
+          "on")
+      .option->check(CLI::IsMember({"on", "off"}));
+  addText(app, "--window", options.window,
+          "Intensity window mapped to black..white instead of the contrast stretch: auto or "
+          "LO,HI in 0..1",
+          "auto");
+  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
+      ->check(CLI::Range(-1.0, 1.0))
+      ->capture_default_str();
+  addEnumOption(app, "--color", view.color,
+                "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
+                "modulating it");
+  addEnumOption(app, "--colormap", view.colormap, "Colour map");
+  addText(app, "--color-range", options.colorRange,
+          "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
+          "auto");
+  app.add_flag("--legend", view.legend,
+               "Draw the colour legend into the image (with --color magnitude)");
+  addText(app, "--background", options.background,
+          "Background colour R,G,B the legend's text is set against (0..1, or 0..255)", "0,0,0");
+}
+
+Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session) {
+  if (!plane.slice.given()) return {};
+  const std::size_t colon = plane.slice.text.find(':');
+  const std::string axis = plane.slice.text.substr(0, colon);
+  int index = -1;
+  if (axis != "x" && axis != "y" && axis != "z")
+    return inputError("--slice: expected AXIS or AXIS:INDEX with AXIS x, y or z, got '" +
+                      plane.slice.text + "'");
+  if (colon != std::string::npos) {
+    LIC3D_TRY_ASSIGN(index, parseNumber<int>(std::string_view(plane.slice.text).substr(colon + 1),
+                                             "--slice"));
+    if (index < 0)
+      return inputError("--slice: the index of '" + plane.slice.text + "' must be 0 or more");
+  }
+  session.plane.axis = axis[0] - 'x';
+  session.plane.index = index;
+  return {};
+}
+
 Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& options) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -287,12 +383,18 @@ Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& o
   return {};
 }
 
-Result<Dims> parseGrid(const std::string& text) {
+Result<Dims> parseGrid(const std::string& text, bool planar) {
   const std::vector<std::string_view> parts = splitCommas(text);
-  if (parts.size() != 1 && parts.size() != 3)
-    return inputError("--grid: expected N or NX,NY,NZ, got '" + text + "'");
+  if (parts.size() != 1 && parts.size() != 3 && !(planar && parts.size() == 2))
+    return inputError(std::string("--grid: expected N") + (planar ? ", NX,NY" : "") +
+                      " or NX,NY,NZ, got '" + text + "'");
   Dims dims(0);
   for (int a = 0; a < 3; ++a) {
+    // NX,NY is a 2D grid: one voxel along z.
+    if (parts.size() == 2 && a == 2) {
+      dims[a] = 1;
+      continue;
+    }
     LIC3D_TRY_ASSIGN(dims[a], parseNumber<int>(parts[parts.size() == 1 ? 0 : a], "--grid"));
     if (dims[a] < 1 || dims[a] > 2048)
       return inputError("--grid: each size must be in 1..2048, got '" + text + "'");
@@ -343,7 +445,7 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
 Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
   Session& s = options.session;
   if (options.grid.given()) {
-    LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text));
+    LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text, options.planar));
   }
   LIC3D_TRY(validate(s.lic));
   if (s.noise.seedSpots > 0 && !s.noise.file.empty())
@@ -407,6 +509,19 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
   return validate(view);
 }
 
+Result<TimeDomain> timeDomainOf(const Session& session) {
+  const std::string& field = session.field.field;
+  double period = 0.0;
+  if (const auto analytic = parseAnalyticField(field)) period = timePeriod(*analytic);
+  if (const auto analytic = parseAnalyticField2D(field)) period = timePeriod(*analytic);
+  if (period > 0.0) return TimeDomain{0.0, period, true, true};
+  if (!parseAnalyticField(field) && !parseAnalyticField2D(field) && isFieldSeriesPattern(field)) {
+    LIC3D_TRY_ASSIGN(const TimeSeries series, fileSeries(field));
+    return TimeDomain{0.0, series.endTime(), false, true};
+  }
+  return TimeDomain{};
+}
+
 Result<void> checkHostMemory(Dims dims) {
   // Before the field is made: its host copies alone must fit (the device is checked later, with
   // the whole request, by checkRequestMemory). The float texture is the larger of the two.
@@ -424,6 +539,7 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
   request.sparsity = session.lic.sparsity.distribution != SparsityDistribution::None;
   request.doubleBuffered = shape.doubleBuffered;
   request.volumeReadback = shape.volumeReadback;
+  request.timeSeries = shape.timeSeries;
   if (shape.frame) {
     const bool sideBySide = session.view.stereo == StereoMode::SideBySide;
     request.frameWidth = shape.frameWidth > 0 ? shape.frameWidth
@@ -434,15 +550,21 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
                            "the LIC of " + session.field.field);
 }
 
-Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info) {
+Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
+                              double time) {
   if (const auto analytic = parseAnalyticField(source.field)) {
     if (!source.array.empty())
       return inputError("--array " + source.array + ": " + source.field +
                         " is an analytic field; --array picks a vector array of a .vtk or .vti "
                         "file");
     LIC3D_TRY(checkHostMemory(source.grid));
-    return makeAnalyticField(*analytic, source.grid);
+    return makeAnalyticField(*analytic, source.grid, time);
   }
+  if (parseAnalyticField2D(source.field))
+    return inputError("--field " + source.field +
+                      " is a 2D field: make its LIC with `lic3d render2d` (or the app's 2D mode)");
+  if (isFieldSeriesPattern(source.field))
+    return inputError("--field " + source.field + " names a time series, not one field");
   if (gridGiven)
     return inputError("--grid applies to analytic fields only; " + source.field +
                       " has its own grid");

@@ -48,6 +48,8 @@ struct SessionOptions {
   Session session;
   std::string sessionFile;
   TextOption grid;
+  CLI::Option* time = nullptr;  // --time, to tell a given time from the session's
+  bool planar = false;          // 2D LIC is possible: --grid also takes NX,NY
   // view flags (render and the viewer only)
   TextOption background, window, contrast, colorRange, clip, roiCenter, roiRotate, fog, fogColor;
 };
@@ -71,11 +73,21 @@ CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
 }
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
-// --session, the field and noise flags, the LIC flags and --field-precision.
-void addInputOptions(CLI::App& app, SessionOptions& options);
+// --session, the field and noise flags, the LIC flags, --field-precision, --time and
+// --time-steps. `planar`: the command makes 2D LIC (render2d), whose --field also takes the 2D
+// fields.
+void addInputOptions(CLI::App& app, SessionOptions& options, bool planar = false);
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput);
 // Every ViewParams flag.
 void addViewOptions(CLI::App& app, SessionOptions& options);
+// The picture flags of 2D LIC (render2d): the image size (into session.plane), the plane of a 3D
+// field, and the grey and colour flags of ViewParams.
+struct PlaneOptions {
+  TextOption slice;  // AXIS[:INDEX]
+};
+void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane);
+// Applies --slice to session.plane (InvalidInput naming the flag).
+Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session);
 
 // Looks for --session FILE among the arguments and loads it into `options.session` before
 // CLI11 parses them, so that explicit flags override the file.
@@ -83,11 +95,23 @@ Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& o
 // Applies the text flags to the session and checks it (InvalidInput naming the flag).
 Result<void> finishSessionOptions(SessionOptions& options, bool withView);
 
-Result<Dims> parseGrid(const std::string& text);
+// N, NX,NY,NZ, or with `planar` also NX,NY (one voxel along z).
+Result<Dims> parseGrid(const std::string& text, bool planar = false);
 Result<glm::vec3> parseColor(const std::string& text, const char* flag);
 Result<std::vector<int>> parseIntList(const std::string& text, const char* flag, int min, int max);
 Result<std::vector<float>> parseFloatList(const std::string& text, const char* flag,
                                           std::size_t count);
+
+// The times a field has (docs/TIME.md): a periodic one (an analytic field) repeats after `end`,
+// a series of files runs from step 0 to its last step.
+struct TimeDomain {
+  double start = 0.0;
+  double end = 0.0;
+  bool periodic = false;
+  bool timeDependent = false;  // false: the field is steady, a time animation is refused
+};
+// The time domain of the session's field, before it is loaded (a series' files are listed).
+Result<TimeDomain> timeDomainOf(const Session& session);
 
 // Refuses grids whose host-side arrays would not fit this machine's memory.
 Result<void> checkHostMemory(Dims dims);
@@ -99,6 +123,7 @@ struct RequestShape {
   bool frame = false;           // a frame of the session's size (or frameWidth x frameHeight)
   int frameWidth = 0;
   int frameHeight = 0;
+  bool timeSeries = false;  // two resident time steps blended on the GPU (docs/TIME.md)
 };
 // ResourceLimit error (exit status 3) if the request does not fit the device and the host:
 // checked before anything of it is allocated on the device.
@@ -106,8 +131,10 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
                                 const RequestShape& shape);
 // A file field also fills `info` (when given): the array read, the file's vector arrays and the
 // count of NaN or infinite vectors read as zero.
+// An analytic field is sampled at `time` (the tornado's time parameter; ignored by steady
+// fields). A series of files (time_series.h) is not one field: InvalidInput.
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven,
-                              FieldReadInfo* info = nullptr);
+                              FieldReadInfo* info = nullptr, double time = 0.0);
 Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);
 // The output must have `extension` and lie in an existing folder: checked before any work.
 Result<void> checkOutputPath(const std::string& path, const char* extension);

@@ -1,14 +1,25 @@
 #include "commands.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 
 #include "analytic_fields.h"
+#include "field_interpolation.h"
+#include "field_plane.h"
 #include "file_util.h"
+#include "lic2d_image.h"
+#include "lic2d_pass.h"
+#include "lic2d_reference.h"
 #include "lic_reference.h"
 #include "lic_renderer.h"
+#include "memory_budget.h"
+#include "plane_inputs.h"
 #include "progress.h"
+#include "time_series.h"
 #include "vulkan_context.h"
 
 namespace lic3d::cli {
@@ -45,23 +56,132 @@ std::string tripleText(glm::dvec3 v) {
   return formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z);
 }
 
+// What the frames' fields come from (docs/TIME.md): one steady field; a time-dependent analytic
+// field sampled exactly at each time; or a time series whose steps are blended (on the GPU, or
+// on the CPU with --cpu), two resident at a time.
 struct Inputs {
-  VectorField field;
+  VectorField field;  // steady or sampled: the field at `time`; a series: its first step read
   NoiseVolume noise;
-  FieldReadInfo info;  // of a file field
+  FieldReadInfo info;  // of a file field (a series: of its first step read)
   bool fromFile = false;
+  std::optional<AnalyticField> sampled;
+  std::optional<TimeSeries> series;
+  double time = 0.0;
+  std::map<int, VectorField> hostSteps;  // --cpu with a series: at most the two in use
+  int stepsRead = 0;                     // of the series, for the closing report
+  std::vector<double> blendMs;           // GPU time of each blend
 };
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// --time given for a field that has none is a mistake worth naming.
+Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {
+  if (options.time && options.time->count() > 0 && !domain.timeDependent)
+    return inputError("--time: " + options.session.field.field +
+                      " does not change with time (the tornado, the 2D wave and series of files "
+                      "do)");
+  return {};
+}
+
+// A step of the series, checked against the grid of the first step read.
+Result<VectorField> loadSeriesStep(const Session& session, Inputs& inputs, int k) {
+  FieldReadInfo info;
+  LIC3D_TRY_ASSIGN(VectorField step, inputs.series->loadStep(k, session.field.array, &info));
+  if (step.dims != inputs.field.dims || !(step.geometry == inputs.field.geometry))
+    return inputError((inputs.series->files.empty()
+                           ? std::string("time step ") + std::to_string(k)
+                           : inputs.series->files[static_cast<std::size_t>(k)].string()) +
+                      ": the steps of a time series must share the first step's grid " +
+                      std::to_string(inputs.field.dims.x) + "x" +
+                      std::to_string(inputs.field.dims.y) + "x" +
+                      std::to_string(inputs.field.dims.z) + ", spacing and origin");
+  inputs.info.nonFiniteVectors += info.nonFiniteVectors;
+  ++inputs.stepsRead;
+  return step;
+}
 
 Result<Inputs> loadInputs(const ComputeOptions& options) {
   const Session& session = options.inputs.session;
   LIC3D_TRY(validate(session.lic));
+  if (session.twoD)
+    return inputError(
+        "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
+  LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
+  LIC3D_TRY(checkTimeGiven(options.inputs, domain));
   Inputs inputs;
-  LIC3D_TRY_ASSIGN(inputs.field,
-                   loadField(session.field, options.inputs.grid.given(), &inputs.info));
-  inputs.fromFile = !parseAnalyticField(session.field.field).has_value();
+  inputs.time = session.time;
+  const std::optional<AnalyticField> analytic = parseAnalyticField(session.field.field);
+  if (analytic && session.timeSteps > 0) {
+    LIC3D_TRY(checkHostMemory(session.field.grid));
+    LIC3D_TRY_ASSIGN(inputs.series,
+                     analyticSeries(*analytic, session.field.grid, session.timeSteps));
+  } else if (!analytic && isFieldSeriesPattern(session.field.field)) {
+    if (options.inputs.grid.given())
+      return inputError("--grid applies to analytic fields only; " + session.field.field +
+                        " has its own grid");
+    LIC3D_TRY_ASSIGN(inputs.series, fileSeries(session.field.field));
+    inputs.fromFile = true;
+  }
+  if (inputs.series) {
+    const int first = inputs.series->bracket(session.time).first;
+    LIC3D_TRY_ASSIGN(inputs.field,
+                     inputs.series->loadStep(first, session.field.array, &inputs.info));
+  } else {
+    LIC3D_TRY_ASSIGN(inputs.field, loadField(session.field, options.inputs.grid.given(),
+                                             &inputs.info, session.time));
+    inputs.fromFile = !analytic.has_value();
+    if (analytic && timePeriod(*analytic) > 0.0) inputs.sampled = analytic;
+  }
   LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
   LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, inputs.field.dims));
   return inputs;
+}
+
+// The field at `time` on the host: sampled, or the series' two steps blended (--cpu, and the
+// RGBA volume's colours).
+Result<VectorField> hostFieldAt(const Session& session, Inputs& inputs, double time) {
+  if (inputs.sampled) return makeAnalyticField(*inputs.sampled, session.field.grid, time);
+  if (!inputs.series) return inputs.field;
+  const TimeBracket b = inputs.series->bracket(time);
+  for (auto it = inputs.hostSteps.begin(); it != inputs.hostSteps.end();)
+    it = it->first == b.first || it->first == b.second ? std::next(it) : inputs.hostSteps.erase(it);
+  for (const int k : {b.first, b.second})
+    if (!inputs.hostSteps.count(k)) {
+      LIC3D_TRY_ASSIGN(VectorField step, loadSeriesStep(session, inputs, k));
+      inputs.hostSteps.emplace(k, std::move(step));
+    }
+  return interpolateFields(inputs.hostSteps.at(b.first), inputs.hostSteps.at(b.second), b.weight);
+}
+
+// Brings the renderer's field to `time`: a sampled field is made again when the time changed,
+// a series uploads the steps around `time` that are not resident and blends them on the GPU.
+// With --cpu the field is made on the host (the LIC volume too).
+Result<void> moveToTime(const Session& session, bool cpu, Inputs& inputs, double time,
+                        LicRenderer& renderer, bool first) {
+  if (!inputs.sampled && !inputs.series) {
+    if (first) return renderer.setInputs(inputs.field, inputs.noise);
+    return {};
+  }
+  if (!first && time == inputs.time) return {};
+  inputs.time = time;
+  if (inputs.sampled || cpu) {
+    LIC3D_TRY_ASSIGN(inputs.field, hostFieldAt(session, inputs, time));
+    return renderer.setInputs(inputs.field, inputs.noise);
+  }
+  if (first) LIC3D_TRY(renderer.setTimeNoise(inputs.noise));
+  const TimeBracket b = inputs.series->bracket(time);
+  for (const int k : {b.first, b.second})
+    if (!renderer.hasTimeStep(k)) {
+      LIC3D_TRY_ASSIGN(const VectorField step, loadSeriesStep(session, inputs, k));
+      LIC3D_TRY(renderer.setTimeStep(k, step, k == b.first ? b.second : b.first));
+    }
+  LIC3D_TRY(renderer.interpolateTime(b.first, b.second, b.weight));
+  inputs.blendMs.push_back(renderer.lastBlendMilliseconds());
+  return {};
 }
 
 // What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.
@@ -87,7 +207,7 @@ void reportFieldFile(const GlobalOptions& global, const FieldSource& source, con
 std::string fieldText(const FieldSource& source, const Inputs& inputs) {
   const VectorField& field = inputs.field;
   if (!inputs.fromFile) return source.field + " " + gridText(field.dims);
-  std::string text = source.field;
+  std::string text = inputs.series ? inputs.series->describe() : source.field;
   if (!inputs.info.arrayName.empty()) text += " array '" + inputs.info.arrayName + "'";
   return text + " " + gridText(field.dims) + ", spacing " + tripleText(field.geometry.spacing) +
          ", origin " + tripleText(field.geometry.origin);
@@ -121,7 +241,7 @@ Result<ScalarVolume> computeOnCpu(const Inputs& inputs, const LicParams& lic, bo
 // already is.
 Result<void> makeLicVolume(const ComputeOptions& options, const Inputs& inputs,
                            const LicParams& lic, LicRenderer& renderer, bool quiet) {
-  if (renderer.shownParams() && *renderer.shownParams() == lic) return {};
+  if (!renderer.needsLic(lic)) return {};
   if (options.cpu) {
     LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(inputs, lic, quiet));
     return renderer.setLicVolume(volume, lic);
@@ -142,18 +262,21 @@ Result<void> writeComputeOutput(const ComputeOptions& options, const BatchOption
 
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
 Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& options,
-                          const BatchOptions& batch, const FramePlan& plan, const Inputs& inputs,
+                          const BatchOptions& batch, const FramePlan& plan, Inputs& inputs,
                           LicRenderer& renderer, std::vector<std::string>& outputs) {
   const Session& session = options.inputs.session;
   const bool animated = plan.animation != Animation::None;
-  LIC3D_TRY(renderer.setInputs(inputs.field, inputs.noise));
-  // A bias cycle recomputes the volume every frame: the frame lines report that progress.
-  if (plan.animation != Animation::Bias)
+  const double firstTime = frameSession(session, plan, plan.first).time;
+  LIC3D_TRY(moveToTime(session, options.cpu, inputs, firstTime, renderer, true));
+  // Bias and time animations recompute the volume every frame: the frame lines report that
+  // progress.
+  if (plan.animation != Animation::Bias && plan.animation != Animation::Time)
     LIC3D_TRY(makeLicVolume(options, inputs, session.lic, renderer, global.quiet));
 
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
   for (int frame = plan.first; frame < plan.end; ++frame) {
     const Session frameParams = frameSession(session, plan, frame);
+    LIC3D_TRY(moveToTime(session, options.cpu, inputs, frameParams.time, renderer, false));
     LIC3D_TRY(makeLicVolume(options, inputs, frameParams.lic, renderer, true));
     LIC3D_TRY_ASSIGN(const RgbaImage image, renderer.render(frameParams.lic, frameParams.view));
     const std::string path = animated ? framePath(plan.output, frame) : plan.output;
@@ -163,11 +286,16 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
     progress.frameDone(frame);
   }
   progress.finish();
+  if (inputs.series && !options.cpu && !global.quiet)
+    std::fprintf(stderr,
+                 "lic3d: time series: %d step(s) read for %zu blend(s), %.2f ms per blend on the "
+                 "GPU (median)\n",
+                 inputs.stepsRead, inputs.blendMs.size(), median(inputs.blendMs));
 
   if (!batch.rgbaVolume.empty()) {
     LIC3D_TRY_ASSIGN(const ScalarVolume lic, renderer.readLicVolume());
-    const RgbaVolume rgba =
-        colourLicVolume(lic, inputs.field, session.view, renderer.volumeFacts());
+    LIC3D_TRY_ASSIGN(const VectorField field, hostFieldAt(session, inputs, inputs.time));
+    const RgbaVolume rgba = colourLicVolume(lic, field, session.view, renderer.volumeFacts());
     LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
     outputs.push_back(batch.rgbaVolume);
   }
@@ -182,7 +310,164 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   return {};
 }
 
+// ---- 2D LIC -------------------------------------------------------------------------------------
+
+// What the frames of render2d are made from: the plane at `time` and the noise at the image's
+// size.
+struct PlaneInputs {
+  PlaneSource source;
+  VectorField field;
+  NoiseVolume noise;
+  bool timeDependent = false;
+  double time = 0.0;
+};
+
+std::string sizeText(Dims d) { return std::to_string(d.x) + "x" + std::to_string(d.y); }
+
+Result<PlaneInputs> loadPlaneInputs(const ComputeOptions& options, const TimeDomain& domain) {
+  const Session& session = options.inputs.session;
+  LIC3D_TRY(checkLic2DParams(session.lic));
+  LIC3D_TRY(checkTimeGiven(options.inputs, domain));
+  const FieldSource& source = session.field;
+  if (parseAnalyticField2D(source.field) && options.inputs.grid.given() &&
+      std::count(options.inputs.grid.text.begin(), options.inputs.grid.text.end(), ',') == 2)
+    return inputError("--grid " + options.inputs.grid.text + ": " + source.field +
+                      " is a 2D field; give N or NX,NY");
+  if (session.timeSteps > 0)
+    return inputError("--time-steps: 2D LIC samples analytic fields at each time exactly");
+  PlaneInputs inputs;
+  inputs.timeDependent = domain.timeDependent;
+  inputs.time = session.time;
+  LIC3D_TRY_ASSIGN(inputs.field,
+                   planeField(session, options.inputs.grid.given(), session.time, inputs.source));
+  const Dims image = imageSize(inputs.field.dims, session.plane);
+  LIC3D_TRY(checkHostMemory(image));
+  LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, image));
+  return inputs;
+}
+
 }  // namespace
+
+int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
+                const BatchOptions& batch) {
+  const Clock::time_point start = Clock::now();
+  const Session& session = options.inputs.session;
+  const Result<TimeDomain> domain = timeDomainOf(session);
+  if (!domain) return reportError(domain.error());
+  const Result<FramePlan> plan = planFrames(batch, options, *domain, "lic2d_%04d.png");
+  if (!plan) return reportError(plan.error());
+  if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
+  Result<PlaneInputs> inputs = loadPlaneInputs(options, *domain);
+  if (!inputs) return reportError(inputs.error());
+  std::optional<Context> context;
+  if (!options.cpu) {
+    Result<Context> opened = openContext(global);
+    if (!opened) return reportError(opened.error());
+    context.emplace(std::move(*opened));
+    // A 2D request holds about what a one-voxel-thick volume of the image's size does.
+    MemoryRequest request;
+    request.dims = inputs->noise.dims;
+    request.precision = resolvePrecision(*context, session.precision);
+    if (auto r = checkMemoryBudget(request, queryMemoryBudget(*context),
+                                   "the 2D LIC of " + session.field.field);
+        !r)
+      return finish(*context, reportError(r.error()));
+  }
+  auto fail = [&](const Error& error) {
+    const int status = reportError(error);
+    return context ? finish(*context, status) : status;
+  };
+  if (inputs->source.info.nonFiniteVectors > 0)
+    std::fprintf(stderr,
+                 "lic3d: warning: %s: %zu vector(s) with a NaN or infinite component were read "
+                 "as zero (streamlines stop there)\n",
+                 session.field.field.c_str(), inputs->source.info.nonFiniteVectors);
+
+  RunSummary summary;
+  summary.command = "render2d";
+  summary.field = session.field.field;
+  summary.array = inputs->source.info.arrayName;
+  summary.grid = inputs->field.dims;
+  summary.geometry = inputs->field.geometry;
+
+  std::vector<double> gpuMs;  // each frame's LIC on the GPU
+  const Result<void> done = [&]() -> Result<void> {
+    std::optional<Lic2DPass> pass;
+    std::optional<Lic2DInputs> uploaded;
+    gpuMs.clear();
+    if (context) {
+      LIC3D_TRY_ASSIGN(Lic2DPass created, Lic2DPass::create(*context));
+      pass.emplace(std::move(created));
+    }
+    const bool animated = plan->animation != Animation::None;
+    FrameProgress progress(plan->rendered(), global.quiet || !animated);
+    bool fresh = true;  // `inputs->field` changed since it was uploaded
+    for (int frame = plan->first; frame < plan->end; ++frame) {
+      const Session frameParams = frameSession(session, *plan, frame);
+      if (inputs->timeDependent && frameParams.time != inputs->time) {
+        LIC3D_TRY_ASSIGN(inputs->field,
+                         planeField(session, false, frameParams.time, inputs->source));
+        inputs->time = frameParams.time;
+        fresh = true;
+      }
+      ScalarVolume lic;
+      if (pass) {
+        if (fresh) {
+          uploaded.reset();
+          LIC3D_TRY_ASSIGN(uploaded, uploadLic2DInputs(*context, inputs->field, inputs->noise,
+                                                       session.precision));
+          fresh = false;
+        }
+        LIC3D_TRY_ASSIGN(lic, pass->compute(*uploaded, frameParams.lic));
+        gpuMs.push_back(pass->lastMilliseconds());
+      } else {
+        Progress cpu("2D LIC " + sizeText(inputs->noise.dims) + " on the CPU",
+                     global.quiet || animated);
+        LIC3D_TRY_ASSIGN(lic, computeLic2DReference(inputs->field, inputs->noise, frameParams.lic,
+                                                    0, [&](double f) { cpu.update(f); }));
+      }
+      lic.geometry = imageGeometry(inputs->field, inputs->noise.dims);
+      const RgbaImage image = colourLic2D(lic, inputs->field, frameParams.view);
+      const std::string path = animated ? framePath(plan->output, frame) : plan->output;
+      LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams));
+      LIC3D_TRY(writePng(path, image, text));
+      summary.outputs.push_back(path);
+      progress.frameDone(frame);
+    }
+    progress.finish();
+    if (!batch.video.empty()) {
+      LIC3D_TRY_ASSIGN(const std::filesystem::path ffmpeg, findFfmpeg());
+      if (!global.quiet)
+        std::fprintf(stderr, "lic3d: encoding %s with %s\n", batch.video.c_str(), ffmpeg.c_str());
+      LIC3D_TRY(encodeVideo(ffmpeg, *plan, batch.fps, batch.video));
+      summary.outputs.push_back(batch.video);
+    }
+    return {};
+  }();
+  if (!done) return fail(done.error());
+  if (!global.quiet) {
+    const std::string what =
+        plan->animation == Animation::None
+            ? plan->output
+            : std::to_string(plan->rendered()) + " frames " + summary.outputs.front() +
+                  (plan->rendered() > 1 ? " .. " + framePath(plan->output, plan->end - 1) : "");
+    char gpu[64] = "";
+    if (!gpuMs.empty())
+      std::snprintf(gpu, sizeof gpu, ", LIC %.2f ms on the GPU%s", median(gpuMs),
+                    gpuMs.size() > 1 ? " (median)" : "");
+    std::fprintf(stderr, "lic3d: wrote %s (%s, 2D LIC of %s %s, on %s%s)\n", what.c_str(),
+                 sizeText(inputs->noise.dims).c_str(), session.field.field.c_str(),
+                 sizeText(inputs->field.dims).c_str(),
+                 context ? context->deviceInfo().name.c_str() : "the CPU", gpu);
+  }
+  const int status = context ? finish(*context, kExitOk) : kExitOk;
+  if (status == kExitOk) {
+    summary.frames = plan->rendered();
+    summary.device = context ? context->deviceInfo().name : "CPU reference";
+    printSummary(global, summary, start);
+  }
+  return status;
+}
 
 int runDevices(const GlobalOptions& global) {
   (void)global;
@@ -216,8 +501,9 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     context.emplace(openContext(global));
     if (!*context) return reportError(context->error());
     if (parseAnalyticField(session.field.field))
-      if (auto r = checkRequestMemory(**context, session, session.field.grid,
-                                      {.volumeReadback = true});
+      if (auto r =
+              checkRequestMemory(**context, session, session.field.grid,
+                                 {.volumeReadback = true, .timeSeries = session.timeSteps > 0});
           !r)
         return finish(**context, reportError(r.error()));
   }
@@ -242,6 +528,11 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   summary.outputs = {options.output};
 
   if (options.cpu) {
+    if (inputs->series) {
+      Result<VectorField> field = hostFieldAt(session, *inputs, session.time);
+      if (!field) return reportError(field.error());
+      inputs->field = std::move(*field);
+    }
     const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
     if (!volume) return reportError(volume.error());
     if (auto r = writeComputeOutput(options, batch, *volume); !r) return reportError(r.error());
@@ -255,15 +546,18 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
 
   Context& device = **context;
   // A file's grid is known once it is read (an analytic one was checked above).
-  if (inputs->fromFile)
-    if (auto r = checkRequestMemory(device, session, inputs->field.dims, {.volumeReadback = true});
+  if (inputs->fromFile || inputs->series)
+    if (auto r =
+            checkRequestMemory(device, session, inputs->field.dims,
+                               {.volumeReadback = true, .timeSeries = inputs->series.has_value()});
         !r)
       return fail(r.error());
   int status = kExitOk;
   {
     Result<LicRenderer> renderer = LicRenderer::create(device, {session.precision});
-    Result<void> done = renderer ? renderer->setInputs(inputs->field, inputs->noise)
-                                 : Result<void>(renderer.error());
+    Result<void> done = renderer
+                            ? moveToTime(session, false, *inputs, session.time, *renderer, true)
+                            : Result<void>(renderer.error());
     if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
     Result<ScalarVolume> volume =
         done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
@@ -287,20 +581,27 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   const Clock::time_point start = Clock::now();
   const Session& session = options.inputs.session;
   // Every flag and output is checked before any work.
-  const Result<FramePlan> plan = planFrames(batch, options);
+  const Result<TimeDomain> domain = timeDomainOf(session);
+  if (!domain) return reportError(domain.error());
+  const Result<FramePlan> plan = planFrames(batch, options, *domain);
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
   Result<Context> context = openContext(global);
   if (!context) return reportError(context.error());
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
   if (parseAnalyticField(session.field.field))
-    if (auto r = checkRequestMemory(*context, session, session.field.grid, {.frame = true}); !r)
+    if (auto r = checkRequestMemory(
+            *context, session, session.field.grid,
+            {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});
+        !r)
       return finish(*context, reportError(r.error()));
   Result<Inputs> inputs = loadInputs(options);
   if (!inputs) return finish(*context, reportError(inputs.error()));
   reportFieldFile(global, session.field, *inputs);
-  if (inputs->fromFile)
-    if (auto r = checkRequestMemory(*context, session, inputs->field.dims, {.frame = true}); !r)
+  if (inputs->fromFile || inputs->series)
+    if (auto r = checkRequestMemory(*context, session, inputs->field.dims,
+                                    {.frame = true, .timeSeries = inputs->series && !options.cpu});
+        !r)
       return finish(*context, reportError(r.error()));
 
   RunSummary summary = makeSummary("render", session.field, *inputs);

@@ -22,6 +22,7 @@ struct BenchOptions {
   std::string json;
   bool variants = false;       // specialized pipelines against runtime mode switches
   bool distributions = false;  // sparsity point generation and mask + LIC recompute
+  bool kernels = false;        // the naive LIC kernel against each shipped one
   int distributionVolume = 256;
 };
 
@@ -30,6 +31,9 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
                const BatchOptions& batch);
 int runRender(const GlobalOptions& global, const ComputeOptions& options,
               const BatchOptions& batch);
+// 2D LIC of a plane (thesis chapter 3): a PNG, or the frames of a bias or time animation.
+int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
+                const BatchOptions& batch);
 int runBench(const GlobalOptions& global, const BenchOptions& options);
 
 }  // namespace lic3d::cli

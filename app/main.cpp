@@ -97,6 +97,28 @@ int main(int argc, char** argv) {
   addRenderBatchOptions(*renderCommand, renderBatch);
   renderCommand->footer(globalNote + summaryNote);
 
+  ComputeOptions render2d;
+  BatchOptions render2dBatch;
+  PlaneOptions plane;
+  CLI::App* render2dCommand = app.add_subcommand(
+      "render2d",
+      "2D LIC (thesis chapter 3): a 2D field (circle, saddle, the time-varying wave, a 2D file) or "
+      "a plane of a 3D field, white noise at the image's resolution, a PNG out; or the frames "
+      "of a bias or time animation");
+  addInputOptions(*render2dCommand, render2d.inputs, true);
+  render2dCommand->add_flag("--cpu", render2d.cpu,
+                            "Compute the LIC image with the CPU reference instead of the GPU");
+  render2d.output = "lic2d.png";
+  render2d.outputOption =
+      render2dCommand
+          ->add_option("-o,--output", render2d.output,
+                       "Output PNG; for --animate-bias or --animate-time a pattern with one %d "
+                       "or %0Nd for the frame number (default then lic2d_%04d.png)")
+          ->capture_default_str();
+  addPlaneOptions(*render2dCommand, render2d.inputs, plane);
+  addImageBatchOptions(*render2dCommand, render2dBatch);
+  render2dCommand->footer(globalNote + summaryNote);
+
   BenchOptions bench;
   CLI::App* benchCommand = app.add_subcommand(
       "bench", "Time the LIC pass and frames with GPU timestamps (median of repeats)");
@@ -131,6 +153,11 @@ int main(int argc, char** argv) {
   benchCommand->add_flag("--distributions", bench.distributions,
                          "Instead: time of each sparsity distribution for 1k..1M points, and of a "
                          "sparsity change end to end (thesis Figure 6.4)");
+  benchCommand->add_flag("--kernels", bench.kernels,
+                         "Instead: the naive reference LIC kernel (three texture fetches per "
+                         "sample) against each shipped kernel (exact and ab2 schemes; half, "
+                         "float and byte textures) in one process, for --sizes x --lengths: "
+                         "median times, speed-ups, correlations of the volumes");
   benchCommand->add_option("--distribution-volume", bench.distributionVolume,
                            "Volume size N (N^3) of --distributions")
       ->check(CLI::Range(8, 1024))
@@ -141,6 +168,7 @@ int main(int argc, char** argv) {
     // A session file is read before the flags, which then override it.
     if (auto r = preloadSession(argc, argv, compute.inputs); !r) return reportError(r.error());
     if (auto r = preloadSession(argc, argv, render.inputs); !r) return reportError(r.error());
+    if (auto r = preloadSession(argc, argv, render2d.inputs); !r) return reportError(r.error());
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -163,6 +191,13 @@ int main(int argc, char** argv) {
     if (renderCommand->parsed()) {
       if (auto r = finishSessionOptions(render.inputs, true); !r) return reportError(r.error());
       return runRender(global, render, renderBatch);
+    }
+    if (render2dCommand->parsed()) {
+      render2d.inputs.session.twoD = true;
+      if (auto r = finishPlaneOptions(plane, render2d.inputs.session); !r)
+        return reportError(r.error());
+      if (auto r = finishSessionOptions(render2d.inputs, true); !r) return reportError(r.error());
+      return runRender2D(global, render2d, render2dBatch);
     }
     if (benchCommand->parsed()) return runBench(global, bench);
   } catch (const std::bad_alloc&) {

@@ -26,8 +26,22 @@ int main(int argc, char** argv) {
   GlobalOptions global;
   addGlobalOptions(app, global);
   SessionOptions inputs;
-  addInputOptions(app, inputs);
+  addInputOptions(app, inputs, true);
   addViewOptions(app, inputs);
+
+  std::string mode = "3d";
+  app.add_option("--mode", mode,
+                 "3d: the LIC volume; 2d: 2D LIC of a plane (thesis chapter 3): a 2D field "
+                 "(circle, saddle, wave, a 2D file) or a plane of a 3D one (--slice)")
+      ->check(CLI::IsMember({"3d", "2d"}))
+      ->capture_default_str();
+  PlaneOptions plane;
+  plane.slice.option = app.add_option(
+      "--slice", plane.slice.text,
+      "2D mode: the plane of a 3D field, AXIS or AXIS:INDEX (default z, the middle layer)");
+  std::string imageSize;
+  app.add_option("--image-size", imageSize,
+                 "2D mode: the LIC image WxH in pixels (default: the field's grid)");
 
   viewer::ViewerOptions options;
   std::string windowSize;
@@ -91,6 +105,22 @@ int main(int argc, char** argv) {
   if (!options.saveSession.empty())
     if (auto r = checkOutputPath(options.saveSession, ".json"); !r) return reportError(r.error());
   if (auto r = finishSessionOptions(inputs, true); !r) return reportError(r.error());
+  if (app.count("--mode") > 0) inputs.session.twoD = mode == "2d";
+  if (auto r = finishPlaneOptions(plane, inputs.session); !r) return reportError(r.error());
+  if (!imageSize.empty()) {
+    int w = 0, h = 0;
+    char rest = 0;
+    if (std::sscanf(imageSize.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 1 || h < 1 ||
+        w > 16384 || h > 16384) {
+      std::fprintf(stderr,
+                   "lic3d-view: error: --image-size: expected WxH between 1 and 16384, "
+                   "got '%s'\n",
+                   imageSize.c_str());
+      return kExitBadInput;
+    }
+    inputs.session.plane.width = w;
+    inputs.session.plane.height = h;
+  }
 
   try {
     return viewer::runViewer(global, inputs, options);

@@ -16,6 +16,7 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_vulkan.h>
+
 #include <glm/trigonometric.hpp>
 
 #include "gpu_submit.h"
@@ -25,6 +26,8 @@
 #include "rgba_image.h"
 #include "slice_geometry.h"
 #include "swapchain.h"
+#include "time_series.h"
+#include "viewer_plane.h"
 #include "viewer_ui.h"
 #include "vk_check.h"
 
@@ -44,6 +47,9 @@ constexpr std::uint64_t kSoakSampleEvery = 50;
 constexpr std::uint64_t kSoakWarmupFrames = 100;
 constexpr std::uint64_t kSoakRssSlack = 8u << 20;
 constexpr VkFormat kOffscreenFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// Steps of a time-dependent analytic field (the tornado) over its period when the session names
+// none: the app blends steps on the GPU as it does a series of files (docs/TIME.md).
+constexpr int kDefaultTimeSteps = 64;
 
 // Mouse and keyboard events between two frames.
 struct Input {
@@ -138,6 +144,9 @@ class App {
   void drawAxes() const;
   void animate(double seconds);
   Result<void> handleActions(const Actions& actions);
+  Result<void> updateTime();
+  void updatePlane();
+  bool timePending() const;
   Result<void> saveScreenshot(const Frame& f);
   void destroySwapchainObjects();
 
@@ -167,10 +176,22 @@ class App {
   double biasPhase_ = 0.0;
   int screenshots_ = 0;
   struct Loaded {
-    VectorField field;
+    VectorField field;  // steady; for a series empty (the steps hold the grid)
     NoiseVolume noise;
+    std::optional<TimeSeries> series;
+    std::vector<std::pair<int, VectorField>> steps;  // the two around the session's time
   };
   std::future<Result<Loaded>> loading_;
+  // Unsteady 3D fields (docs/TIME.md): the series, what the field texture was blended from, and
+  // steps being read for the current time.
+  std::optional<TimeSeries> series_;
+  std::optional<TimeBracket> blended_;
+  std::future<Result<std::vector<std::pair<int, VectorField>>>> stepLoading_;
+  double timePhase_ = 0.0;
+  bool loadedOnce_ = false;  // a field load has completed (or the app started in 2D)
+  // The 2D mode's picture.
+  std::optional<PlaneView> planeView_;
+  std::optional<std::pair<FieldSource, cli::TimeDomain>> planeDomain_;
   FieldSource loadedField_;
   NoiseSource loadedNoise_;
   std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
@@ -210,6 +231,7 @@ App::~App() {
     if (uiPass_) vkDestroyRenderPass(device, uiPass_, nullptr);
     if (uiPool_) vkDestroyDescriptorPool(device, uiPool_, nullptr);
     offscreen_ = Image();
+    planeView_.reset();
     renderer_.reset();
     swapchain_ = Swapchain();
     context_.reset();
@@ -337,7 +359,10 @@ Result<void> App::init() {
   ui_.visible = !options_.hideUi;
   ui_.pendingField = session_.field;
   ui_.pendingNoise = session_.noise;
-  LIC3D_TRY(startLoading(session_.field, session_.noise));
+  ui_.pendingTimeSteps = session_.timeSteps;
+  // The 2D mode makes its own plane; the volume's field is read when the 3D mode is chosen.
+  if (!session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
+  loadedOnce_ = session_.twoD;
   return {};
 }
 
@@ -412,7 +437,9 @@ Result<void> App::createSwapchain() {
   desc.type = VK_IMAGE_TYPE_2D;
   desc.format = kOffscreenFormat;
   desc.extent = {swapchain_.extent().width, swapchain_.extent().height, 1};
-  desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  // TRANSFER_DST: the 2D mode blits its picture in.
+  desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+               VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "window volume image";
   offscreen_ = Image();
   LIC3D_TRY_ASSIGN(offscreen_, Image::create(*context_, desc));
@@ -433,12 +460,35 @@ Result<void> App::startLoading(const FieldSource& field, const NoiseSource& nois
   // Reading a large file or sampling a large grid takes a while: off the drawing thread.
   // --grid with a file field is an error on the command line only, not when loading later.
   const bool gridGiven = !renderer_->hasVolume() && inputs_.grid.given();
-  loading_ = std::async(std::launch::async, [field, noise, gridGiven]() -> Result<Loaded> {
-    Loaded loaded;
-    LIC3D_TRY_ASSIGN(loaded.field, cli::loadField(field, gridGiven));
-    LIC3D_TRY_ASSIGN(loaded.noise, cli::loadNoise(noise, loaded.field.dims));
-    return loaded;
-  });
+  const double time = session_.time;
+  const int timeSteps = session_.timeSteps > 0 ? session_.timeSteps : kDefaultTimeSteps;
+  loading_ = std::async(
+      std::launch::async, [field, noise, gridGiven, time, timeSteps]() -> Result<Loaded> {
+        Loaded loaded;
+        // An unsteady field is a series: the tornado's steps over its period, or numbered files.
+        const std::optional<AnalyticField> analytic = parseAnalyticField(field.field);
+        if (analytic && timePeriod(*analytic) > 0.0) {
+          LIC3D_TRY(cli::checkHostMemory(field.grid));
+          LIC3D_TRY_ASSIGN(loaded.series, analyticSeries(*analytic, field.grid, timeSteps));
+        } else if (!analytic && !parseAnalyticField2D(field.field) &&
+                   isFieldSeriesPattern(field.field)) {
+          LIC3D_TRY_ASSIGN(loaded.series, fileSeries(field.field));
+        }
+        if (!loaded.series) {
+          LIC3D_TRY_ASSIGN(loaded.field, cli::loadField(field, gridGiven));
+          LIC3D_TRY_ASSIGN(loaded.noise, cli::loadNoise(noise, loaded.field.dims));
+          return loaded;
+        }
+        const TimeBracket b = loaded.series->bracket(time);
+        for (const int k : {b.first, b.second}) {
+          LIC3D_TRY_ASSIGN(VectorField step, loaded.series->loadStep(k, field.array));
+          if (!loaded.steps.empty() && step.dims != loaded.steps.front().second.dims)
+            return inputError(field.field + ": the steps of a time series must share their grid");
+          loaded.steps.emplace_back(k, std::move(step));
+        }
+        LIC3D_TRY_ASSIGN(loaded.noise, cli::loadNoise(noise, loaded.steps.front().second.dims));
+        return loaded;
+      });
   return {};
 }
 
@@ -448,34 +498,59 @@ Result<void> App::finishLoading() {
     return {};
   Result<Loaded> loaded = loading_.get();
   stats_.loading = false;
+  // The app's first field failing to load ends it (nothing to show); later failures are messages.
+  const bool firstLoad = !renderer_->hasVolume() && !loadedOnce_;
+  loadedOnce_ = true;
   if (!loaded) {
     stats_.message = loaded.error().message;
-    if (!renderer_->hasVolume()) return std::move(loaded).error();  // nothing to show at all
+    if (firstLoad) return std::move(loaded).error();  // nothing to show at all
+    loadedField_ = session_.field;                    // not read again until the field changes
+    loadedNoise_ = session_.noise;
     return {};
   }
   // The new field must fit beside everything the app keeps; if not, the old volume stays.
   const VkExtent2D extent = swapchain_.extent();
-  if (auto r = cli::checkRequestMemory(*context_, session_, loaded->field.dims,
+  const VectorField& grid = loaded->series ? loaded->steps.front().second : loaded->field;
+  if (auto r = cli::checkRequestMemory(*context_, session_, grid.dims,
                                        {.doubleBuffered = true,
                                         .frame = true,
                                         .frameWidth = static_cast<int>(extent.width),
-                                        .frameHeight = static_cast<int>(extent.height)});
+                                        .frameHeight = static_cast<int>(extent.height),
+                                        .timeSeries = loaded->series.has_value()});
       !r) {
     if (!renderer_->hasVolume()) return std::move(r).error();  // nothing to keep: exit status 3
     stats_.alert = r.error().message + ". The previous field stays loaded.";
     ui_.pendingField = session_.field;
     return {};
   }
-  if (auto r = validate(session_.lic.sparsity, loaded->field.dims); !r) {
+  if (auto r = validate(session_.lic.sparsity, grid.dims); !r) {
     session_.lic.sparsity = SparsityParams{};
     stats_.message = r.error().message + " (sparsity turned off)";
   }
-  LIC3D_TRY(renderer_->setInputs(loaded->field, loaded->noise));
+  series_ = loaded->series;
+  blended_.reset();
+  stepLoading_ = {};
+  if (series_) {
+    // The two steps around the time, blended on the GPU by updateTime.
+    LIC3D_TRY(renderer_->setTimeNoise(loaded->noise));
+    const auto& [first, stepA] = loaded->steps.front();
+    const auto& [second, stepB] = loaded->steps.back();
+    LIC3D_TRY(renderer_->setTimeStep(first, stepA, second));
+    LIC3D_TRY(renderer_->setTimeStep(second, stepB, first));
+    session_.timeSteps = series_->analytic ? series_->steps : 0;
+    ui_.pendingTimeSteps = session_.timeSteps;
+    stats_.timeEnd = series_->endTime();
+    stats_.timePeriodic = series_->periodic();
+  } else {
+    LIC3D_TRY(renderer_->setInputs(loaded->field, loaded->noise));
+  }
+  stats_.timeDependent = series_.has_value();
   session_.field = loadedField_;
   session_.noise = loadedNoise_;
-  stats_.dims = loaded->field.dims;
-  stats_.minMagnitude = static_cast<float>(minMagnitude(loaded->field));
-  stats_.maxMagnitude = static_cast<float>(maxMagnitude(loaded->field));
+  stats_.dims = grid.dims;
+  stats_.minMagnitude = static_cast<float>(minMagnitude(grid));
+  stats_.maxMagnitude = static_cast<float>(maxMagnitude(grid));
+  if (series_) return updateTime();
   return renderer_->requestLic(session_.lic);
 }
 
@@ -524,6 +599,14 @@ void App::drawAxes() const {
 }
 
 void App::animate(double seconds) {
+  if (ui_.playingTime && stats_.timeDependent && stats_.timeEnd > 0.0) {
+    // Time runs through its range in ui_.timeSeconds and starts again: a loop for a periodic
+    // field, and for a series of files from the last step back to the first.
+    const double range = stats_.timeEnd;
+    timePhase_ = std::fmod(session_.time + seconds * range / std::max(ui_.timeSeconds, 0.1f),
+                           stats_.timePeriodic ? range : range + 1e-9);
+    session_.time = timePhase_;
+  }
   if (!ui_.playing) return;
   LicParams& lic = session_.lic;
   const int span = 2 * lic.length + 1;
@@ -533,8 +616,92 @@ void App::animate(double seconds) {
   lic.bias = static_cast<int>(biasPhase_) - lic.length;
 }
 
+// Blends the field at the session's time from the two steps around it, reading the steps that
+// are not resident on a worker thread; the LIC volume follows (frame-paced, as any change).
+Result<void> App::updateTime() {
+  if (!series_ || stats_.loading) return {};
+  const TimeBracket b = series_->bracket(session_.time);
+  if (stepLoading_.valid()) {
+    if (stepLoading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return {};
+    Result<std::vector<std::pair<int, VectorField>>> steps = stepLoading_.get();
+    if (!steps) {
+      stats_.message = steps.error().message;
+      return {};
+    }
+    // Steps for a time already left behind are not uploaded: they would evict the ones in use.
+    for (const auto& [k, step] : *steps)
+      if (k == b.first || k == b.second)
+        LIC3D_TRY(renderer_->setTimeStep(k, step, k == b.first ? b.second : b.first));
+  }
+  if (blended_ && *blended_ == b) return {};
+  std::vector<int> missing;
+  for (const int k : {b.first, b.second})
+    if (!renderer_->hasTimeStep(k)) missing.push_back(k);
+  if (!missing.empty()) {
+    stepLoading_ = std::async(
+        std::launch::async, [series = *series_, missing, array = session_.field.array]() {
+          Result<std::vector<std::pair<int, VectorField>>> steps =
+              std::vector<std::pair<int, VectorField>>{};
+          for (const int k : missing) {
+            Result<VectorField> step = series.loadStep(k, array);
+            if (!step) return Result<std::vector<std::pair<int, VectorField>>>(step.error());
+            steps->emplace_back(k, std::move(*step));
+          }
+          return steps;
+        });
+    return {};
+  }
+  if (auto r = renderer_->interpolateTime(b.first, b.second, b.weight); !r) {
+    stats_.message = r.error().message;
+    return {};
+  }
+  blended_ = b;
+  return renderer_->requestLic(session_.lic);
+}
+
+bool App::timePending() const {
+  return series_ &&
+         (stepLoading_.valid() || !blended_ || !(*blended_ == series_->bracket(session_.time)));
+}
+
+// The 2D mode: the picture follows the session (a failure leaves the previous one and says why).
+void App::updatePlane() {
+  if (!planeView_) {
+    Result<PlaneView> created = PlaneView::create(*context_);
+    if (!created) {
+      stats_.message = created.error().message;
+      return;
+    }
+    planeView_.emplace(std::move(*created));
+  }
+  if (auto r = planeView_->update(session_); !r) {
+    stats_.message = r.error().message;
+    return;
+  }
+  // A series' files are listed once per field, not every frame.
+  if (!planeDomain_ || !(planeDomain_->first == session_.field)) {
+    const Result<cli::TimeDomain> domain = cli::timeDomainOf(session_);
+    planeDomain_.emplace(session_.field, domain ? *domain : cli::TimeDomain{});
+  }
+  stats_.timeDependent = planeDomain_->second.timeDependent;
+  stats_.timeEnd = planeDomain_->second.end;
+  stats_.timePeriodic = planeDomain_->second.periodic;
+  stats_.dims = planeView_->imageDims();
+  stats_.minMagnitude = planeView_->minMagnitude();
+  stats_.maxMagnitude = planeView_->maxMagnitude();
+  stats_.licMs = planeView_->licMilliseconds();
+}
+
 Result<void> App::handleActions(const Actions& actions) {
-  if (actions.reloadField) LIC3D_TRY(startLoading(ui_.pendingField, ui_.pendingNoise));
+  if (actions.reloadField) {
+    session_.timeSteps = ui_.pendingTimeSteps;
+    if (session_.twoD) {  // the 2D picture reads its plane itself
+      session_.field = ui_.pendingField;
+      session_.noise = ui_.pendingNoise;
+    } else {
+      LIC3D_TRY(startLoading(ui_.pendingField, ui_.pendingNoise));
+    }
+  }
   if (actions.resetView) {
     const ViewParams defaults;
     session_.view.camera = defaults.camera;
@@ -553,11 +720,15 @@ Result<void> App::handleActions(const Actions& actions) {
       session_ = std::move(loaded).value();
       ui_.pendingField = session_.field;
       ui_.pendingNoise = session_.noise;
-      if (newInputs) LIC3D_TRY(startLoading(session_.field, session_.noise));
+      ui_.pendingTimeSteps = session_.timeSteps;
+      if (newInputs && !session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
       stats_.message = "loaded " + ui_.sessionPath;
     }
   }
-  if (actions.renderImage && renderer_->hasVolume()) {
+  if (actions.renderImage && session_.twoD && planeView_ && planeView_->hasPicture()) {
+    const Result<void> written = writePng(ui_.imagePath, planeView_->image(session_.view));
+    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
+  } else if (actions.renderImage && renderer_->hasVolume()) {
     // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
     vkDeviceWaitIdle(context_->device());
     ViewParams view = session_.view;
@@ -667,12 +838,13 @@ Result<bool> App::frame() {
   stats_.computeFraction = status.fraction;
   stats_.waitingForMask = status.waitingForMask;
   stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
-  drawAxes();
+  if (!session_.twoD) drawAxes();
   Actions actions = drawUi(session_, ui_, stats_);
   ImGui::Render();
   actions.resetView = actions.resetView || in.resetView;
   actions.screenshot = actions.screenshot || in.screenshot;
-  if (renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse) updateCamera(in);
+  if (!session_.twoD && renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse)
+    updateCamera(in);
   animate(seconds);
   LIC3D_TRY(handleActions(actions));
   if (options_.soak) soakStep();
@@ -680,17 +852,29 @@ Result<bool> App::frame() {
     stats_.message = r.error().message;
     session_.view = drawnSession_.view;
   }
-  if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
-    if (auto r = renderer_->requestLic(session_.lic); !r) {
-      stats_.message = r.error().message;
-      session_.lic = drawnSession_.lic;
+  if (session_.twoD) {
+    updatePlane();
+  } else {
+    // Back from the 2D mode with another field: the volume's field is read again.
+    if (!stats_.loading && !(loadedField_ == session_.field && loadedNoise_ == session_.noise))
+      LIC3D_TRY(startLoading(session_.field, session_.noise));
+    LIC3D_TRY(updateTime());
+    if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
+      if (auto r = renderer_->requestLic(session_.lic); !r) {
+        stats_.message = r.error().message;
+        session_.lic = drawnSession_.lic;
+      }
     }
   }
   drawnSession_ = session_;
 
   // A scripted run takes its screenshot once the volume for the current parameters is shown.
-  const bool scriptedShot = options_.frames > 0 && frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
-                            !stats_.loading && renderer_->hasVolume() && !renderer_->licStatus().pending;
+  const bool ready = session_.twoD ? planeView_ && planeView_->hasPicture()
+                                   : !stats_.loading && renderer_->hasVolume() &&
+                                         !renderer_->licStatus().pending && !timePending();
+  const bool scriptedShot = options_.frames > 0 &&
+                            frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
+                            ready;
   // It quits after this frame; run() saves the screenshot once the frame has finished.
   const bool quitAfterThis = scriptedShot;
   f.scriptedShot = scriptedShot && !options_.screenshot.empty();
@@ -720,16 +904,23 @@ Result<bool> App::frame() {
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
   if (f.timed) f.timer.begin(cmd, 1);
   beginClearedRendering(cmd, offscreen_.view(), extent, session_.view.background);
-  const Result<void> drawn = renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
+  const Result<void> drawn =
+      session_.twoD ? Result<void>()
+                    : renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);
 
   VkImage target = swapchain_.image(imageIndex);
-  imageBarrier(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-               VK_ACCESS_2_TRANSFER_READ_BIT);
+  if (session_.twoD && planeView_) {
+    planeView_->record(cmd, offscreen_.handle(), extent);  // leaves it ready for the blit below
+  } else {
+    imageBarrier(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
   // The acquire semaphore is waited for at the blit stage; this barrier chains to it.
   imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,

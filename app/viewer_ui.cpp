@@ -44,17 +44,37 @@ bool combo(const char* label, E& value, const char* help) {
   return changed;
 }
 
-void fieldPanel(UiState& ui, Actions& actions) {
+void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   if (!ImGui::CollapsingHeader("Field and noise", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  int mode = session.twoD ? 1 : 0;
+  ImGui::RadioButton("3D volume", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("2D plane", &mode, 1);
+  tip("2D LIC of a plane (thesis chapter 3): a 2D field, or a plane of the 3D field");
+  session.twoD = mode == 1;
   FieldSource& f = ui.pendingField;
-  if (ImGui::BeginCombo("analytic", parseAnalyticField(f.field) ? f.field.c_str() : "(file)")) {
+  const bool analytic = parseAnalyticField(f.field) || parseAnalyticField2D(f.field);
+  if (ImGui::BeginCombo("analytic", analytic ? f.field.c_str() : "(file)")) {
     for (std::string_view name : analyticFieldNames())
       if (ImGui::Selectable(std::string(name).c_str(), f.field == name)) f.field = name;
+    if (session.twoD)
+      for (std::string_view name : analyticField2DNames())
+        if (ImGui::Selectable(std::string(name).c_str(), f.field == name)) f.field = name;
     ImGui::EndCombo();
   }
   tip("An analytic field: tornado (Crawfis), corner (thesis 4.5), solenoidal (thesis 6.2), "
-      "vortex, ABC flow");
-  text("file", f.field, "Or a field file: .nrrd or .vtk (press Load)");
+      "vortex, ABC flow; in 2D also circle (thesis Figure 3.7), saddle and the time-varying "
+      "wave (thesis 3.5)");
+  text("file", f.field,
+       "Or a field file: .vtk, .vti, .nrrd, or a time series step_%03d.vti / step_*.vti "
+       "(press Load)");
+  if (parseAnalyticField(f.field) && timePeriod(*parseAnalyticField(f.field)) > 0.0 &&
+      !session.twoD) {
+    ImGui::InputInt("time steps", &ui.pendingTimeSteps);
+    ui.pendingTimeSteps = std::clamp(ui.pendingTimeSteps, 0, 4096);
+    if (ui.pendingTimeSteps == 1) ui.pendingTimeSteps = 2;
+    tip("The tornado as a series of steps over its period, blended on the GPU (0: 64)");
+  }
   // A file brings its own grid: the grid is edited for analytic fields only.
   if (parseAnalyticField(f.field)) {
     ImGui::InputInt3("grid", &f.grid.x);
@@ -73,6 +93,36 @@ void fieldPanel(UiState& ui, Actions& actions) {
   text("noise file", n.file, "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
   if (ImGui::Button("Load")) actions.reloadField = true;
   tip("Load the field and noise above (the LIC volume is recomputed)");
+  if (!session.twoD) return;
+  PlaneParams& p = session.plane;
+  const char* axes[3] = {"x", "y", "z"};
+  ImGui::Combo("plane across", &p.axis, axes, 3);
+  tip("A 3D field is cut across this axis");
+  ImGui::InputInt("layer", &p.index);
+  p.index = std::max(p.index, -1);
+  tip("The voxel layer of the plane (-1: the middle)");
+  ImGui::InputInt2("image size", &p.width);
+  p.width = std::clamp(p.width, 0, 16384);
+  p.height = std::clamp(p.height, 0, 16384);
+  tip("The LIC image in pixels: noise at this size, finer than the field stays sharp (0: the "
+      "field's grid; one side alone keeps the grid's aspect)");
+}
+
+void timePanel(Session& session, UiState& ui, const Stats& stats) {
+  if (!stats.timeDependent) return;
+  if (!ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  double time = session.time;
+  const double low = 0.0, high = stats.timeEnd;
+  ImGui::SliderScalar("time", ImGuiDataType_Double, &time, &low, &high, "%.3f");
+  session.time = time;
+  tip(stats.timePeriodic
+          ? "The field's time; it repeats after this range (the field between steps is blended "
+            "on the GPU in 3D)"
+          : "The position in the series of files: 1.5 is halfway between the second and the "
+            "third step, blended on the GPU");
+  ImGui::Checkbox("play time", &ui.playingTime);
+  tip("Run the time through its range (with the bias animation too, both loop)");
+  ImGui::SliderFloat("seconds per cycle", &ui.timeSeconds, 1.0f, 120.0f, "%.0f s");
 }
 
 void licPanel(Session& s) {
@@ -90,8 +140,12 @@ void licPanel(Session& s) {
   combo("noise filter", l.noiseFilter, "Noise looked up at the nearest voxel or trilinearly");
   combo("direction", l.direction,
         "normalized: unit steps; magnitude: steps scaled by |v| / max |v|");
+  combo("scheme", l.scheme,
+        "How rk2 steps. exact: every step an RK2 step (two texture fetches per sample); ab2: "
+        "Adams-Bashforth steps from the directions already fetched (one fetch per sample)");
   combo("precision", s.precision,
-        "Field texture on the device: float on CPU drivers, half on GPUs (auto)");
+        "Field texture on the device: float on CPU drivers, half on GPUs (auto); byte: RGBA8, "
+        "8-bit direction and noise, a quarter of the memory of float");
 }
 
 void sparsityPanel(Session& s) {
@@ -347,12 +401,15 @@ Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
   ImGui::SetNextWindowSize(ImVec2(370.0f, display.y - 20.0f), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("lic3d")) {
     ImGui::PushItemWidth(180.0f);
-    fieldPanel(ui, actions);
+    fieldPanel(session, ui, actions);
+    timePanel(session, ui, stats);
     licPanel(session);
-    sparsityPanel(session);
+    if (!session.twoD) sparsityPanel(session);
     colourPanel(session.view, stats);
-    localPanel(session.view);
-    depthPanel(session.view);
+    if (!session.twoD) {
+      localPanel(session.view);
+      depthPanel(session.view);
+    }
     renderingPanel(session.view, ui, actions);
     filesPanel(ui, actions);
     ImGui::PopItemWidth();

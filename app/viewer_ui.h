@@ -24,6 +24,10 @@ struct Stats {
   std::string message;  // the last error or notice, shown until replaced
   std::string alert;    // a refused request, shown in a dialog until dismissed
   float minMagnitude = 0.0f, maxMagnitude = 1.0f;
+  // The field's time (docs/TIME.md): the slider runs over [0, timeEnd].
+  bool timeDependent = false;
+  bool timePeriodic = false;  // an analytic field: timeEnd is its period
+  double timeEnd = 0.0;
 };
 
 // Requests from the panels that are actions, not parameters.
@@ -48,6 +52,9 @@ struct UiState {
   int imageHeight = 1080;
   FieldSource pendingField;      // edited until "Load" is pressed
   NoiseSource pendingNoise;
+  int pendingTimeSteps = 0;   // steps of a time-dependent analytic field (0: the default)
+  bool playingTime = false;   // time animation
+  float timeSeconds = 20.0f;  // seconds for the whole time range
 };
 
 // Draws every panel for this frame (between ImGui::NewFrame and ImGui::Render).

@@ -126,5 +126,83 @@ realdata "Magnetic mirror, FEM field of two coils, 47×47×47, spacing 0.05, 0.0
   example-femm-3d.vtk femm --color magnitude --color-range 0,0.01 --clip 0,1,0,0.5,0,1 \
   --azimuth 60 --elevation 20 --legend --axes
 
+# ---- 2D LIC (thesis chapter 3) and time (thesis 3.5, chapter 7) ----
+picture2d() {  # name, arguments...
+  name=$1
+  shift
+  # shellcheck disable=SC2086
+  "$LIC3D" render2d -q "$@" -o "$OUT/$name.png"
+}
+plane() {  # title, name, flags...
+  title=$1 name=$2
+  shift 2
+  picture2d "$name" "$@"
+  # shellcheck disable=SC2001
+  printf '| %s | ![](%s) | `lic3d render2d %s` |\n' "$title" "$OUT/$name.png" \
+    "$(echo "$*" | sed 's#\.\./assets#assets#')" >> "$page"
+}
+cat >> "$page" <<'EOF'
+
+## 2D LIC (thesis chapter 3)
+
+`lic3d render2d` makes the LIC image of a 2D field, or of a plane of a 3D one, through the same
+integrators, kernels and bias ([LIC semantics](LIC_SEMANTICS.md#2d-lic)). The noise lives at the
+image's resolution, so an image larger than the field's grid stays sharp.
+
+| what | picture | command |
+|---|---|---|
+EOF
+plane "The thesis' Figure 3.7: a circular field, 320² grid" circle-320 --field circle --grid 320
+plane "The same field on a 40² grid, drawn at 320²: fine noise, smooth field" circle-40-up \
+  --field circle --grid 40 --width 320
+plane "A saddle point, Hann kernel, L = 40" saddle --field saddle --grid 320 --kernel hann --length 40
+plane "A plane of the 3D tornado (z = 32 of 64³), colour by \|v\|" tornado-plane --field tornado \
+  --grid 64 --width 320 --color magnitude --legend
+plane "The carotid artery (assets/data, 76×49×45), the plane x = 30 along a vessel, colour by speed" \
+  carotid-plane --field ../assets/data/carotid.vtk --slice x:30 --width 320 --color magnitude \
+  --color-range 0,15 --legend
+plane "Thesis 3.5: the time-varying wave at t = 0" wave-t0 --field wave --grid 320
+plane "… and at t = 0.25: the pattern has travelled a quarter of the width" wave-t25 --field wave \
+  --grid 320 --time 0.25
+
+cat >> "$page" <<'EOF'
+
+## Time (thesis 3.5 and chapter 7)
+
+Frames of a field's time ([TIME.md](TIME.md)): each is the LIC of the field at that instant. The
+loops run over one period of the field; in the first the bias cycles (thesis 3.3.3) twice
+meanwhile, so the last frame leads back into the first.
+
+| what | picture | command |
+|---|---|---|
+EOF
+frames=$(mktemp -d)
+trap 'rm -rf "$frames"' EXIT
+# The wave through one period, six frames side by side (ffmpeg tiles them; lic3d needs no ffmpeg
+# but for --video).
+"$LIC3D" render2d -q --field wave --grid 160 --animate-time 6 -o "$frames/wave_%d.png"
+ffmpeg -loglevel error -y -i "$frames/wave_%d.png" -vf tile=6x1:padding=4 -frames:v 1 \
+  "$OUT/wave-strip.png"
+# Time and bias together: 32 frames of the period, the bias cycling every 16.
+"$LIC3D" render2d -q --field wave --grid 128 --length 12 --animate-time 32 --animate-bias 16 \
+  --fps 12 -o "$frames/loop_%02d.png" --video "$OUT/wave-loop.gif"
+# The tornado through its period as 32 steps blended on the GPU; 4 of the 24 frames in a strip.
+tornado_time="--field tornado --grid 64 --time-steps 32 --animate-time 24 --width 200 --height 200 \
+  --clip 0,1,0,0.5,0,1 --color magnitude --elevation 10"
+# shellcheck disable=SC2086
+"$LIC3D" render -q $tornado_time --fps 12 -o "$frames/tornado_%02d.png" --video "$OUT/tornado-time.gif"
+ffmpeg -loglevel error -y -start_number 0 -i "$frames/tornado_%02d.png" \
+  -vf 'select=not(mod(n\,6)),tile=4x1:padding=4' -frames:v 1 "$OUT/tornado-strip.png"
+{
+  printf '| The wave through one period, t = 0, 1/6, …, 5/6 | ![](%s) | `%s` |\n' \
+    "$OUT/wave-strip.png" "lic3d render2d --field wave --grid 160 --animate-time 6 -o 'wave_%d.png'"
+  printf '| Time and bias together: 32 frames, one loop | ![](%s) | `%s` |\n' "$OUT/wave-loop.gif" \
+    "lic3d render2d --field wave --grid 128 --length 12 --animate-time 32 --animate-bias 16 --fps 12 -o 'loop_%02d.png' --video wave-loop.gif"
+  printf '| The tornado over its period (200π) as 32 steps blended on the GPU, cut open at y = 0.5: its core (red) sways; frames 0, 6, 12 and 18 of 24 | ![](%s) | `%s` |\n' \
+    "$OUT/tornado-strip.png" "lic3d render $tornado_time -o 'tornado_%02d.png'"
+  printf '| … all 24 as a loop | ![](%s) | `%s` |\n' "$OUT/tornado-time.gif" \
+    "the same with --fps 12 --video tornado-time.gif"
+} >> "$page"
+
 mv "$page" GALLERY.md
 echo "wrote docs/GALLERY.md and $(ls "$OUT" | wc -l) pictures in docs/$OUT"

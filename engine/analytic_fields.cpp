@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "field_plane.h"
+
 namespace lic3d {
 namespace {
 
@@ -77,25 +79,117 @@ std::optional<AnalyticField> parseAnalyticField(std::string_view name) {
 
 std::string_view toString(AnalyticField field) { return kNames[static_cast<std::size_t>(field)]; }
 
-VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
-  const Domain domain = domainOf(field);
+namespace {
+
+// Voxel (i,j,k) of makeAnalyticField(field, dims) lies at origin + (i,j,k) * spacing.
+GridGeometry cubicGeometry(Domain domain, Dims dims) {
   const int longest = std::max({dims.x, dims.y, dims.z});
   const double length = domain.max - domain.min;
   const double spacing = longest > 1 ? length / (longest - 1) : length;
   const double centre = 0.5 * (domain.min + domain.max);
+  GridGeometry geometry;
+  geometry.spacing = glm::dvec3(spacing);
+  for (int a = 0; a < 3; ++a) geometry.origin[a] = centre - 0.5 * spacing * (dims[a] - 1);
+  return geometry;
+}
 
+}  // namespace
+
+VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
   VectorField result;
   result.dims = dims;
-  result.geometry.spacing = glm::dvec3(spacing);
-  for (int a = 0; a < 3; ++a) result.geometry.origin[a] = centre - 0.5 * spacing * (dims[a] - 1);
+  result.geometry = cubicGeometry(domainOf(field), dims);
   result.vectors.resize(voxelCount(dims));
   for (int k = 0; k < dims.z; ++k)
     for (int j = 0; j < dims.y; ++j)
       for (int i = 0; i < dims.x; ++i) {
-        const glm::dvec3 p = result.geometry.origin + glm::dvec3(i, j, k) * spacing;
+        const glm::dvec3 p = result.geometry.origin + glm::dvec3(i, j, k) * result.geometry.spacing;
         result.vectors[voxelIndex(dims, i, j, k)] = glm::vec3(evaluate(field, p, time));
       }
   return result;
 }
+
+VectorField makeAnalyticFieldPlane(AnalyticField field, Dims dims, int axis, int index,
+                                   double time) {
+  const GridGeometry geometry = cubicGeometry(domainOf(field), dims);
+  const glm::ivec2 in = planeAxes(axis);
+  VectorField plane;
+  plane.dims = Dims(dims[in.x], dims[in.y], 1);
+  plane.geometry.spacing =
+      glm::dvec3(geometry.spacing[in.x], geometry.spacing[in.y], geometry.spacing[axis]);
+  plane.geometry.origin = glm::dvec3(geometry.origin[in.x], geometry.origin[in.y],
+                                     geometry.origin[axis] + index * geometry.spacing[axis]);
+  plane.vectors.resize(voxelCount(plane.dims));
+  for (int j = 0; j < plane.dims.y; ++j)
+    for (int i = 0; i < plane.dims.x; ++i) {
+      glm::ivec3 voxel(index);
+      voxel[in.x] = i;
+      voxel[in.y] = j;
+      const glm::dvec3 p = geometry.origin + glm::dvec3(voxel) * geometry.spacing;
+      const glm::dvec3 v = evaluate(field, p, time);
+      plane.vectors[voxelIndex(plane.dims, i, j, 0)] =
+          glm::vec3(static_cast<float>(v[in.x]), static_cast<float>(v[in.y]), 0.0f);
+    }
+  return plane;
+}
+
+double timePeriod(AnalyticField field) {
+  return field == AnalyticField::Tornado ? 200.0 * std::numbers::pi : 0.0;
+}
+
+// ---- 2D fields ----------------------------------------------------------------------------------
+
+namespace {
+
+constexpr std::array<std::string_view, 3> k2DNames = {"circle", "saddle", "wave"};
+
+glm::dvec2 evaluate2D(AnalyticField2D field, glm::dvec2 p, double time) {
+  switch (field) {
+    case AnalyticField2D::Circle: return {-p.y, p.x};
+    case AnalyticField2D::Saddle: return {p.x, -p.y};
+    case AnalyticField2D::Wave: {
+      // Thesis 3.5: Vx = cos(2pi(s - Time)), Vy = sin(2pi(s - Time)), s the horizontal texture
+      // coordinate: the direction turns once across the picture and the pattern travels right.
+      const double phase = 2.0 * std::numbers::pi * (p.x - time);
+      return {std::cos(phase), std::sin(phase)};
+    }
+  }
+  return {};
+}
+
+Domain domainOf(AnalyticField2D field) {
+  return field == AnalyticField2D::Wave ? Domain{0.0, 1.0} : Domain{-1.0, 1.0};
+}
+
+}  // namespace
+
+std::span<const std::string_view> analyticField2DNames() { return k2DNames; }
+
+std::optional<AnalyticField2D> parseAnalyticField2D(std::string_view name) {
+  for (std::size_t i = 0; i < k2DNames.size(); ++i)
+    if (k2DNames[i] == name) return static_cast<AnalyticField2D>(i);
+  return std::nullopt;
+}
+
+std::string_view toString(AnalyticField2D field) {
+  return k2DNames[static_cast<std::size_t>(field)];
+}
+
+VectorField makeAnalyticField2D(AnalyticField2D field, glm::ivec2 size, double time) {
+  VectorField result;
+  result.dims = Dims(size.x, size.y, 1);
+  result.geometry = cubicGeometry(domainOf(field), result.dims);
+  result.vectors.resize(voxelCount(result.dims));
+  for (int j = 0; j < size.y; ++j)
+    for (int i = 0; i < size.x; ++i) {
+      const glm::dvec3 p = result.geometry.origin + glm::dvec3(i, j, 0) * result.geometry.spacing;
+      const glm::dvec2 v = evaluate2D(field, glm::dvec2(p), time);
+      result.vectors[voxelIndex(result.dims, i, j, 0)] =
+          glm::vec3(static_cast<float>(v.x), static_cast<float>(v.y), 0.0f);
+    }
+  return result;
+}
+
+double timePeriod(AnalyticField2D field) { return field == AnalyticField2D::Wave ? 1.0 : 0.0; }
 
 }  // namespace lic3d

@@ -1,6 +1,7 @@
 #pragma once
 // Analytic vector fields sampled on a grid: the fields of the thesis plus standard test flows.
 
+#include <glm/vec2.hpp>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -25,5 +26,31 @@ std::string_view toString(AnalyticField field);
 // domain and shorter axes span a centred part of it, so streamlines keep the field's shape on
 // non-cubic grids. `time` is the tornado's time parameter (ignored by the other fields).
 VectorField makeAnalyticField(AnalyticField field, Dims dims, double time = 0.0);
+
+// One plane of makeAnalyticField(field, dims, time): voxel layer `index` across `axis` (0, 1, 2
+// for x, y, z), sampled alone, as a 2D field (field_plane.h).
+VectorField makeAnalyticFieldPlane(AnalyticField field, Dims dims, int axis, int index,
+                                   double time = 0.0);
+
+// The time after which the field repeats, 0 if it does not change with time. The tornado's
+// centre line turns with sin(0.04 t) and cos(0.03 t): it repeats after 200 pi.
+double timePeriod(AnalyticField field);
+
+// ---- 2D fields (thesis chapter 3) ---------------------------------------------------------------
+// A 2D field is a VectorField one voxel thick (NX x NY x 1) with vectors in the x-y plane.
+enum class AnalyticField2D {
+  Circle,  // (-y, x) on [-1,1]^2: circles about the centre, the thesis' Figure 3.7
+  Saddle,  // (x, -y) on [-1,1]^2: a saddle point at the centre
+  Wave,    // thesis 3.5: (cos 2pi(x - t), sin 2pi(x - t)) on [0,1]^2, the time-varying field
+};
+
+std::span<const std::string_view> analyticField2DNames();
+std::optional<AnalyticField2D> parseAnalyticField2D(std::string_view name);
+std::string_view toString(AnalyticField2D field);
+
+// Sampled at pixel centres with square pixels, as makeAnalyticField does in 3D.
+VectorField makeAnalyticField2D(AnalyticField2D field, glm::ivec2 size, double time = 0.0);
+// 1 for the wave (it repeats after one unit of time), 0 for the steady fields.
+double timePeriod(AnalyticField2D field);
 
 }  // namespace lic3d

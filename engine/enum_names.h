@@ -37,6 +37,7 @@ LIC3D_ENUM_NAMES(Kernel, {Kernel::Box, "box"}, {Kernel::Hann, "hann"}, {Kernel::
 LIC3D_ENUM_NAMES(NoiseFilter, {NoiseFilter::Nearest, "nearest"}, {NoiseFilter::Linear, "linear"})
 LIC3D_ENUM_NAMES(DirectionMode, {DirectionMode::Normalized, "normalized"},
                  {DirectionMode::Magnitude, "magnitude"})
+LIC3D_ENUM_NAMES(StepScheme, {StepScheme::Exact, "exact"}, {StepScheme::Ab2, "ab2"})
 LIC3D_ENUM_NAMES(SparsityDistribution, {SparsityDistribution::None, "none"},
                  {SparsityDistribution::Checkerboard, "checkerboard"},
                  {SparsityDistribution::Poisson, "poisson"},
@@ -57,7 +58,7 @@ LIC3D_ENUM_NAMES(StereoMode, {StereoMode::None, "none"}, {StereoMode::Anaglyph, 
 LIC3D_ENUM_NAMES(Lighting, {Lighting::None, "none"}, {Lighting::Phong, "phong"},
                  {Lighting::Lines, "lines"})
 LIC3D_ENUM_NAMES(FieldPrecision, {FieldPrecision::Auto, "auto"}, {FieldPrecision::Half, "half"},
-                 {FieldPrecision::Float, "float"})
+                 {FieldPrecision::Float, "float"}, {FieldPrecision::Byte, "byte"})
 #undef LIC3D_ENUM_NAMES
 
 template <class E>

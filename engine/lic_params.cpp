@@ -54,5 +54,8 @@ std::string_view toString(NoiseFilter value) {
 std::string_view toString(DirectionMode value) {
   return value == DirectionMode::Normalized ? "normalized" : "magnitude";
 }
+std::string_view toString(StepScheme value) {
+  return value == StepScheme::Exact ? "exact" : "ab2";
+}
 
 }  // namespace lic3d

@@ -17,6 +17,11 @@ enum class NoiseFilter : std::uint32_t { Nearest = 0, Linear = 1 };
 // Normalized: unit steps of h voxels. Magnitude: steps of h * |v| / max|v| voxels (the thesis'
 // velocity-scaled steps, which shorten streamlines in slow regions).
 enum class DirectionMode : std::uint32_t { Normalized = 0, Magnitude = 1 };
+// How the rk2 integrator steps (docs/LIC_SEMANTICS.md). Exact: every step of h is an RK2
+// (midpoint) step, two texture fetches per sample. Ab2: the first step is RK2, the others
+// two-step Adams-Bashforth steps of h, second order from the directions at the last two
+// samples: one fetch per sample. Euler and RK4 ignore it.
+enum class StepScheme : std::uint32_t { Exact = 0, Ab2 = 1 };
 
 struct LicParams {
   int length = 20;      // L: steps each way (before bias); with h = 0.5, 10 voxels
@@ -26,6 +31,7 @@ struct LicParams {
   Kernel kernel = Kernel::Box;
   NoiseFilter noiseFilter = NoiseFilter::Linear;
   DirectionMode direction = DirectionMode::Normalized;
+  StepScheme scheme = StepScheme::Exact;  // ab2 is not the default: docs/LIC_SEMANTICS.md
   // Thesis 5.1.4: voxels whose streamline touches a black voxel of this mask are not drawn.
   SparsityParams sparsity;
 
@@ -46,5 +52,6 @@ std::string_view toString(Integrator value);
 std::string_view toString(Kernel value);
 std::string_view toString(NoiseFilter value);
 std::string_view toString(DirectionMode value);
+std::string_view toString(StepScheme value);
 
 }  // namespace lic3d

@@ -92,7 +92,20 @@ double maxVoxelSpeedOverVoxels(const VectorField& field) {
 FieldSampler::FieldSampler(const VectorField& field)
     : field_(field), scale_(voxelUnitScale(field.geometry)), maxSpeed_(maxVoxelSpeed(field)) {}
 
+FieldSampler::FieldSampler(const VectorField& field, Dims output) : FieldSampler(field) {
+  if (output == field.dims) return;
+  resampled_ = true;
+  fieldPerOutput_ = glm::dvec3(field.dims) / glm::dvec3(output);
+  scale_ /= fieldPerOutput_;
+  maxSpeed_ = 0.0;
+  for (const glm::vec3& v : field.vectors) {
+    const double x = v.x * scale_.x, y = v.y * scale_.y, z = v.z * scale_.z;
+    maxSpeed_ = std::max(maxSpeed_, std::sqrt(x * x + y * y + z * z));
+  }
+}
+
 glm::dvec3 FieldSampler::at(glm::dvec3 x) const {
+  if (resampled_) x = (x + 0.5) * fieldPerOutput_ - 0.5;
   const Dims d = field_.dims;
   const Corner cx = axisCorner(x.x, d.x), cy = axisCorner(x.y, d.y), cz = axisCorner(x.z, d.z);
   auto v = [&](int i, int j, int k) { return glm::dvec3(field_.at(i, j, k)); };
@@ -127,10 +140,13 @@ std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
   std::vector<glm::dvec3> samples{start};
   glm::dvec3 x = start;
   const double sh = sign * static_cast<double>(params.step);
+  const bool ab2 = params.integrator == Integrator::Rk2 && params.scheme == StepScheme::Ab2;
+  glm::dvec3 previous(0.0);  // the direction at the sample before x (AB2)
   for (int i = 1; i <= steps; ++i) {
     const glm::dvec3 d = stepper.directionAt(x);
     if (d == glm::dvec3(0.0)) break;  // critical point: x was the last sample
-    x = stepper.advance(x, d, sh);
+    x = ab2 && i > 1 ? x + sh * (1.5 * d - 0.5 * previous) : stepper.advance(x, d, sh);
+    previous = d;
     if (!inside(x, dims)) break;  // never clamp a streamline back into the grid
     samples.push_back(x);
   }
@@ -183,35 +199,44 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   if (noise.dims != field.dims)
     return inputError("the noise volume and the field must have the same grid");
 
-  ScalarVolume out;
-  out.dims = field.dims;
-  out.geometry = field.geometry;
-  out.values.resize(voxelCount(field.dims));
   const FieldSampler sampler(field);
   std::optional<SparsityMask> mask;
   if (params.sparsity.distribution != SparsityDistribution::None) {
     LIC3D_TRY_ASSIGN(mask, field.piece
                                ? makeSparsityMaskPiece(params.sparsity, *field.piece, field.dims)
                                : makeSparsityMask(params.sparsity, field.dims));
-    out.drawn.resize(out.values.size());
   }
+  ScalarVolume out =
+      computeLicOnGrid(sampler, noise, params, mask ? &*mask : nullptr, threads, progress);
+  out.geometry = field.geometry;
+  return out;
+}
+
+ScalarVolume computeLicOnGrid(const FieldSampler& sampler, const NoiseVolume& noise,
+                              const LicParams& params, const SparsityMask* mask, unsigned threads,
+                              const ProgressCallback& progress) {
+  const Dims dims = noise.dims;
+  ScalarVolume out;
+  out.dims = dims;
+  out.values.resize(voxelCount(dims));
+  if (mask) out.drawn.resize(out.values.size());
 
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  const int slices = field.dims.z;
+  // Work is handed out in rows (y, z pairs): a 2D grid has a single z slice.
+  const int rows = dims.y * dims.z;
   std::atomic<int> next{0};
   std::atomic<int> done{0};
   auto work = [&](bool reports) {
-    for (int k = next++; k < slices; k = next++) {
-      for (int j = 0; j < field.dims.y; ++j)
-        for (int i = 0; i < field.dims.x; ++i) {
-          const std::size_t index = voxelIndex(field.dims, i, j, k);
-          const LicSample sample =
-              licSampleAtVoxel(sampler, noise, params, {i, j, k}, mask ? &*mask : nullptr);
-          out.values[index] = static_cast<float>(sample.value);
-          if (mask) out.drawn[index] = sample.drawn ? 1 : 0;
-        }
+    for (int row = next++; row < rows; row = next++) {
+      const int j = row % dims.y, k = row / dims.y;
+      for (int i = 0; i < dims.x; ++i) {
+        const std::size_t index = voxelIndex(dims, i, j, k);
+        const LicSample sample = licSampleAtVoxel(sampler, noise, params, {i, j, k}, mask);
+        out.values[index] = static_cast<float>(sample.value);
+        if (mask) out.drawn[index] = sample.drawn ? 1 : 0;
+      }
       const int finished = ++done;
-      if (reports && progress) progress(static_cast<double>(finished) / slices);
+      if (reports && progress) progress(static_cast<double>(finished) / rows);
     }
   };
   std::vector<std::thread> pool;

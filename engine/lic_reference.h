@@ -39,15 +39,25 @@ double maxVoxelSpeedOverVoxels(const VectorField& field);
 class FieldSampler {
  public:
   explicit FieldSampler(const VectorField& field);
+  // LIC on a grid of `output` voxels covering the same box as the field's (2D LIC's image, which
+  // may be finer than the field; docs/LIC_SEMANTICS.md, "2D LIC"): positions are in output
+  // voxels, output voxel x lies at field position (x + 0.5) * N / W - 0.5 per axis (N field, W
+  // output voxels), and vectors are in output voxel units (voxelUnitScale times W / N per axis).
+  // With output == field.dims this is the field's own sampler.
+  FieldSampler(const VectorField& field, Dims output);
   // The interpolated vector times voxelUnitScale (interpolation and the per-axis scale commute).
   glm::dvec3 at(glm::dvec3 x) const;
-  // maxVoxelSpeed of the field.
+  // maxVoxelSpeed of the field (in output voxel units when resampled).
   double maxSpeed() const { return maxSpeed_; }
+  // Per axis, what at() multiplies the interpolated vector by (the GPU uploads use the same).
+  glm::dvec3 unitScale() const { return scale_; }
 
  private:
   const VectorField& field_;
   glm::dvec3 scale_{1.0};
   double maxSpeed_ = 0.0;
+  bool resampled_ = false;
+  glm::dvec3 fieldPerOutput_{1.0};  // N / W per axis
 };
 
 // The samples x_0 = start, x_1, ... that a streamline reaches in direction sign (+1 or -1) within
@@ -74,6 +84,13 @@ double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const L
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
                                          const LicParams& params, unsigned threads = 0,
                                          const ProgressCallback& progress = {});
+
+// The LIC value of every voxel of the noise's grid, whose streamlines follow `sampler` (made for
+// that grid), with the sparsity `mask` when given; rows are shared by `threads` threads (0: every
+// hardware thread). computeLicReference and the 2D reference (lic2d_reference.h) both use it.
+ScalarVolume computeLicOnGrid(const FieldSampler& sampler, const NoiseVolume& noise,
+                              const LicParams& params, const SparsityMask* mask,
+                              unsigned threads = 0, const ProgressCallback& progress = {});
 
 // Noise sample at a continuous position with the given filter (nearest voxel or trilinear).
 double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x);

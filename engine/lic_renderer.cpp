@@ -28,7 +28,7 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   renderer.precision_ = resolvePrecision(context, options.fieldPrecision);
   renderer.doubleBuffered_ = options.doubleBuffered;
   LIC3D_TRY(renderer.setFramePrecision(options.framePrecision));
-  LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context));
+  LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context, options.naiveLicKernel));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context, options.runtimeModes));
   if (context.supportsTimestamps()) {
@@ -78,7 +78,26 @@ Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume&
     volumes_[1] = Image();
   }
   field_ = FieldTexture();  // free the old texture before allocating the new one
+  interpolated_.reset();    // a steady field: any time series' steps are no longer needed
+  fieldChanged_ = false;
+  timeTexture_ = false;
+  for (FieldStep& step : timeSteps_) step = FieldStep();
   LIC3D_TRY_ASSIGN(field_, uploadLicInputs(*context_, field, noise, precision_));
+  if (licPass_.separateNoise()) {
+    separateNoise_ = Image();
+    ImageDesc desc;
+    desc.format = VK_FORMAT_R8_UNORM;
+    desc.extent = {static_cast<std::uint32_t>(field.dims.x),
+                   static_cast<std::uint32_t>(field.dims.y),
+                   static_cast<std::uint32_t>(field.dims.z)};
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.name = "separate noise (naive kernel)";
+    std::vector<std::uint8_t> bytes(voxelCount(field.dims));
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+      bytes[i] = static_cast<std::uint8_t>(std::lround(noise.value(i) * 255.0f));
+    LIC3D_TRY_ASSIGN(separateNoise_, Image::create(*context_, desc));
+    LIC3D_TRY(uploadImage(*context_, separateNoise_, bytes.data(), bytes.size()));
+  }
   return {};
 }
 
@@ -133,6 +152,7 @@ VolumeFacts LicRenderer::volumeFacts() const {
   facts.minMagnitude = static_cast<float>(field_.minMagnitude);
   facts.maxMagnitude = static_cast<float>(field_.maxMagnitude);
   facts.texelToPhysical = glm::vec3(field_.texelToPhysical);
+  facts.fieldPrecision = field_.precision;
   facts.intensityMean = statistics_.mean;
   facts.intensityDeviation = statistics_.deviation;
   facts.sparsity =
@@ -143,6 +163,8 @@ VolumeFacts LicRenderer::volumeFacts() const {
 std::uint64_t LicRenderer::volumeBytes() const {
   std::uint64_t bytes = field_.image ? field_.image.memorySize() : 0;
   for (const Image& v : volumes_) bytes += v ? v.memorySize() : 0;
+  for (const FieldStep& step : timeSteps_) bytes += step.image ? step.image.memorySize() : 0;
+  if (interpolation_) bytes += interpolation_->noiseBytes();
   return bytes + (mask_ ? mask_.memorySize() : 0);
 }
 
@@ -158,6 +180,74 @@ LicStatus LicRenderer::licStatus() const {
   return status;
 }
 
+// ---- Unsteady fields ---------------------------------------------------------------------------
+
+Result<void> LicRenderer::setTimeNoise(const NoiseVolume& noise) {
+  if (!interpolation_) {
+    LIC3D_TRY_ASSIGN(FieldInterpolation pass, FieldInterpolation::create(*context_));
+    interpolation_.emplace(std::move(pass));
+  }
+  vkQueueWaitIdle(context_->queue());  // an interpolation may still read the old noise
+  LIC3D_TRY(interpolation_->setNoise(noise));
+  interpolated_.reset();  // the texture's noise must be written again
+  return {};
+}
+
+bool LicRenderer::hasTimeStep(int index) const {
+  for (const FieldStep& step : timeSteps_)
+    if (step.image && step.index == index) return true;
+  return false;
+}
+
+Result<void> LicRenderer::setTimeStep(int index, const VectorField& step, int keep) {
+  if (hasTimeStep(index)) return {};
+  const int slot = timeSteps_[0].image && timeSteps_[0].index == keep ? 1 : 0;
+  const int replaced = timeSteps_[slot].index;
+  if (interpolated_ && (interpolated_->first == replaced || interpolated_->second == replaced))
+    interpolated_.reset();
+  timeSteps_[slot] = FieldStep();  // free the old step before allocating the new one
+  LIC3D_TRY_ASSIGN(timeSteps_[slot], uploadFieldStep(*context_, step, index, precision_));
+  return {};
+}
+
+Result<void> LicRenderer::interpolateTime(int first, int second, double weight) {
+  const FieldStep* a = nullptr;
+  const FieldStep* b = nullptr;
+  for (const FieldStep& step : timeSteps_) {
+    if (step.image && step.index == first) a = &step;
+    if (step.image && step.index == second) b = &step;
+  }
+  if (!a || !b)
+    return inputError("time steps " + std::to_string(first) + " and " + std::to_string(second) +
+                      " must be resident before interpolating between them");
+  if (!interpolation_) return inputError("the time series' noise was not set");
+  const TimeKey key{first, second, weight};
+  if (interpolated_ && *interpolated_ == key) return {};
+  // The texture the interpolation writes, made once per grid (it replaces a steady field's).
+  if (!timeTexture_ || field_.dims != a->dims || !(field_.geometry == a->geometry)) {
+    vkDeviceWaitIdle(context_->device());  // frames in flight may read the old texture
+    if (a->dims != field_.dims) {
+      job_.reset();
+      finished_.reset();
+      shownParams_.reset();
+      maskParams_.reset();
+      mask_ = Image();
+      volumes_[0] = Image();
+      volumes_[1] = Image();
+    }
+    piece_.reset();
+    field_ = FieldTexture();
+    timeTexture_ = false;
+    LIC3D_TRY_ASSIGN(field_, interpolation_->createTarget(a->dims, a->geometry, precision_));
+    timeTexture_ = true;
+  }
+  interpolated_.reset();
+  LIC3D_TRY(interpolation_->interpolate(*a, *b, weight, field_));
+  interpolated_ = key;
+  fieldChanged_ = true;
+  return {};
+}
+
 // ---- Jobs --------------------------------------------------------------------------------------
 
 Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
@@ -165,6 +255,7 @@ Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
   if (!field_.image) return inputError("no vector field and noise were set");
   LIC3D_TRY(validate(params.sparsity, piece_ ? piece_->wholeDims : field_.dims));
   if (!force && job_ && job_->params == params) return {};
+  fieldChanged_ = false;  // the job reads the field texture as it is now
   Job job;
   job.params = params;
   job.needsMask = params.sparsity.distribution != SparsityDistribution::None &&
@@ -183,8 +274,8 @@ Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
 
 Result<void> LicRenderer::requestLic(const LicParams& params) {
   const std::optional<LicParams>& latest = finished_ ? finished_->params : shownParams_;
-  if (!job_ && latest && *latest == params) return {};
-  return startJob(params, false);
+  if (!job_ && latest && *latest == params && !fieldChanged_) return {};
+  return startJob(params, fieldChanged_);
 }
 
 Result<void> LicRenderer::uploadMask(const SparsityMask& mask) {
@@ -244,7 +335,8 @@ Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, s
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
-  LIC3D_TRY(licPass_.record(cmd, field_, maskFor(job_->params), back, job_->params, zBegin, zEnd));
+  LIC3D_TRY(licPass_.record(cmd, field_, maskFor(job_->params), back, job_->params, zBegin, zEnd,
+                            separateNoise_ ? &separateNoise_ : nullptr));
   work.slicesRecorded = zEnd - zBegin;
   job_->nextZ = zEnd;
   if (zEnd < dims.z) return work;
@@ -273,8 +365,8 @@ void LicRenderer::collectStatistics(std::uint32_t slot) {
 
 Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
   LIC3D_TRY(validate(params));
-  if (!job_ && shownParams_ && *shownParams_ == params) return false;
-  LIC3D_TRY(startJob(params, false));
+  if (!job_ && shownParams_ && *shownParams_ == params && !fieldChanged_) return false;
+  LIC3D_TRY(startJob(params, fieldChanged_));
   const int slab = progress ? (field_.dims.z + kProgressSlabs - 1) / kProgressSlabs : field_.dims.z;
   while (job_) {
     if (job_->needsMask) job_->mask.wait();

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "error.h"
+#include "field_interpolation.h"
 #include "gpu_resources.h"
 #include "gpu_timer.h"
 #include "lic_histogram.h"
@@ -39,6 +40,9 @@ struct RendererOptions {
   FramePrecision framePrecision = FramePrecision::Float16;
   bool runtimeModes = false;   // benchmark builds only: see SlicePass::create
   bool doubleBuffered = false;  // a second LIC volume for frame-paced recomputes
+  // Benchmark builds only: the LIC pass is the naive reference kernel (noise in an R8 texture of
+  // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
+  bool naiveLicKernel = false;
 };
 
 // What one recordLicWork() call did.
@@ -107,9 +111,31 @@ class LicRenderer {
   Result<void> recordDraw(VkCommandBuffer cmd, VkFormat format, VkExtent2D extent,
                           const ViewParams& view, std::uint32_t slotBase);
   bool hasVolume() const { return shownParams_.has_value(); }
+  // Whether updateLic(params) would run the pass: no volume of `params` for the current field.
+  bool needsLic(const LicParams& params) const {
+    return job_ || !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
+  }
   LicStatus licStatus() const;
 
-  // ---- State -------------------------------------------------------------------------------------
+  // ---- Unsteady fields (docs/TIME.md) -----------------------------------------------------------
+  // A time series keeps two of its steps resident and makes the field texture from them on the
+  // GPU (FieldInterpolation). A new field recomputes the LIC volume at the next updateLic or
+  // requestLic; the shown volume stays until then, so a time slider never blanks the picture.
+
+  // The noise of the series, on the steps' grid; set it before the first interpolateTime.
+  Result<void> setTimeNoise(const NoiseVolume& noise);
+  // Uploads `step` as step `index` of the series into the resident slot that does not hold step
+  // `keep` (the other step in use): only two steps are ever on the device.
+  Result<void> setTimeStep(int index, const VectorField& step, int keep);
+  bool hasTimeStep(int index) const;
+  // The field becomes (1 - w) step `first` + w step `second`, both resident.
+  Result<void> interpolateTime(int first, int second, double weight);
+  // GPU milliseconds of the last blend (0 before any or without timestamp queries).
+  double lastBlendMilliseconds() const {
+    return interpolation_ ? interpolation_->lastMilliseconds() : 0.0;
+  }
+
+  // ---- State ------------------------------------------------------------------------------------
 
   // What frames are drawn from, for the shown LIC volume.
   VolumeFacts volumeFacts() const;
@@ -159,6 +185,7 @@ class LicRenderer {
   VkFormat frameFormat_ = VK_FORMAT_R16G16B16A16_SFLOAT;
   bool doubleBuffered_ = false;
   FieldTexture field_;
+  Image separateNoise_;  // R8, only for the naive kernel
   Image volumes_[2];  // the shown one is volumes_[front_]; the other is written by jobs
   int front_ = 0;
   std::optional<LicParams> shownParams_;  // what the shown volume holds; empty when none
@@ -175,6 +202,17 @@ class LicRenderer {
   std::optional<SparsityParams> maskParams_;
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
   std::uint64_t maskBuilds_ = 0;
+  // Unsteady fields: the pass, the two resident steps and what the field texture was made from.
+  std::optional<FieldInterpolation> interpolation_;
+  FieldStep timeSteps_[2];
+  struct TimeKey {
+    int first, second;
+    double weight;
+    bool operator==(const TimeKey&) const = default;
+  };
+  std::optional<TimeKey> interpolated_;
+  bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
+  bool timeTexture_ = false;   // field_ is written by interpolation_ (not uploaded)
   Image target_;
   Buffer targetReadback_;
 };

@@ -59,7 +59,7 @@ std::uint64_t hostAvailableBytes() {
 MemoryEstimate estimateMemory(const MemoryRequest& r) {
   MemoryEstimate e;
   const std::uint64_t voxels = voxelCount(r.dims);
-  const std::uint64_t texel = r.precision == FieldPrecision::Float ? 16 : 8;
+  const std::uint64_t texel = fieldTexelBytes(r.precision);
   constexpr MemoryPlace device = MemoryPlace::Device, staging = MemoryPlace::Staging,
                         host = MemoryPlace::Host;
   auto add = [&](std::string what, std::uint64_t bytes, MemoryPlace place) {
@@ -71,11 +71,23 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
   // staging buffer while uploading.
   add("field vectors (host)", voxels * 12, host);
   add("noise (host)", voxels, host);
-  add("packed field texels (host)", voxels * texel, host);
-  add("upload staging", voxels * texel, staging);
+  if (r.timeSeries) {
+    // Steps keep 16 bits per component at least (field_interpolation.h); one is read and
+    // uploaded at a time, and the noise goes up once as float.
+    const std::uint64_t step = r.precision == FieldPrecision::Float ? 16 : 8;
+    const char* format = r.precision == FieldPrecision::Float ? "RGBA32F" : "RGBA16F";
+    add("packed time step texels (host)", voxels * step, host);
+    add("time step upload staging", voxels * step, staging);
+    for (const char* which : {"first", "second"})
+      add(std::string(which) + " resident time step (" + format + ")", voxels * step, device);
+    add("time series noise (R32F)", voxels * 4, device);
+    add("time series noise as float (host)", voxels * 4, host);
+  } else {
+    add("packed field texels (host)", voxels * texel, host);
+    add("upload staging", voxels * texel, staging);
+  }
   // Device: the packed field+noise texture, the LIC volume(s) (RG16: value, drawn), the mask.
-  add(r.precision == FieldPrecision::Float ? "field+noise texture (RGBA32F)"
-                                           : "field+noise texture (RGBA16F)",
+  add("field+noise texture (" + std::string(fieldTextureFormatName(r.precision)) + ")",
       voxels * texel, device);
   add("LIC volume (RG16)", voxels * 4, device);
   if (r.doubleBuffered) add("second LIC volume (RG16)", voxels * 4, device);

@@ -146,6 +146,9 @@ struct Expectation {
   std::string_view componentsMeaning;
   std::vector<ValueType> types;
   std::string_view typesText;
+  // Vector fields: also a 2D grid (one layer along z), `dimension` - 1 axes, whose first axis
+  // holds 2 or `components` values (2D vectors lie in the x-y plane).
+  bool planar = false;
 };
 
 std::string_view trim(std::string_view text) {
@@ -173,21 +176,22 @@ std::vector<std::string_view> splitVectorList(std::string_view text) {
   return items;
 }
 
-std::optional<glm::dvec3> parseVector(std::string_view text) {
+// "(x,y,z)", or "(x,y)" for a 2D space (`count` 2; z is then 0).
+std::optional<glm::dvec3> parseVector(std::string_view text, int count = 3) {
   text = trim(text);
   if (text.size() < 2 || text.front() != '(' || text.back() != ')') return std::nullopt;
   text = text.substr(1, text.size() - 2);
   glm::dvec3 vector{0.0};
-  for (int axis = 0; axis < 3; ++axis) {
+  for (int axis = 0; axis < count; ++axis) {
+    const bool last = axis == count - 1;
     const std::size_t comma = text.find(',');
-    if ((axis < 2) == (comma == std::string_view::npos)) return std::nullopt;
-    const std::string_view item = axis < 2 ? text.substr(0, comma) : text;
+    if (last != (comma == std::string_view::npos)) return std::nullopt;
+    const std::string_view item = last ? text : text.substr(0, comma);
     if (!parseDouble(trim(item), vector[axis]) || !std::isfinite(vector[axis])) return std::nullopt;
-    if (axis < 2) text.remove_prefix(comma + 1);
+    if (!last) text.remove_prefix(comma + 1);
   }
   return vector;
 }
-
 
 // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
 std::string formatVector(const glm::dvec3& v) {
@@ -305,7 +309,7 @@ class HeaderInterpreter {
     const auto where = fields_.find(key);
     return where == fields_.end() ? nullptr : &where->second;
   }
-  std::size_t firstSpatialAxis() const { return expected_.dimension - 3; }
+  std::size_t firstSpatialAxis() const { return dimension_ - spatialAxes_; }
 
   // data file, line skip, byte skip
   Result<void> readDataFile(Layout& layout) const {
@@ -349,16 +353,24 @@ class HeaderInterpreter {
     std::uint64_t dimensionValue = 0;
     if (!parseUnsigned(dimension->value, dimensionValue))
       return fail("dimension", quoteForMessage(dimension->value) + " is not a whole number");
-    if (dimensionValue != expected_.dimension)
-      return fail("dimension", "expected " + std::to_string(expected_.dimension) + " (" +
-                                   std::string(expected_.dimensionMeaning) + "), found " +
-                                   std::to_string(dimensionValue));
+    if (expected_.planar && dimensionValue + 1 == expected_.dimension) {
+      dimension_ = dimensionValue;  // a 2D grid: one layer along z
+      spatialAxes_ = 2;
+    } else if (dimensionValue != expected_.dimension) {
+      return fail(
+          "dimension",
+          "expected " + std::to_string(expected_.dimension) + " (" +
+              std::string(expected_.dimensionMeaning) + ")" +
+              (expected_.planar ? " or " + std::to_string(expected_.dimension - 1) + " (a 2D grid)"
+                                : std::string()) +
+              ", found " + std::to_string(dimensionValue));
+    }
 
     const HeaderField* sizes = find("sizes");
     if (!sizes) return missing("sizes");
     const std::vector<std::string_view> words = splitWords(sizes->value);
-    if (words.size() != expected_.dimension)
-      return fail("sizes", "expected " + std::to_string(expected_.dimension) +
+    if (words.size() != dimension_)
+      return fail("sizes", "expected " + std::to_string(dimension_) +
                                " numbers (one per axis), found " + std::to_string(words.size()));
     std::vector<std::uint64_t> values;
     for (const std::string_view word : words) {
@@ -371,15 +383,17 @@ class HeaderInterpreter {
       values.push_back(value);
     }
     const std::size_t first = firstSpatialAxis();
-    if (first == 1 && values[0] != expected_.components)
-      return fail("sizes", "the first axis holds the " +
-                               std::string(expected_.componentsMeaning) + " and must have size " +
-                               std::to_string(expected_.components) + ", found " +
+    const bool twoComponents = spatialAxes_ == 2 && first == 1 && values[0] == 2;
+    if (first == 1 && values[0] != expected_.components && !twoComponents)
+      return fail("sizes", "the first axis holds the " + std::string(expected_.componentsMeaning) +
+                               " and must have size " + std::to_string(expected_.components) +
+                               (spatialAxes_ == 2 ? " or 2" : "") + ", found " +
                                std::to_string(values[0]));
-    layout.components = first == 1 ? expected_.components : 1;
+    layout.components = first == 1 ? static_cast<std::size_t>(values[0]) : 1;
+    const std::uint64_t depth = spatialAxes_ == 3 ? values[first + 2] : 1;
     layout.dims = Dims(static_cast<int>(values[first]), static_cast<int>(values[first + 1]),
-                       static_cast<int>(values[first + 2]));
-    layout.voxels = values[first] * values[first + 1] * values[first + 2];
+                       static_cast<int>(depth));
+    layout.voxels = values[first] * values[first + 1] * depth;
     if (layout.voxels > kMaxVoxels)
       return fail("sizes", std::to_string(layout.voxels) + " voxels exceed the limit of " +
                                std::to_string(kMaxVoxels));
@@ -444,14 +458,19 @@ class HeaderInterpreter {
   // space dimension, space directions or spacings, space origin
   Result<void> readGeometry(Layout& layout) const {
     const HeaderField* spaceDimension = find("space dimension");
-    if (spaceDimension && spaceDimension->value != "3")
-      return fail("space dimension", "expected 3, found " + quoteForMessage(spaceDimension->value));
+    // A 2D grid may lie in a 2D space: its vectors and origin then have two numbers.
+    const bool space2D = spatialAxes_ == 2 && spaceDimension && spaceDimension->value == "2";
+    if (spaceDimension && spaceDimension->value != "3" && !space2D)
+      return fail("space dimension",
+                  std::string(spatialAxes_ == 2 ? "expected 2 or 3" : "expected 3") + ", found " +
+                      quoteForMessage(spaceDimension->value));
+    const int spaceAxes = space2D ? 2 : 3;
     const std::size_t first = firstSpatialAxis();
     // NRRD forbids both; when a writer emits both anyway the directions are the fuller description.
     if (const HeaderField* directions = find("space directions")) {
       const std::vector<std::string_view> items = splitVectorList(directions->value);
-      if (items.size() != expected_.dimension)
-        return fail("space directions", "expected " + std::to_string(expected_.dimension) +
+      if (items.size() != dimension_)
+        return fail("space directions", "expected " + std::to_string(dimension_) +
                                             " entries (one per axis), found " +
                                             std::to_string(items.size()));
       for (std::size_t axis = 0; axis < items.size(); ++axis) {
@@ -461,12 +480,13 @@ class HeaderInterpreter {
                                                 quoteForMessage(items[axis]));
           continue;
         }
-        const std::optional<glm::dvec3> direction = parseVector(items[axis]);
+        const std::optional<glm::dvec3> direction = parseVector(items[axis], spaceAxes);
         if (!direction)
-          return fail("space directions",
-                      "axis " + std::to_string(axis) +
-                          ": expected a vector of 3 finite numbers like (1,0,0), found " +
-                          quoteForMessage(items[axis]));
+          return fail("space directions", "axis " + std::to_string(axis) +
+                                              ": expected a vector of " +
+                                              std::to_string(spaceAxes) + " finite numbers like " +
+                                              (spaceAxes == 2 ? "(1,0)" : "(1,0,0)") + ", found " +
+                                              quoteForMessage(items[axis]));
         // lic3d grids are axis aligned: an oblique or rotated frame keeps only each axis' length.
         const double length = std::sqrt(glm::dot(*direction, *direction));
         if (!(length > 0.0) || !std::isfinite(length))
@@ -475,8 +495,8 @@ class HeaderInterpreter {
       }
     } else if (const HeaderField* spacings = find("spacings")) {
       const std::vector<std::string_view> words = splitWords(spacings->value);
-      if (words.size() != expected_.dimension)
-        return fail("spacings", "expected " + std::to_string(expected_.dimension) +
+      if (words.size() != dimension_)
+        return fail("spacings", "expected " + std::to_string(dimension_) +
                                     " numbers (one per axis), found " +
                                     std::to_string(words.size()));
       // The component axis' spacing is conventionally nan and means nothing: it is not checked.
@@ -490,10 +510,11 @@ class HeaderInterpreter {
       }
     }
     if (const HeaderField* origin = find("space origin")) {
-      const std::optional<glm::dvec3> value = parseVector(origin->value);
+      const std::optional<glm::dvec3> value = parseVector(origin->value, spaceAxes);
       if (!value)
-        return fail("space origin", "expected (x,y,z) with 3 finite numbers, found " +
-                                        quoteForMessage(origin->value));
+        return fail("space origin", std::string(spaceAxes == 2 ? "expected (x,y) with 2"
+                                                               : "expected (x,y,z) with 3") +
+                                        " finite numbers, found " + quoteForMessage(origin->value));
       layout.geometry.origin = *value;
     }
     return {};
@@ -502,6 +523,9 @@ class HeaderInterpreter {
   const std::filesystem::path& path_;
   const HeaderFields& fields_;
   const Expectation& expected_;
+  // As the header gives them: expected_.dimension and 3, or one less and 2 for a planar grid.
+  mutable std::size_t dimension_ = expected_.dimension;
+  mutable std::size_t spatialAxes_ = 3;
 };
 
 // Moves `reader` past `line skip` lines and, for raw data, `byte skip` bytes.
@@ -742,7 +766,8 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
                              "3 vector components on a 3D grid",
                              "vector components",
                              {ValueType::Float, ValueType::Double},
-                             "float or double"};
+                             "float or double",
+                             true};
   LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
   const Layout& layout = opened.layout;
   VectorField field;
@@ -750,10 +775,11 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
   field.geometry = layout.geometry;
   field.vectors.resize(static_cast<std::size_t>(layout.voxels));
 
+  const std::uint64_t components = layout.components;  // 3, or 2 on a 2D grid (z is 0)
   std::uint64_t next = 0;  // index of the next component, over all voxels
   const auto store = [&](double value) {
-    field.vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
-        vectorComponent(value);
+    field.vectors[static_cast<std::size_t>(next / components)]
+                 [static_cast<glm::length_t>(next % components)] = vectorComponent(value);
     ++next;
   };
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {

@@ -25,6 +25,8 @@ namespace lic3d {
 // from `space directions` (the length of each axis vector is its spacing: lic3d grids are axis
 // aligned, so a rotation or flip is dropped) or else from `spacings`; `space origin` sets the
 // origin. Vectors with a NaN or infinite component become zero and are counted (finishVectorField).
+// A 2D grid (one layer along z) is also read: `dimension: 3`, `sizes: C NX NY` with C = 3 or 2
+// (vectors (x, y, 0)), `space dimension` 2 or 3 (directions and origin of 2 or 3 numbers).
 Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path,
                                         FieldReadInfo* info = nullptr);
 

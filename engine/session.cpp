@@ -1,5 +1,6 @@
 #include "session.h"
 
+#include <cmath>
 #include <functional>
 #include <map>
 
@@ -109,6 +110,13 @@ std::string sessionToJson(const Session& s) {
                 {"array", s.field.array}};
   j["noise"] = {{"file", s.noise.file}, {"seed", s.noise.seed}, {"seed_spots", s.noise.seedSpots}};
   j["precision"] = enumName(s.precision);
+  j["mode"] = s.twoD ? "2d" : "3d";
+  j["time"] = s.time;
+  j["time_steps"] = s.timeSteps;
+  j["plane"] = {{"axis", std::string(1, static_cast<char>('x' + s.plane.axis))},
+                {"index", s.plane.index},
+                {"width", s.plane.width},
+                {"height", s.plane.height}};
   j["lic"] = {{"length", l.length},
               {"step", l.step},
               {"bias", l.bias},
@@ -116,6 +124,7 @@ std::string sessionToJson(const Session& s) {
               {"kernel", enumName(l.kernel)},
               {"noise_filter", enumName(l.noiseFilter)},
               {"direction", enumName(l.direction)},
+              {"scheme", enumName(l.scheme)},
               {"sparsity",
                {{"distribution", enumName(l.sparsity.distribution)},
                 {"points", l.sparsity.points},
@@ -202,6 +211,23 @@ Result<Session> sessionFromJson(const std::string& text, const std::string& sour
       r.number("seed_spots", s.noise.seedSpots);
     });
     top.name("precision", s.precision);
+    std::string mode = s.twoD ? "2d" : "3d";
+    top.string("mode", mode);
+    if (error.empty() && mode != "2d" && mode != "3d") error = "mode must be 2d or 3d";
+    s.twoD = mode == "2d";
+    top.number("time", s.time);
+    top.number("time_steps", s.timeSteps);
+    top.object("plane", [&](Reader& r) {
+      std::string axis(1, static_cast<char>('x' + s.plane.axis));
+      r.string("axis", axis);
+      if (error.empty() && axis != "x" && axis != "y" && axis != "z")
+        error = "plane.axis must be x, y or z";
+      else if (error.empty())
+        s.plane.axis = axis[0] - 'x';
+      r.number("index", s.plane.index);
+      r.number("width", s.plane.width);
+      r.number("height", s.plane.height);
+    });
     top.object("lic", [&](Reader& r) {
       LicParams& l = s.lic;
       r.number("length", l.length);
@@ -211,6 +237,7 @@ Result<Session> sessionFromJson(const std::string& text, const std::string& sour
       r.name("kernel", l.kernel);
       r.name("noise_filter", l.noiseFilter);
       r.name("direction", l.direction);
+      r.name("scheme", l.scheme);
       r.object("sparsity", [&](Reader& sp) {
         sp.name("distribution", l.sparsity.distribution);
         sp.number("points", l.sparsity.points);
@@ -286,6 +313,13 @@ Result<Session> sessionFromJson(const std::string& text, const std::string& sour
   for (int a = 0; a < 3; ++a)
     if (s.field.grid[a] < 1 || s.field.grid[a] > 2048)
       return inputError(source + ": field.grid sizes must be in 1..2048");
+  if (!std::isfinite(s.time)) return inputError(source + ": time must be a finite number");
+  if (s.timeSteps < 0 || s.timeSteps == 1 || s.timeSteps > 100000)
+    return inputError(source + ": time_steps must be 0 or 2..100000");
+  if (s.plane.index < -1 || s.plane.width < 0 || s.plane.width > 16384 || s.plane.height < 0 ||
+      s.plane.height > 16384)
+    return inputError(source + ": plane.index must be -1 or more, plane.width and plane.height "
+                               "0..16384");
   if (auto r = validate(s.lic); !r) return inputError(source + ": " + r.error().message);
   if (auto r = validate(s.view); !r) return inputError(source + ": " + r.error().message);
   return s;

@@ -31,12 +31,30 @@ struct NoiseSource {
   bool operator==(const NoiseSource&) const = default;
 };
 
+// 2D LIC (`lic3d render2d`, the app's 2D mode; thesis chapter 3): which plane of a 3D field, and
+// the size of the LIC image.
+struct PlaneParams {
+  int axis = 2;    // a 3D field is cut across this axis (0, 1, 2: x, y, z)
+  int index = -1;  // at this voxel layer; -1: the middle one
+  int width = 0;   // the LIC image; 0: the field's grid (the other side given: keeping its aspect)
+  int height = 0;
+
+  bool operator==(const PlaneParams&) const = default;
+};
+
 struct Session {
   FieldSource field;
   NoiseSource noise;
   FieldPrecision precision = FieldPrecision::Auto;
   LicParams lic;
   ViewParams view;
+  bool twoD = false;  // 2D LIC of a plane instead of the 3D volume
+  PlaneParams plane;
+  // An analytic field's time, or a file series' position in steps (docs/TIME.md).
+  double time = 0.0;
+  // > 0: a time-dependent analytic field is a series of this many steps over its period, blended
+  // on the GPU like files; 0: it is sampled at each time exactly.
+  int timeSteps = 0;
 
   bool operator==(const Session&) const = default;
 };

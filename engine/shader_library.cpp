@@ -5,12 +5,17 @@
 #include "vk_check.h"
 
 // Generated at build time by glslangValidator --vn (see cmake/Lic3dShaders.cmake).
+#include "field_lerp_byte_comp_spv.h"
+#include "field_lerp_comp_spv.h"
+#include "field_lerp_half_comp_spv.h"
+#include "lic2d_comp_spv.h"
 #include "lic_comp_spv.h"
 #include "lic_histogram_comp_spv.h"
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
 #ifdef LIC3D_BENCH_RUNTIME_MODES
 #include "slice_runtime_frag_spv.h"
+#include "lic_naive_comp_spv.h"
 #endif
 
 namespace lic3d {
@@ -27,6 +32,16 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
 #else
       return {};
 #endif
+    case ShaderId::LicComputeSeparateNoise:
+#ifdef LIC3D_BENCH_RUNTIME_MODES
+      return lic_naive_comp_spv;
+#else
+      return {};
+#endif
+    case ShaderId::Lic2DCompute: return lic2d_comp_spv;
+    case ShaderId::FieldLerp: return field_lerp_comp_spv;
+    case ShaderId::FieldLerpHalf: return field_lerp_half_comp_spv;
+    case ShaderId::FieldLerpByte: return field_lerp_byte_comp_spv;
   }
   return {};
 }
@@ -46,6 +61,11 @@ const char* shaderName(ShaderId id) {
     case ShaderId::SliceVertex: return "slice.vert";
     case ShaderId::SliceFragment: return "slice.frag";
     case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";
+    case ShaderId::LicComputeSeparateNoise: return "lic.comp (naive, separate noise)";
+    case ShaderId::Lic2DCompute: return "lic2d.comp";
+    case ShaderId::FieldLerp: return "field_lerp.comp";
+    case ShaderId::FieldLerpHalf: return "field_lerp.comp (rgba16f)";
+    case ShaderId::FieldLerpByte: return "field_lerp.comp (rgba8 snorm)";
   }
   return "?";
 }

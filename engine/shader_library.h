@@ -22,6 +22,11 @@ enum class ShaderId {
   SliceVertex,
   SliceFragment,
   SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES
+  LicComputeSeparateNoise,    // the benchmark's naive kernel, same builds only
+  Lic2DCompute,
+  FieldLerp,      // time interpolation into an RGBA32F field texture
+  FieldLerpHalf,  // the same into RGBA16F
+  FieldLerpByte,  // the same into RGBA8 SNORM with its packing (FieldPrecision::Byte)
 };
 
 // Whether this build embeds the slice shader with runtime mode switches.

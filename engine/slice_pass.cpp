@@ -83,6 +83,7 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   s.lighting = static_cast<std::uint32_t>(view.lighting);
   s.filter = view.filter == VolumeFilter::Nearest ? 0u : 1u;
   if (view.stereo == StereoMode::Anaglyph) s.anaglyph = eye == Eye::Right ? 2u : 1u;
+  s.fieldPacking = volume.fieldPrecision == FieldPrecision::Byte ? 1u : 0u;
 
   gpu::SliceUniforms& u = frame.uniforms;
   const glm::vec3 h = frame.halfExtent;
@@ -262,7 +263,9 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   LIC3D_ASSERT(slot < kUniformSlots);
   // The runtime-mode shader needs one pipeline per colour write mask only.
   SliceSpecialization key = frame.specialization;
-  if (runtimeModes_) key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph};
+  if (runtimeModes_)
+    key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
+                              .fieldPacking = frame.specialization.fieldPacking};
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(key, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 

@@ -37,10 +37,11 @@ struct SliceSpecialization {
   std::uint32_t lighting = 0;
   std::uint32_t filter = 1;
   std::uint32_t anaglyph = 0;
+  std::uint32_t fieldPacking = 0;  // LicSpecialization::packing
 
   bool operator==(const SliceSpecialization&) const = default;
 };
-static_assert(sizeof(SliceSpecialization) == 12 * 4);
+static_assert(sizeof(SliceSpecialization) == 13 * 4);
 
 // What a frame needs to know about the volume besides the view.
 struct VolumeFacts {
@@ -52,6 +53,7 @@ struct VolumeFacts {
   float intensityMean = 0.5f;       // of the drawn voxels' LIC values
   float intensityDeviation = 0.1f;  // their standard deviation
   bool sparsity = false;            // the LIC volume carries a sparsity mask
+  FieldPrecision fieldPrecision = FieldPrecision::Half;  // how the field texture is packed
 };
 
 // Which eye a draw is for: stereo offsets the camera by half the eye separation.

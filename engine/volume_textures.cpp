@@ -1,5 +1,8 @@
 #include "volume_textures.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/gtc/packing.hpp>
 
 #include "gpu_submit.h"
@@ -29,7 +32,46 @@ std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, gl
   return texels;
 }
 
+// FieldPrecision::Byte: a component in [-1, 1] as SNORM8.
+std::int8_t snorm8(double value) {
+  return static_cast<std::int8_t>(std::lround(std::clamp(value, -1.0, 1.0) * 127.0));
+}
+
+// FieldPrecision::Byte texels (see volume_textures.h): e = u/M / sqrt(|u|/M), noise shifted into
+// the signed range so all 8 bits of it survive.
+std::vector<std::int8_t> packByteTexels(const VectorField& field, const NoiseVolume& noise,
+                                        glm::dvec3 scale) {
+  std::vector<std::int8_t> texels(4 * field.vectors.size());
+  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
+    const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
+    const double speed = glm::length(v);
+    const glm::dvec3 e = speed > 0.0 ? v / std::sqrt(speed) : glm::dvec3(0.0);
+    texels[4 * i + 0] = snorm8(e.x);
+    texels[4 * i + 1] = snorm8(e.y);
+    texels[4 * i + 2] = snorm8(e.z);
+    const double n = std::round(std::clamp(static_cast<double>(noise.value(i)), 0.0, 1.0) * 255.0);
+    texels[4 * i + 3] = static_cast<std::int8_t>(n - 128.0);
+  }
+  return texels;
+}
+
 }  // namespace
+
+std::uint32_t fieldTexelBytes(FieldPrecision precision) {
+  switch (precision) {
+    case FieldPrecision::Byte: return 4;
+    case FieldPrecision::Float: return 16;
+    default: return 8;
+  }
+}
+
+std::string_view fieldTextureFormatName(FieldPrecision precision) {
+  switch (precision) {
+    case FieldPrecision::Byte: return "RGBA8";
+    case FieldPrecision::Float: return "RGBA32F";
+    default: return "RGBA16F";
+  }
+}
 
 Result<void> checkVolumeDims(const Context& context, Dims dims, const char* what) {
   const std::uint32_t limit = context.properties().limits.maxImageDimension3D;
@@ -89,6 +131,11 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
         packTexels<std::uint16_t>(field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
     LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+  } else if (texture.precision == FieldPrecision::Byte) {
+    desc.format = VK_FORMAT_R8G8B8A8_SNORM;
+    const std::vector<std::int8_t> texels = packByteTexels(field, noise, scale);
+    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size()));
   } else {
     desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))

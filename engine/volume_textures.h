@@ -1,10 +1,14 @@
 #pragma once
 // The LIC inputs on the GPU: one 3D texture holding the vector field and the noise together.
 //
-// xyz = the vector in voxel units over its largest length (v * voxelUnitScale / maxVoxelSpeed,
-// see lic_reference.h; v / max|v| on isotropic grids) and w = the noise value, so the texture
-// fetch at a streamline sample gives both the noise there and the direction of the next step:
-// RK2 needs two fetches per sample instead of three.
+// xyz = the vector in voxel units over its largest length (u = v * voxelUnitScale, texel xyz =
+// u / maxVoxelSpeed, see lic_reference.h; v / max|v| on isotropic grids), packed per
+// FieldPrecision, and w = the noise value, so the texture fetch at a streamline sample gives both
+// the noise there and the direction of the next step: the midpoint scheme fetches once per
+// sample (docs/LIC_SEMANTICS.md).
+
+#include <cstdint>
+#include <string_view>
 
 #include "error.h"
 #include "gpu_resources.h"
@@ -17,7 +21,15 @@ enum class FieldPrecision {
   Auto,   // Float on CPU devices (lavapipe), Half on GPUs
   Half,   // RGBA16F: half the memory and bandwidth; 11 significant bits per component
   Float,  // RGBA32F: exact float32 field and noise; GPUs fetch it markedly slower, CPUs faster
+  // RGBA8 SNORM, a quarter of float's memory: xyz = e with e |e| = u / max|u| (the square root
+  // of the relative speed scales the unit direction, so slow flow keeps 7-bit directions down to
+  // 1e-4 of the top speed) and w = (255 n - 128) / 127 for noise n in [0,1] (8-bit noise).
+  Byte,
 };
+
+// Bytes per texel of the field texture (Auto must be resolved first), and its format's name.
+std::uint32_t fieldTexelBytes(FieldPrecision precision);
+std::string_view fieldTextureFormatName(FieldPrecision precision);
 
 struct FieldTexture {
   Image image;

@@ -477,16 +477,20 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
 }
 
 // The array to read: by name, else the section's active attribute (`Vectors`, `Scalars`), else
-// the first with `components` components; PointData before CellData.
+// the first with `components` components, else the first with `alternative` components (2D
+// vectors: 2); PointData before CellData.
 Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& arrays,
                              std::string_view name, std::uint64_t components,
-                             const char* activeAttribute) {
+                             const char* activeAttribute, std::uint64_t alternative = 0) {
   const std::string kind = std::to_string(components) + "-component";
+  const auto fits = [&](const ArrayRef& array) {
+    return array.components == components || (alternative > 0 && array.components == alternative);
+  };
   if (!name.empty()) {
     for (const bool cellData : {false, true}) {
       for (const ArrayRef& array : arrays) {
         if (array.cellData != cellData || array.name != name) continue;
-        if (array.components != components)
+        if (!fits(array))
           return file.fail(describe(array) + " has " + std::to_string(array.components) +
                            " components, expected " + std::to_string(components) +
                            "; " + kind + " arrays: " + listNames(arrays, components));
@@ -500,11 +504,12 @@ Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& a
     const std::string active =
         file.piece.child(cellData ? "CellData" : "PointData").attribute(activeAttribute).value();
     for (const ArrayRef& array : arrays)
-      if (array.cellData == cellData && !active.empty() && array.name == active &&
-          array.components == components)
+      if (array.cellData == cellData && !active.empty() && array.name == active && fits(array))
         return array;
     for (const ArrayRef& array : arrays)
       if (array.cellData == cellData && array.components == components) return array;
+    for (const ArrayRef& array : arrays)
+      if (array.cellData == cellData && fits(array)) return array;
   }
   return file.fail("no " + kind + " DataArray in PointData or CellData");
 }
@@ -787,9 +792,14 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                                        std::string_view arrayName, FieldReadInfo* info) {
   LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
   LIC3D_TRY_ASSIGN(const std::vector<ArrayRef> arrays, listArrays(*file));
-  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, arrayName, 3, "Vectors"));
+  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, arrayName, 3, "Vectors", 2));
   // Cell data on N cells becomes a field of N voxels at the cell centres (cellCentredGrid).
   const CellCentredGrid grid = gridOf(*file, array);
+  // 2D vectors (x, y) belong to a 2D grid: one layer along z.
+  const std::uint64_t components = array.components;
+  if (components == 2 && grid.dims.z != 1)
+    return file->fail(describe(array) + " holds 2D vectors (2 components) on a grid of " +
+                      std::to_string(grid.dims.z) + " layers along z; they need a 2D grid");
   VectorField field;
   field.dims = grid.dims;
   field.geometry = grid.geometry;
@@ -798,15 +808,16 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                 .read([&] { field.vectors.resize(voxelCount(grid.dims)); },
                       [&](const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i, ++next)
-                          field.vectors[static_cast<std::size_t>(next / 3)]
-                                       [static_cast<glm::length_t>(next % 3)] =
+                          field.vectors[static_cast<std::size_t>(next / components)]
+                                       [static_cast<glm::length_t>(next % components)] =
                               vectorComponent(values[i]);
                       }));
   if (info) {
     *info = FieldReadInfo{};
     info->arrayName = array.name;
     for (const ArrayRef& each : arrays)
-      if (each.components == 3) info->arrayNames.push_back(each.name);
+      if (each.components == 3 || (each.components == 2 && grid.dims.z == 1))
+        info->arrayNames.push_back(each.name);
   }
   LIC3D_TRY(finishVectorField(path, field, info));
   return field;

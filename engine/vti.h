@@ -21,7 +21,8 @@
 namespace lic3d {
 
 // The 3-component DataArray named `arrayName`, or when `arrayName` is empty PointData's active
-// `Vectors`, else its first 3-component array, else the same in CellData. Point data wins over
+// `Vectors`, else its first 3-component array, else the same in CellData. On a 2D grid (one
+// layer along z) a 2-component array is taken too, as vectors (x, y, 0). Point data wins over
 // cell data of the same name. Cell data on a grid of N cells becomes a field of N voxels at the
 // cell centres, its origin moved by half a spacing (cellCentredGrid). Any numeric type is read as
 // float; vectors with a NaN or infinite component become zero and are counted

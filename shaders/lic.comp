@@ -15,30 +15,65 @@ layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nea
 layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
 // Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
 layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
+// 0 exact: every RK2 step of h fetches its midpoint and its end (two fetches per sample).
+// 1 ab2: after a first RK2 step, two-step Adams-Bashforth steps of h (one fetch per sample);
+// only RK2 has a choice: Euler already fetches once per sample, RK4 stays as it is
+// (docs/LIC_SEMANTICS.md).
+layout(constant_id = kLicConstScheme) const uint SCHEME = 0;
+// 0: texel xyz = u / max|u|, w = noise (RGBA16F/32F). 1: RGBA8 SNORM, xyz = e with
+// e |e| = u / max|u| (square-root magnitude, so slow flow keeps its direction in 8 bits) and
+// w = (255 noise - 128) / 127 (engine/volume_textures.h).
+layout(constant_id = kLicConstPacking) const uint PACKING = 0;
+// How the two directions are walked (the same samples either way): in one loop on GPUs, whose
+// invocations then wait on two independent fetches at a time; one after the other on CPU
+// drivers, whose SIMD loops run fastest with the fewest live lanes.
+layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = 1;
 
-// xyz = u / max|u| with u the field in voxel units, w = noise (engine/volume_textures.h):
-// integrating u in voxel coordinates follows the physical field on anisotropic grids.
+// The field u in voxel units and the noise (engine/volume_textures.h): integrating u in voxel
+// coordinates follows the physical field on anisotropic grids.
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kLicBindingOutput, rg16) uniform writeonly image3D licImage;
 layout(set = 0, binding = kLicBindingMask) uniform usampler3D sparsityMask;
+#ifdef LIC3D_SEPARATE_NOISE
+// Built only for `lic3d bench`: the naive reference kernel, with the noise in a texture of its
+// own, so an exact RK2 sample costs three fetches (midpoint, end, noise) instead of two.
+layout(set = 0, binding = kLicBindingNoise) uniform sampler3D noiseTexture;
+#endif
 
 layout(push_constant) uniform Push { LicPushConstants pc; };
 
-// (u / max|u|, noise) at continuous voxel position x (voxel centres at integers): hardware
-// trilinear interpolation with clamp-to-edge is the edge-clamped trilinear field of the semantics.
-vec4 fieldAndNoiseAt(vec3 x) { return textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0); }
+// The texel at continuous voxel position x (voxel centres at integers): hardware trilinear
+// interpolation with clamp-to-edge is the edge-clamped trilinear field of the semantics. xyz is
+// still packed (directionOf decodes it); w is the noise, decoded (linear, so it commutes with
+// the interpolation).
+vec4 fieldAndNoiseAt(vec3 x) {
+  vec4 texel = textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0);
+  if (PACKING == 1) texel.w = (127.0 * texel.w + 128.0) / 255.0;
+  return texel;
+}
 vec3 fieldAt(vec3 x) { return fieldAndNoiseAt(x).xyz; }
 
-// Step direction from an interpolated vector; zero at (near) critical points.
+// Step direction from an interpolated (packed) vector; zero at (near) critical points.
 vec3 directionOf(vec3 v) {
-  float magnitude = length(v);
-  if (magnitude <= pc.criticalEpsilon) return vec3(0.0);
-  return DIRECTION == 0 ? v / magnitude : v;
+  // Squared lengths spare a square root per sample. Packing 1 holds e with |u| / max|u| = |e|^2
+  // (its direction is u's), packing 0 u / max|u| itself.
+  float squared = dot(v, v);
+  float threshold = PACKING == 1 ? pc.criticalEpsilon : pc.criticalEpsilon * pc.criticalEpsilon;
+  if (squared <= threshold) return vec3(0.0);
+  if (DIRECTION == 0) return v * inversesqrt(squared);
+  return PACKING == 1 ? v * sqrt(squared) : v;
 }
 
 // The noise at x given the interpolated texel there: trilinear noise comes with it for free.
 float noiseAt(vec3 x, vec4 texel) {
-  if (NOISE_FILTER == 0) return texelFetch(fieldTexture, ivec3(floor(x + 0.5)), 0).w;
+#ifdef LIC3D_SEPARATE_NOISE
+  if (NOISE_FILTER == 0) return texelFetch(noiseTexture, ivec3(floor(x + 0.5)), 0).r;
+  return textureLod(noiseTexture, (x + 0.5) * pc.invDims.xyz, 0.0).r;
+#endif
+  if (NOISE_FILTER == 0) {
+    float w = texelFetch(fieldTexture, ivec3(floor(x + 0.5)), 0).w;
+    return PACKING == 1 ? (127.0 * w + 128.0) / 255.0 : w;
+  }
   return texel.w;
 }
 
@@ -66,12 +101,60 @@ vec3 advance(vec3 x, vec3 d0, float sh) {
   return x + (sh / 6.0) * (d0 + 2.0 * k2 + 2.0 * k3 + k4);
 }
 
+bool outsideGrid(vec3 x) {
+  return any(lessThan(x, vec3(0.0))) || any(greaterThan(x, vec3(pc.dims.xyz - 1)));
+}
+
+// One direction of a streamline, advanced one sample at a time so that main() can interleave
+// the two directions: their fetches are independent, so each invocation keeps two in flight
+// instead of waiting on one chain of dependent fetches.
+struct Walker {
+  vec3 x;      // the last sample
+  vec3 d;      // the direction there (non-zero while alive)
+  vec3 dPrev;  // the direction at the sample before (AB2)
+  int steps;   // Lb or Lf
+  float sh;    // signed h
+  bool alive;
+};
+
+// Takes sample i of the walker's direction if it still runs: adds it to the sums and moves on.
+void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
+          inout bool masked) {
+  if (!w.alive) return;
+  if (i > w.steps) {
+    w.alive = false;
+    return;
+  }
+  vec3 x;
+  if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) {
+    // Two-step Adams-Bashforth: second order from the directions already fetched at the last
+    // two samples, so the sample's own fetch is the only one.
+    x = w.x + w.sh * (1.5 * w.d - 0.5 * w.dPrev);
+  } else {
+    x = advance(w.x, w.d, w.sh);
+  }
+  // Outside the grid the streamline ends; outside samples are never clamped back in.
+  if (outsideGrid(x)) {
+    w.alive = false;
+    return;
+  }
+  // One fetch gives this sample's noise and the next step's direction.
+  vec4 texel = fieldAndNoiseAt(x);
+  float weight = weightOf(sign * i);
+  sum += weight * noiseAt(x, texel);
+  weights += weight;
+  if (touchesBlack(x)) masked = true;
+  w.x = x;
+  w.dPrev = w.d;
+  w.d = directionOf(texel.xyz);
+  if (w.d == vec3(0.0)) w.alive = false;  // a critical sample is the last one
+}
+
 void main() {
   ivec3 voxel = ivec3(gl_GlobalInvocationID) + ivec3(0, 0, pc.dims.w);
   if (any(greaterThanEqual(voxel, pc.dims.xyz))) return;
 
   vec3 start = vec3(voxel);
-  vec3 upper = vec3(pc.dims.xyz - 1);
   vec4 startTexel = fieldAndNoiseAt(start);
   float w0 = weightOf(0);
   float sum = w0 * noiseAt(start, startTexel);
@@ -80,29 +163,18 @@ void main() {
   // shown (0, as in the CPU reference), so its streamline is not followed any further.
   bool masked = touchesBlack(start);
 
-  for (int direction = -1; direction <= 1 && !masked; direction += 2) {
-    int steps = direction < 0 ? pc.licLength - pc.bias : pc.licLength + pc.bias;
-    float sh = float(direction) * pc.step;
-    vec3 x = start;
-    vec3 v = startTexel.xyz;
-    for (int i = 1; i <= steps; ++i) {
-      // A streamline ends at a critical point (the sample there was already taken) ...
-      vec3 d = directionOf(v);
-      if (d == vec3(0.0)) break;
-      x = advance(x, d, sh);
-      // ... or where it leaves the grid: outside samples are never clamped back in.
-      if (any(lessThan(x, vec3(0.0))) || any(greaterThan(x, upper))) break;
-      // One fetch gives this sample's noise and the next step's vector.
-      vec4 texel = fieldAndNoiseAt(x);
-      float w = weightOf(direction * i);
-      sum += w * noiseAt(x, texel);
-      weights += w;
-      if (touchesBlack(x)) {
-        masked = true;
-        break;
-      }
-      v = texel.xyz;
+  vec3 d0 = directionOf(startTexel.xyz);
+  bool moves = d0 != vec3(0.0) && !masked;
+  Walker back = Walker(start, d0, d0, pc.licLength - pc.bias, -pc.step, moves);
+  Walker ahead = Walker(start, d0, d0, pc.licLength + pc.bias, pc.step, moves);
+  if (INTERLEAVE == 1) {
+    for (int i = 1; (back.alive || ahead.alive) && !masked; ++i) {
+      walk(back, i, -1, sum, weights, masked);
+      walk(ahead, i, 1, sum, weights, masked);
     }
+  } else {
+    for (int i = 1; back.alive && !masked; ++i) walk(back, i, -1, sum, weights, masked);
+    for (int i = 1; ahead.alive && !masked; ++i) walk(ahead, i, 1, sum, weights, masked);
   }
   imageStore(licImage, voxel, masked ? vec4(0.0) : vec4(sum / weights, 1.0, 0.0, 0.0));
 }

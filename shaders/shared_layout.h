@@ -20,9 +20,10 @@ using mat4 = glm::mat4;
 #endif
 
 // ---- LIC compute pass -------------------------------------------------------------------------
-LIC3D_CONST kLicBindingField = 0;   // sampler3D: RGBA16F/32F, xyz = voxel-unit v / max, w = noise
+LIC3D_CONST kLicBindingField = 0;   // sampler3D: the packed field and noise (volume_textures.h)
 LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
 LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
+LIC3D_CONST kLicBindingNoise = 3;   // sampler3D r8: the noise alone (the benchmark's naive kernel)
 
 // Specialization constant ids of the LIC pipeline (see LicSpecialization in lic_pass.h).
 LIC3D_CONST kLicConstIntegrator = 0;
@@ -33,6 +34,9 @@ LIC3D_CONST kLicConstLocalSizeX = 4;
 LIC3D_CONST kLicConstLocalSizeY = 5;
 LIC3D_CONST kLicConstLocalSizeZ = 6;
 LIC3D_CONST kLicConstSparsity = 7;
+LIC3D_CONST kLicConstScheme = 8;    // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
+LIC3D_CONST kLicConstPacking = 9;   // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
+LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop (GPUs), 0: one after the other
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch
@@ -77,6 +81,7 @@ LIC3D_CONST kSliceConstFog = 8;               // 0 off, 1 linear depth cueing
 LIC3D_CONST kSliceConstLighting = 9;          // 0 none, 1 Phong with TNB normals, 2 lines
 LIC3D_CONST kSliceConstFilter = 10;           // 0 nearest voxel, 1 trilinear
 LIC3D_CONST kSliceConstAnaglyph = 11;         // 0 colour, 1 left eye (red), 2 right eye (cyan)
+LIC3D_CONST kSliceConstFieldPacking = 12;     // the field texture's packing (kLicConstPacking)
 
 // One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
 struct SliceUniforms {
@@ -101,12 +106,62 @@ struct SliceUniforms {
   vec4 voxelSize;        // xyz: one voxel in world units (texel xyz, in voxel units, times this
                          // points along the flow in world space); w: unused
   vec4 texelToPhysical;  // xyz: a field texel's xyz times this is the physical vector; w: unused
-  uvec4 modes[3];        // the 12 specialization constants in order, read only by the
+  uvec4 modes[3];        // the 12 display-mode specialization constants in order, read only by the
                          // benchmark's runtime-mode build of slice.frag
+};
+
+// ---- 2D LIC pass (lic2d.comp) -------------------------------------------------------------------
+LIC3D_CONST kLic2DBindingField = 0;   // sampler2D: RG16F/32F, xy = u / max|u| in output pixels
+LIC3D_CONST kLic2DBindingNoise = 1;   // sampler2D: the noise at the output image's resolution
+LIC3D_CONST kLic2DBindingOutput = 2;  // image2D r32f: the LIC value per output pixel
+
+// Specialization constant ids of the 2D LIC pipeline (see Lic2DSpecialization in lic2d_pass.h).
+LIC3D_CONST kLic2DConstIntegrator = 0;
+LIC3D_CONST kLic2DConstKernel = 1;
+LIC3D_CONST kLic2DConstNoiseFilter = 2;
+LIC3D_CONST kLic2DConstDirection = 3;
+LIC3D_CONST kLic2DConstLocalSizeX = 4;
+LIC3D_CONST kLic2DConstLocalSizeY = 5;
+LIC3D_CONST kLic2DConstScheme = 6;  // LicParams::scheme, as kLicConstScheme
+
+struct Lic2DPushConstants {
+  ivec4 size;             // xy: output image size in pixels; zw: unused
+  vec4 invSize;           // xy: 1 / size (texture coordinates of pixel centres); zw: unused
+  int licLength;          // L
+  int bias;               // Lb = L - bias backward, Lf = L + bias forward
+  float step;             // h in output pixels
+  float criticalEpsilon;  // a texel's |xy| at or below this stops a streamline
+  float hannDenominator;  // L + |bias| + 1
+  float gaussScale;       // 1 / (0.5 L), 0 when L = 0
+  float pad0;
+  float pad1;
+};
+
+// ---- Time interpolation of the field texture (field_lerp.comp) ----------------------------------
+LIC3D_CONST kLerpBindingStepA = 0;  // sampler3D: time step A, xyz = v / max|v| of that step
+LIC3D_CONST kLerpBindingStepB = 1;  // sampler3D: time step B, likewise
+LIC3D_CONST kLerpBindingNoise = 2;  // sampler3D r32f: the noise
+LIC3D_CONST kLerpBindingTarget = 3;  // image3D: the field texture (RGBA16F or RGBA32F) written
+LIC3D_CONST kLerpBindingRanges = 4;  // buffer of kLerpRangeCount uints, float bits (see below)
+LIC3D_CONST kLerpConstPhase = 0;     // 0: measure the interpolated field, 1: write the texture
+LIC3D_CONST kLerpLocalSizeX = 8;
+LIC3D_CONST kLerpLocalSizeY = 8;
+// The ranges buffer: non-negative floats as uint bits (their order is the floats' order).
+LIC3D_CONST kLerpRangeMaxSpeed = 0;      // max |u| over the voxels (u: v in voxel units)
+LIC3D_CONST kLerpRangeMaxMagnitude = 1;  // max |v|
+LIC3D_CONST kLerpRangeMinMagnitude = 2;  // min |v|
+LIC3D_CONST kLerpRangeCount = 4;
+
+struct LerpPushConstants {
+  ivec4 dims;       // xyz: grid size; w: unused
+  vec4 unitScale;   // xyz: voxelUnitScale of the grid; w: the weight of step B, in [0,1]
+  vec4 stepScales;  // x: step A's max|v| (its texels' scale), y: step B's; zw: unused
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(LicPushConstants) == 64);
+static_assert(sizeof(Lic2DPushConstants) == 64);
+static_assert(sizeof(LerpPushConstants) == 48);
 static_assert(sizeof(SliceUniforms) == 2 * 64 + 18 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST

@@ -40,6 +40,9 @@ layout(constant_id = kSliceConstFilter) const uint FILTER = 1;
 layout(constant_id = kSliceConstAnaglyph) const uint ANAGLYPH = 0;
 #endif
 
+// Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
+layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = 0;
+
 layout(location = 0) in vec3 texCoord;
 layout(location = 1) in vec3 world;
 layout(location = 0) out vec4 color;
@@ -118,7 +121,9 @@ void main() {
   vec3 rgb = vec3(grey);
   if (COLOR_MODE == 1 || MAGNITUDE_OPACITY == 1) {
     // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
-    float speed = length(texture(fieldTexture, texCoord).xyz * u.texelToPhysical.xyz);
+    vec3 texel = texture(fieldTexture, texCoord).xyz;
+    if (FIELD_PACKING == 1) texel *= length(texel);  // e |e| = u / max|u|
+    float speed = length(texel * u.texelToPhysical.xyz);
     float t = clamp((speed - u.magnitude.x) * u.magnitude.y, 0.0, 1.0);
     if (COLOR_MODE == 1) {
       // The LIC intensity modulates the colour (thesis 5.1.2).

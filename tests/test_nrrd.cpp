@@ -432,7 +432,7 @@ TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
        "missing field 'encoding'"},
       {"missing endian", fieldFile(replaced(kGoodFields, "endian: little\n", "")),
        "missing field 'endian'"},
-      {"wrong dimension", fieldFile(replaced(kGoodFields, "dimension: 4", "dimension: 3")),
+      {"wrong dimension", fieldFile(replaced(kGoodFields, "dimension: 4", "dimension: 5")),
        "dimension: expected 4"},
       {"non-numeric dimension", fieldFile(replaced(kGoodFields, "dimension: 4", "dimension: four")),
        "not a whole number"},

@@ -149,6 +149,50 @@ TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
   EXPECT_EQ(test::readRgbaPng(path("out.png")).width, 64);
 }
 
+// The 2D mode (thesis chapter 3): the 2D LIC picture of the circle fills the window's height,
+// centred, keeping its aspect; the panels switch to the plane's controls.
+TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlane) {
+  const CommandRun r = view(
+      "--mode 2d --field circle --grid 64 --image-size 256x256 --frames 3 --hide-ui "
+      "--save-session out.json --screenshot shot.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(shot.width, kWidth) << r.output;
+  // A 640x640 picture in a 1024x640 window: 192 columns of background either side.
+  const Box left{0, 0, 180, kHeight}, right{kWidth - 180, 0, kWidth, kHeight};
+  EXPECT_EQ(fraction(shot, left, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.0);
+  EXPECT_EQ(fraction(shot, right, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.0);
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = kVolume.y0; y < kVolume.y1; ++y)
+    for (int x = kVolume.x0; x < kVolume.x1; ++x, ++n) {
+      const double v = shot.rgba[4 * (static_cast<std::size_t>(y) * kWidth + x)];
+      sum += v;
+      sum2 += v * v;
+    }
+  EXPECT_GT(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 20.0) << "no LIC texture in the middle";
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_TRUE(saved->twoD);
+  EXPECT_EQ(saved->plane.width, 256);
+}
+
+// An unsteady field (docs/TIME.md): the tornado at a time between two of its steps, blended on
+// the GPU; the time is part of the session the app saves, with the steps it used.
+TEST_F(ViewerTest, TheTimeOfAnUnsteadyFieldIsShownAndSaved) {
+  const CommandRun r = view(
+      "--grid 24 --time 100 --frames 3 --save-session out.json "
+      "--screenshot shot.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(shot.width, kWidth) << r.output;
+  EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(saved->time, 100.0);
+  EXPECT_EQ(saved->timeSteps, 64);
+}
+
 // The short soak (docs/RELIABILITY.md has the 10,000-frame run): 500 frames with a LIC or view
 // change every 10 and a resize at 250, undone at 260 (the swapchain is recreated each time); RSS and device memory do not
 // grow after the warm-up, and validation stays clean throughout.

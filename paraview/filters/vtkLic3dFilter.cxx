@@ -147,6 +147,7 @@ void vtkLic3dFilter::PrintSelf(ostream& os, vtkIndent indent) {
      << indent << "Step: " << this->Step << "\n"
      << indent << "Bias: " << this->Bias << "\n"
      << indent << "Integrator: " << this->Integrator << "\n"
+     << indent << "Scheme: " << this->Scheme << "\n"
      << indent << "Kernel: " << this->Kernel << "\n"
      << indent << "NoiseFilter: " << this->NoiseFilter << "\n"
      << indent << "Direction: " << this->Direction << "\n"
@@ -173,7 +174,7 @@ int vtkLic3dFilter::RequestInformation(vtkInformation*, vtkInformationVector**,
 }
 
 namespace {
-lic3d::LicParams licParams(int length, double step, int bias, int integrator, int kernel,
+lic3d::LicParams licParams(int length, double step, int bias, int integrator, int scheme, int kernel,
                            int noiseFilter, int direction, int distribution, int points,
                            double radius, double ratio, int seed) {
   lic3d::LicParams params;
@@ -181,6 +182,7 @@ lic3d::LicParams licParams(int length, double step, int bias, int integrator, in
   params.step = static_cast<float>(step);
   params.bias = bias;
   params.integrator = static_cast<lic3d::Integrator>(std::clamp(integrator, 0, 2));
+  params.scheme = static_cast<lic3d::StepScheme>(std::clamp(scheme, 0, 1));
   params.kernel = static_cast<lic3d::Kernel>(std::clamp(kernel, 0, 2));
   params.noiseFilter = static_cast<lic3d::NoiseFilter>(std::clamp(noiseFilter, 0, 1));
   params.direction = static_cast<lic3d::DirectionMode>(std::clamp(direction, 0, 1));
@@ -201,7 +203,7 @@ int vtkLic3dFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** 
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const lic3d::LicParams params =
-      licParams(this->Length, this->Step, this->Bias, this->Integrator, this->Kernel,
+      licParams(this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel,
                 this->NoiseFilter, this->Direction, 0, 0, 0.0, 0.05, 1);
   const int asked = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(),
@@ -223,7 +225,7 @@ lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
     this->context.emplace(std::move(made));
     lic3d::RendererOptions rendererOptions;
     rendererOptions.fieldPrecision =
-        static_cast<lic3d::FieldPrecision>(std::clamp(wantedPrecision, 0, 2));
+        static_cast<lic3d::FieldPrecision>(std::clamp(wantedPrecision, 0, 3));
     lic3d::Result<lic3d::LicRenderer> created =
         lic3d::LicRenderer::create(*this->context, rendererOptions);
     if (!created) {
@@ -259,7 +261,7 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   output->Initialize();
 
   const lic3d::LicParams params = licParams(
-      this->Length, this->Step, this->Bias, this->Integrator, this->Kernel, this->NoiseFilter,
+      this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel, this->NoiseFilter,
       this->Direction, this->SparsityDistribution, this->SparsityPoints, this->SparsityRadius,
       this->SparsityRatio, this->SparsitySeed);
   const int ghostLayers = lic3d::licGhostLayers(params);

@@ -32,6 +32,8 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   vtkGetMacro(Bias, int);
   vtkSetMacro(Integrator, int);  // 0 euler, 1 rk2, 2 rk4
   vtkGetMacro(Integrator, int);
+  vtkSetMacro(Scheme, int);  // 0 exact, 1 ab2 (rk2 only)
+  vtkGetMacro(Scheme, int);
   vtkSetMacro(Kernel, int);  // 0 box, 1 hann, 2 gauss
   vtkGetMacro(Kernel, int);
   vtkSetMacro(NoiseFilter, int);  // 0 nearest, 1 linear
@@ -82,6 +84,7 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   double Step = 0.5;
   int Bias = 0;
   int Integrator = 1;
+  int Scheme = 0;
   int Kernel = 0;
   int NoiseFilter = 1;
   int Direction = 0;

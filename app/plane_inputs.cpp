@@ -1,0 +1,87 @@
+#include "plane_inputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "analytic_fields.h"
+#include "cli_options.h"
+#include "field_interpolation.h"
+#include "field_plane.h"
+
+namespace lic3d::cli {
+namespace {
+
+// The plane of a file's field: a 2D file is its own plane, a 3D one is cut by --slice.
+Result<VectorField> planeOfFile(const VectorField& field, const Session& session,
+                                const std::string& what) {
+  const PlaneParams& p = session.plane;
+  const bool flat = field.dims.x == 1 || field.dims.y == 1 || field.dims.z == 1;
+  if (flat && p.index < 0 && p.axis == 2) return planarField(field, what);
+  Result<VectorField> plane =
+      extractPlane(field, p.axis, p.index >= 0 ? p.index : field.dims[p.axis] / 2);
+  if (!plane) return inputError("--slice: " + what + ": " + plane.error().message);
+  return plane;
+}
+
+}  // namespace
+
+Result<VectorField> planeField(const Session& session, bool gridGiven, double time,
+                               PlaneSource& inputs) {
+  const FieldSource& source = session.field;
+  const PlaneParams& p = session.plane;
+  if (const auto field2D = parseAnalyticField2D(source.field)) {
+    if (!source.array.empty())
+      return inputError("--array: " + source.field + " is an analytic field");
+    return makeAnalyticField2D(*field2D, {source.grid.x, source.grid.y}, time);
+  }
+  if (const auto field3D = parseAnalyticField(source.field)) {
+    if (!source.array.empty())
+      return inputError("--array: " + source.field + " is an analytic field");
+    const int index = p.index >= 0 ? p.index : source.grid[p.axis] / 2;
+    if (index >= source.grid[p.axis])
+      return inputError("--slice: the grid has " + std::to_string(source.grid[p.axis]) +
+                        " layers across " + std::string(1, static_cast<char>('x' + p.axis)) +
+                        " (0.." + std::to_string(source.grid[p.axis] - 1) + ")");
+    return makeAnalyticFieldPlane(*field3D, source.grid, p.axis, index, time);
+  }
+  if (gridGiven)
+    return inputError("--grid applies to analytic fields only; " + source.field +
+                      " has its own grid");
+  if (!inputs.series && isFieldSeriesPattern(source.field)) {
+    LIC3D_TRY_ASSIGN(inputs.series, fileSeries(source.field));
+  }
+  if (!inputs.series) {
+    LIC3D_TRY_ASSIGN(const VectorField field, loadField(source, false, &inputs.info));
+    return planeOfFile(field, session, source.field);
+  }
+  const TimeBracket b = inputs.series->bracket(time);
+  for (auto it = inputs.steps.begin(); it != inputs.steps.end();)
+    it = it->first == b.first || it->first == b.second ? std::next(it) : inputs.steps.erase(it);
+  for (const int k : {b.first, b.second}) {
+    if (inputs.steps.count(k)) continue;
+    const std::string file = inputs.series->files[static_cast<std::size_t>(k)].string();
+    LIC3D_TRY_ASSIGN(const VectorField step,
+                     inputs.series->loadStep(k, source.array, &inputs.info));
+    LIC3D_TRY_ASSIGN(VectorField plane, planeOfFile(step, session, file));
+    if (!inputs.steps.empty() && (plane.dims != inputs.steps.begin()->second.dims ||
+                                  !(plane.geometry == inputs.steps.begin()->second.geometry)))
+      return inputError(file +
+                        ": the steps of a time series must share their grid, spacing "
+                        "and origin");
+    inputs.steps.emplace(k, std::move(plane));
+  }
+  return interpolateFields(inputs.steps.at(b.first), inputs.steps.at(b.second), b.weight);
+}
+
+Dims imageSize(Dims plane, const PlaneParams& p) {
+  auto scaled = [](int side, int to, int from) {
+    return std::max(1, static_cast<int>(std::lround(static_cast<double>(side) * to / from)));
+  };
+  if (p.width > 0 && p.height > 0) return {p.width, p.height, 1};
+  if (p.width > 0) return {p.width, scaled(p.width, plane.y, plane.x), 1};
+  if (p.height > 0) return {scaled(p.height, plane.x, plane.y), p.height, 1};
+  return plane;
+}
+
+}  // namespace lic3d::cli

@@ -1,0 +1,34 @@
+#pragma once
+// The field of 2D LIC for the command line and the app: a 2D analytic field, a plane of a 3D
+// analytic field, a 2D file or a plane of a 3D one, or a series of such files, each at a time,
+// from the session's field source and plane (docs/TIME.md).
+
+#include <map>
+#include <optional>
+
+#include "error.h"
+#include "session.h"
+#include "time_series.h"
+#include "volume.h"
+#include "volume_io.h"
+
+namespace lic3d::cli {
+
+// What stays between the times of one source: the series of files and the planes of its steps
+// in use (two at most: 2D steps are small, so they are blended on the host).
+struct PlaneSource {
+  std::optional<TimeSeries> series;
+  std::map<int, VectorField> steps;
+  FieldReadInfo info;  // of the last file read
+};
+
+// The plane of `session`'s field at `time` (see above). `gridGiven`: --grid was given, which a
+// file refuses. The first call finds out whether the field is a series and keeps it in `source`.
+Result<VectorField> planeField(const Session& session, bool gridGiven, double time,
+                               PlaneSource& source);
+
+// The LIC image's size: the plane's grid, or PlaneParams' width and height (one alone keeps the
+// grid's aspect).
+Dims imageSize(Dims plane, const PlaneParams& params);
+
+}  // namespace lic3d::cli

@@ -1,0 +1,58 @@
+#pragma once
+// The app's 2D mode (thesis chapter 3): the 2D LIC picture of the session's plane, made again
+// when what it depends on changes, and copied into the window's image at the largest size that
+// keeps its aspect. A 2D picture takes milliseconds on a GPU, so it is made in one piece.
+
+#include <vulkan/vulkan.h>
+
+#include <optional>
+#include <string>
+
+#include "error.h"
+#include "gpu_resources.h"
+#include "lic2d_image.h"
+#include "lic2d_pass.h"
+#include "plane_inputs.h"
+#include "session.h"
+#include "vulkan_context.h"
+
+namespace lic3d::viewer {
+
+class PlaneView {
+ public:
+  // `context` must outlive the view.
+  static Result<PlaneView> create(const Context& context);
+
+  // Makes the picture of `session` (its field, plane, time, noise, LIC and grey and colour
+  // parameters) unless it already shows it. Waits for the queue first when the picture is
+  // replaced (frames in flight read it). On an error the previous picture stays.
+  Result<void> update(const Session& session);
+
+  // Records the picture over `target`, which holds the cleared background in
+  // COLOR_ATTACHMENT_OPTIMAL and is left in TRANSFER_SRC_OPTIMAL.
+  void record(VkCommandBuffer cmd, VkImage target, VkExtent2D extent) const;
+
+  bool hasPicture() const { return static_cast<bool>(picture_); }
+  // The picture as `lic3d render2d` writes it for `view` (with its legend), at the image's size.
+  RgbaImage image(const ViewParams& view) const { return colourLic2D(lic_, field_, view); }
+  Dims fieldDims() const { return field_.dims; }
+  Dims imageDims() const { return noise_.dims; }
+  float minMagnitude() const { return minMagnitude_; }
+  float maxMagnitude() const { return maxMagnitude_; }
+  double licMilliseconds() const { return licMs_; }  // wall time of the last LIC image
+
+ private:
+  const Context* context_ = nullptr;
+  std::optional<Lic2DPass> pass_;
+  cli::PlaneSource source_;
+  VectorField field_;
+  NoiseVolume noise_;
+  std::optional<Lic2DInputs> inputs_;
+  ScalarVolume lic_;
+  Image picture_;                // RGBA8, kept in TRANSFER_SRC_OPTIMAL
+  std::optional<Session> made_;  // what picture_ shows
+  float minMagnitude_ = 0.0f, maxMagnitude_ = 1.0f;
+  double licMs_ = 0.0;
+};
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,64 @@
+#include "field_plane.h"
+
+#include <string>
+
+namespace lic3d {
+namespace {
+
+std::string gridText(Dims d) {
+  return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+}  // namespace
+
+glm::ivec2 planeAxes(int axis) {
+  switch (axis) {
+    case 0: return {1, 2};
+    case 1: return {0, 2};
+    default: return {0, 1};
+  }
+}
+
+Result<VectorField> extractPlane(const VectorField& field, int axis, int index) {
+  if (axis < 0 || axis > 2) return inputError("a plane is across x, y or z");
+  const Dims d = field.dims;
+  if (index < 0 || index >= d[axis])
+    return inputError("the grid " + gridText(d) + " has " + std::to_string(d[axis]) +
+                      " layers across " + std::string(1, static_cast<char>('x' + axis)) + " (0.." +
+                      std::to_string(d[axis] - 1) + "), not " + std::to_string(index));
+  const glm::ivec2 in = planeAxes(axis);
+  VectorField plane;
+  plane.dims = Dims(d[in.x], d[in.y], 1);
+  const GridGeometry& g = field.geometry;
+  plane.geometry.spacing = glm::dvec3(g.spacing[in.x], g.spacing[in.y], g.spacing[axis]);
+  plane.geometry.origin =
+      glm::dvec3(g.origin[in.x], g.origin[in.y], g.origin[axis] + index * g.spacing[axis]);
+  plane.vectors.resize(voxelCount(plane.dims));
+  for (int j = 0; j < plane.dims.y; ++j)
+    for (int i = 0; i < plane.dims.x; ++i) {
+      glm::ivec3 voxel(index);
+      voxel[in.x] = i;
+      voxel[in.y] = j;
+      const glm::vec3& v = field.at(voxel.x, voxel.y, voxel.z);
+      plane.vectors[voxelIndex(plane.dims, i, j, 0)] = glm::vec3(v[in.x], v[in.y], 0.0f);
+    }
+  return plane;
+}
+
+Result<VectorField> planarField(const VectorField& field, const std::string& what) {
+  int flat = -1, flatAxes = 0;
+  for (int a = 0; a < 3; ++a)
+    if (field.dims[a] == 1) {
+      flat = a;
+      ++flatAxes;
+    }
+  if (flatAxes == 0)
+    return inputError(what + ": the grid " + gridText(field.dims) +
+                      " is 3D; choose a plane of it with --slice AXIS[:INDEX]");
+  if (flatAxes > 1)
+    return inputError(what + ": the grid " + gridText(field.dims) +
+                      " is flat along more than one axis; 2D LIC needs a plane");
+  return extractPlane(field, flat, 0);
+}
+
+}  // namespace lic3d

@@ -1,0 +1,203 @@
+#include "time_series.h"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "field_io.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The one %d or %0Nd of a pattern (%% is a literal %), as ffmpeg and `-o` patterns take it.
+struct Conversion {
+  std::size_t begin = 0, end = 0;
+  int width = 0;
+};
+
+std::optional<Conversion> findConversion(std::string_view text, std::string* problem) {
+  std::optional<Conversion> found;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '%') continue;
+    if (i + 1 < text.size() && text[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    Conversion c;
+    c.begin = i;
+    std::size_t j = i + 1;
+    if (j + 1 < text.size() && text[j] == '0' && text[j + 1] >= '1' && text[j + 1] <= '9') {
+      c.width = text[j + 1] - '0';
+      j += 2;
+    }
+    if (j >= text.size() || text[j] != 'd') {
+      if (problem) *problem = "only %d or %0Nd can number the steps (write %% for a literal %)";
+      return std::nullopt;
+    }
+    if (found) {
+      if (problem) *problem = "it holds more than one step number";
+      return std::nullopt;
+    }
+    c.end = j + 1;
+    found = c;
+    i = j;
+  }
+  if (!found && problem) *problem = "it holds no step number";
+  return found;
+}
+
+std::string unescapePercent(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+  }
+  return out;
+}
+
+bool isDigits(std::string_view text) {
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+Result<std::vector<fs::path>> numberedFiles(const std::string& pattern) {
+  const fs::path path(pattern);
+  const std::string name = path.filename().string();
+  std::string problem;
+  const std::optional<Conversion> c = findConversion(name, &problem);
+  if (!c) {
+    if (findConversion(pattern, nullptr))
+      return inputError("--field " + pattern +
+                        ": the step number must be in the file name, not "
+                        "in a folder name");
+    return inputError("--field " + pattern + ": " + problem);
+  }
+  const std::string prefix = unescapePercent(std::string_view(name).substr(0, c->begin));
+  const std::string suffix = unescapePercent(std::string_view(name).substr(c->end));
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    return inputError("--field " + pattern + ": folder " + folder.string() + " does not exist");
+  std::vector<std::pair<unsigned long long, fs::path>> found;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() <= prefix.size() + suffix.size() || !file.starts_with(prefix) ||
+        !file.ends_with(suffix))
+      continue;
+    const std::string number =
+        file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
+    if (!isDigits(number) || number.size() < static_cast<std::size_t>(c->width) ||
+        number.size() > 18)
+      continue;
+    if (!entry.is_regular_file(ec)) continue;
+    found.emplace_back(std::stoull(number), path.parent_path() / file);
+  }
+  if (ec)
+    return inputError("--field " + pattern + ": cannot list " + folder.string() + ": " +
+                      ec.message());
+  std::sort(found.begin(), found.end());
+  std::vector<fs::path> files;
+  for (auto& [number, file] : found) files.push_back(std::move(file));
+  return files;
+}
+
+Result<std::vector<fs::path>> globbedFiles(const std::string& pattern) {
+  glob_t matches{};
+  const int status = ::glob(pattern.c_str(), 0, nullptr, &matches);
+  std::vector<fs::path> files;
+  if (status == 0)
+    for (std::size_t i = 0; i < matches.gl_pathc; ++i) {
+      std::error_code ec;
+      if (fs::is_regular_file(matches.gl_pathv[i], ec)) files.emplace_back(matches.gl_pathv[i]);
+    }
+  globfree(&matches);
+  if (status != 0 && status != GLOB_NOMATCH)
+    return inputError("--field " + pattern + ": cannot read the folders it names");
+  return files;
+}
+
+}  // namespace
+
+bool isFieldSeriesPattern(std::string_view field) {
+  if (field.find_first_of("*?[") != std::string_view::npos) return true;
+  std::string problem;
+  if (findConversion(field, &problem)) return true;
+  return problem != "it holds no step number";  // a bad conversion is still meant as a series
+}
+
+double TimeSeries::stepTime(int k) const {
+  return periodic() ? k * period / steps : static_cast<double>(k);
+}
+
+double TimeSeries::endTime() const { return periodic() ? period : static_cast<double>(steps - 1); }
+
+TimeBracket TimeSeries::bracket(double time) const {
+  TimeBracket b;
+  if (steps < 2) return b;
+  if (periodic()) {
+    double position = std::fmod(time / (period / steps), static_cast<double>(steps));
+    if (position < 0.0) position += steps;
+    b.first = std::min(static_cast<int>(std::floor(position)), steps - 1);
+    b.second = (b.first + 1) % steps;
+    b.weight = std::clamp(position - b.first, 0.0, 1.0);
+    return b;
+  }
+  const double position = std::clamp(time, 0.0, static_cast<double>(steps - 1));
+  b.first = std::min(static_cast<int>(std::floor(position)), steps - 2);
+  b.second = b.first + 1;
+  b.weight = position - b.first;
+  return b;
+}
+
+Result<VectorField> TimeSeries::loadStep(int k, std::string_view arrayName,
+                                         FieldReadInfo* info) const {
+  if (k < 0 || k >= steps) return inputError("time step " + std::to_string(k) + " does not exist");
+  if (analytic) return makeAnalyticField(*analytic, grid, stepTime(k));
+  return readVectorField(files[static_cast<std::size_t>(k)], arrayName, info);
+}
+
+std::string TimeSeries::describe() const {
+  if (analytic)
+    return std::to_string(steps) + " steps of " + std::string(toString(*analytic)) +
+           " over its period";
+  return std::to_string(steps) + " files " + files.front().string() + " .. " +
+         files.back().string();
+}
+
+Result<TimeSeries> fileSeries(const std::string& pattern) {
+  // A glob character makes it a glob (a % there is literal); otherwise it numbers the steps.
+  const bool numbered = pattern.find_first_of("*?[") == std::string::npos;
+  TimeSeries series;
+  if (numbered) {
+    LIC3D_TRY_ASSIGN(series.files, numberedFiles(pattern));
+  } else {
+    LIC3D_TRY_ASSIGN(series.files, globbedFiles(pattern));
+  }
+  if (series.files.size() < 2)
+    return inputError("--field " + pattern + ": a time series needs at least two files; " +
+                      (series.files.empty()
+                           ? std::string("none match")
+                           : "only " + series.files.front().string() + " matches"));
+  series.steps = static_cast<int>(series.files.size());
+  return series;
+}
+
+Result<TimeSeries> analyticSeries(AnalyticField field, Dims grid, int steps) {
+  if (timePeriod(field) <= 0.0)
+    return inputError("--time-steps: " + std::string(toString(field)) +
+                      " does not change with time (the tornado does)");
+  if (steps < 2) return inputError("--time-steps: a time series needs at least 2 steps");
+  TimeSeries series;
+  series.analytic = field;
+  series.grid = grid;
+  series.steps = steps;
+  series.period = timePeriod(field);
+  return series;
+}
+
+}  // namespace lic3d

@@ -1,0 +1,82 @@
+#version 460
+// Unsteady fields (docs/TIME.md): the field at a time between two resident time steps, linearly
+// interpolated per voxel and written into the LIC pass' field texture with its packing (xyz = u /
+// max|u|, u the field in voxel units; w = noise; engine/volume_textures.h). Two phases, one
+// pipeline each: phase 0 measures the interpolated field (max |u|, min and max |v|) with one
+// atomic per workgroup and value; phase 1 writes the texture, normalised by phase 0's max |u|.
+// Compiled three times, one per field texture format: rgba32f, rgba16f (LIC3D_HALF_FIELD) and
+// rgba8_snorm with its square-root packing (LIC3D_BYTE_FIELD).
+#extension GL_GOOGLE_include_directive : require
+#include "shared_layout.h"
+
+layout(local_size_x = kLerpLocalSizeX, local_size_y = kLerpLocalSizeY, local_size_z = 1) in;
+
+layout(constant_id = kLerpConstPhase) const uint PHASE = 0;
+
+layout(set = 0, binding = kLerpBindingStepA) uniform sampler3D stepA;
+layout(set = 0, binding = kLerpBindingStepB) uniform sampler3D stepB;
+layout(set = 0, binding = kLerpBindingNoise) uniform sampler3D noiseVolume;
+#if defined(LIC3D_HALF_FIELD)
+layout(set = 0, binding = kLerpBindingTarget, rgba16f) uniform writeonly image3D target;
+#elif defined(LIC3D_BYTE_FIELD)
+layout(set = 0, binding = kLerpBindingTarget, rgba8_snorm) uniform writeonly image3D target;
+#else
+layout(set = 0, binding = kLerpBindingTarget, rgba32f) uniform writeonly image3D target;
+#endif
+layout(set = 0, binding = kLerpBindingRanges) buffer Ranges { uint ranges[kLerpRangeCount]; };
+
+layout(push_constant) uniform Push { LerpPushConstants pc; };
+
+shared float groupMaxSpeed[kLerpLocalSizeX * kLerpLocalSizeY];
+shared float groupMaxMagnitude[kLerpLocalSizeX * kLerpLocalSizeY];
+shared float groupMinMagnitude[kLerpLocalSizeX * kLerpLocalSizeY];
+
+void main() {
+  ivec3 voxel = ivec3(gl_GlobalInvocationID);
+  bool inside = all(lessThan(voxel, pc.dims.xyz));
+  // The physical vector at this time: each step's texels times its scale, then the linear blend.
+  vec3 v = vec3(0.0);
+  if (inside) {
+    vec3 a = texelFetch(stepA, voxel, 0).xyz * pc.stepScales.x;
+    vec3 b = texelFetch(stepB, voxel, 0).xyz * pc.stepScales.y;
+    v = mix(a, b, pc.unitScale.w);
+  }
+  vec3 u = v * pc.unitScale.xyz;
+
+  if (PHASE == 1) {
+    if (!inside) return;
+    float maxSpeed = uintBitsToFloat(ranges[kLerpRangeMaxSpeed]);
+    vec3 texel = maxSpeed > 0.0 ? u / maxSpeed : u;
+    float noise = texelFetch(noiseVolume, voxel, 0).r;
+#ifdef LIC3D_BYTE_FIELD
+    // volume_textures.h, FieldPrecision::Byte: e with e |e| = u / max|u|, noise shifted into the
+    // signed range.
+    float speed = length(texel);
+    texel = speed > 0.0 ? texel / sqrt(speed) : vec3(0.0);
+    noise = (round(clamp(noise, 0.0, 1.0) * 255.0) - 128.0) / 127.0;
+#endif
+    imageStore(target, voxel, vec4(texel, noise));
+    return;
+  }
+
+  // Phase 0: a workgroup reduces its values in shared memory, then one invocation merges them.
+  // Non-negative floats order like their bit patterns, so uint atomics compare them.
+  uint local = gl_LocalInvocationIndex;
+  groupMaxSpeed[local] = inside ? length(u) : 0.0;
+  groupMaxMagnitude[local] = inside ? length(v) : 0.0;
+  groupMinMagnitude[local] = inside ? length(v) : 3.0e38;
+  barrier();
+  for (uint stride = gl_WorkGroupSize.x * gl_WorkGroupSize.y / 2; stride > 0; stride /= 2) {
+    if (local < stride) {
+      groupMaxSpeed[local] = max(groupMaxSpeed[local], groupMaxSpeed[local + stride]);
+      groupMaxMagnitude[local] = max(groupMaxMagnitude[local], groupMaxMagnitude[local + stride]);
+      groupMinMagnitude[local] = min(groupMinMagnitude[local], groupMinMagnitude[local + stride]);
+    }
+    barrier();
+  }
+  if (local == 0) {
+    atomicMax(ranges[kLerpRangeMaxSpeed], floatBitsToUint(groupMaxSpeed[0]));
+    atomicMax(ranges[kLerpRangeMaxMagnitude], floatBitsToUint(groupMaxMagnitude[0]));
+    atomicMin(ranges[kLerpRangeMinMagnitude], floatBitsToUint(groupMinMagnitude[0]));
+  }
+}

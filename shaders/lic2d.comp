@@ -1,0 +1,98 @@
+#version 460
+// 2D LIC (thesis chapter 3, with the semantics of docs/LIC_SEMANTICS.md restricted to a plane),
+// one invocation per output pixel. The output image may be finer than the field: the noise lives
+// at the output's resolution and the field is sampled bilinearly at the same texture coordinate,
+// so positions, steps and noise lookups are all in output pixels. Integrator, kernel, noise
+// filter and direction mode are specialization constants, as in lic.comp.
+#extension GL_GOOGLE_include_directive : require
+#include "shared_layout.h"
+
+layout(local_size_x_id = kLic2DConstLocalSizeX, local_size_y_id = kLic2DConstLocalSizeY,
+       local_size_z = 1) in;
+
+layout(constant_id = kLic2DConstIntegrator) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2, 2 rk4
+layout(constant_id = kLic2DConstKernel) const uint KERNEL = 0;            // 0 box, 1 hann, 2 gauss
+layout(constant_id = kLic2DConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nearest, 1 bilinear
+layout(constant_id = kLic2DConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
+// How RK2 steps, as in lic.comp (LicParams::scheme): 0 exact, every step an RK2 step; 1 the first
+// step RK2 and the others two-step Adams-Bashforth steps from the directions at the last two
+// samples (one fetch per sample).
+layout(constant_id = kLic2DConstScheme) const uint SCHEME = 1;
+
+// xy = u / max|u|, u the field in output pixel units (engine/lic2d_pass.h).
+layout(set = 0, binding = kLic2DBindingField) uniform sampler2D fieldTexture;
+layout(set = 0, binding = kLic2DBindingNoise) uniform sampler2D noiseTexture;
+layout(set = 0, binding = kLic2DBindingOutput, r32f) uniform writeonly image2D licImage;
+
+layout(push_constant) uniform Push { Lic2DPushConstants pc; };
+
+// Pixel x (centres at integers) lies at texture coordinate (x + 0.5) / size in both textures:
+// hardware bilinear filtering with clamp-to-edge is the semantics' edge-clamped interpolation.
+vec2 textureCoordinate(vec2 x) { return (x + 0.5) * pc.invSize.xy; }
+vec2 fieldAt(vec2 x) { return textureLod(fieldTexture, textureCoordinate(x), 0.0).xy; }
+
+float noiseAt(vec2 x) {
+  if (NOISE_FILTER == 0) return texelFetch(noiseTexture, ivec2(floor(x + 0.5)), 0).r;
+  return textureLod(noiseTexture, textureCoordinate(x), 0.0).r;
+}
+
+// Step direction from an interpolated vector; zero at (near) critical points.
+vec2 directionOf(vec2 v) {
+  float magnitude = length(v);
+  if (magnitude <= pc.criticalEpsilon) return vec2(0.0);
+  return DIRECTION == 0 ? v / magnitude : v;
+}
+
+float weightOf(int i) {
+  if (KERNEL == 1) return 0.5 * (1.0 + cos(3.14159265358979 * float(i) / pc.hannDenominator));
+  if (KERNEL == 2) {
+    float t = float(i) * pc.gaussScale;
+    return exp(-0.5 * t * t);
+  }
+  return 1.0;
+}
+
+// One step of signed length sh from x, whose direction d0 is non-zero.
+vec2 advance(vec2 x, vec2 d0, float sh) {
+  if (INTEGRATOR == 0) return x + sh * d0;
+  if (INTEGRATOR == 1) return x + sh * directionOf(fieldAt(x + 0.5 * sh * d0));
+  vec2 k2 = directionOf(fieldAt(x + 0.5 * sh * d0));
+  vec2 k3 = directionOf(fieldAt(x + 0.5 * sh * k2));
+  vec2 k4 = directionOf(fieldAt(x + sh * k3));
+  return x + (sh / 6.0) * (d0 + 2.0 * k2 + 2.0 * k3 + k4);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, pc.size.xy))) return;
+
+  vec2 start = vec2(pixel);
+  vec2 upper = vec2(pc.size.xy - 1);
+  float w0 = weightOf(0);
+  float sum = w0 * noiseAt(start);
+  float weights = w0;
+  vec2 startVector = fieldAt(start);
+
+  for (int direction = -1; direction <= 1; direction += 2) {
+    int steps = direction < 0 ? pc.licLength - pc.bias : pc.licLength + pc.bias;
+    float sh = float(direction) * pc.step;
+    vec2 x = start;
+    vec2 v = startVector;
+    vec2 previous = vec2(0.0);  // the direction at the sample before x
+    for (int i = 1; i <= steps; ++i) {
+      // A streamline ends at a critical point (the sample there was already taken) ...
+      vec2 d = directionOf(v);
+      if (d == vec2(0.0)) break;
+      if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) x += sh * (1.5 * d - 0.5 * previous);
+      else x = advance(x, d, sh);
+      previous = d;
+      // ... or where it leaves the image: outside samples are never clamped back in.
+      if (any(lessThan(x, vec2(0.0))) || any(greaterThan(x, upper))) break;
+      float w = weightOf(direction * i);
+      sum += w * noiseAt(x);
+      weights += w;
+      v = fieldAt(x);
+    }
+  }
+  imageStore(licImage, pixel, vec4(sum / weights, 0.0, 0.0, 0.0));
+}

@@ -1,0 +1,182 @@
+// The one-fetch path: the ab2 scheme against the CPU reference and against the exact scheme, and
+// the byte-packed field texture (docs/LIC_SEMANTICS.md, "Schemes" and "Field packing").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include <glm/glm.hpp>
+
+#include "analytic_fields.h"
+#include "field_io.h"
+#include "gpu_test_support.h"
+#include "lic_reference.h"
+#include "lic_renderer.h"
+#include "noise.h"
+#include "test_support.h"
+
+namespace lic3d {
+namespace {
+
+using test::compareVolumes;
+using test::GpuTest;
+
+// Pearson correlation over the voxels `keep` accepts (all of them by default).
+double correlation(const ScalarVolume& a, const ScalarVolume& b,
+                   const std::function<bool(std::size_t)>& keep = {}) {
+  const std::size_t n = a.values.size();
+  double ma = 0.0, mb = 0.0, count = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (keep && !keep(i)) continue;
+    ma += a.values[i];
+    mb += b.values[i];
+    ++count;
+  }
+  ma /= count;
+  mb /= count;
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (keep && !keep(i)) continue;
+    const double da = a.values[i] - ma, db = b.values[i] - mb;
+    ab += da * db;
+    aa += da * da;
+    bb += db * db;
+  }
+  return ab / std::sqrt(aa * bb);
+}
+
+ScalarVolume gpuLic(const Context& context, const VectorField& field, const NoiseVolume& noise,
+                    const LicParams& params, FieldPrecision precision) {
+  Result<LicRenderer> renderer = LicRenderer::create(context, {precision});
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  EXPECT_TRUE(renderer->setInputs(field, noise).ok());
+  EXPECT_TRUE(renderer->updateLic(params).ok());
+  Result<ScalarVolume> volume = renderer->readLicVolume();
+  EXPECT_TRUE(volume.ok());
+  return std::move(*volume);
+}
+
+// The GPU integrates the same streamlines as the reference with either scheme: the tolerances
+// of test_lic_gpu.cpp hold, for both texture precisions, with bias and both direction modes.
+TEST_F(GpuTest, BothRk2SchemesMatchCpuReference) {
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {24, 32, 40});
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 7);
+  for (const auto& [scheme, direction] :
+       {std::pair{StepScheme::Ab2, DirectionMode::Normalized},
+        std::pair{StepScheme::Ab2, DirectionMode::Magnitude},
+        std::pair{StepScheme::Exact, DirectionMode::Normalized}}) {
+    LicParams params;
+    params.scheme = scheme;
+    params.length = 12;
+    params.bias = 3;
+    params.direction = direction;
+    const ScalarVolume cpu = *computeLicReference(field, noise, params);
+    LicParams other = params;
+    other.scheme = scheme == StepScheme::Exact ? StepScheme::Ab2 : StepScheme::Exact;
+    const ScalarVolume cpuOther = *computeLicReference(field, noise, other);
+    for (const FieldPrecision precision : {FieldPrecision::Float, FieldPrecision::Half}) {
+      const ScalarVolume gpu = gpuLic(context(), field, noise, params, precision);
+      const test::VolumeDifference d = compareVolumes(gpu, cpu);
+      const std::string what = std::string(toString(scheme)) + ", " +
+                               std::string(toString(direction)) +
+                               (precision == FieldPrecision::Half ? ", half" : ", float");
+      EXPECT_LE(d.mean, 1e-3) << what;
+      EXPECT_LE(d.quantile999, 2e-2) << what;
+      // The GPU ran this scheme, not the other: it is much closer to this one's reference.
+      const double otherMean = compareVolumes(gpu, cpuOther).mean;
+      std::printf("%s: mean |GPU - CPU| %.2e, against the other scheme's CPU volume %.2e\n",
+                  what.c_str(), d.mean, otherMean);
+      if (precision == FieldPrecision::Float) {
+        EXPECT_LT(3.0 * d.mean, otherMean) << what;
+      }
+    }
+  }
+}
+
+// How close ab2's volumes come to the exact scheme's, on the analytic fields and the real ones
+// (CPU reference, double precision, so the numbers are the schemes' own). Printed for
+// docs/BENCHMARKS.md; the bounds are the measured values less a margin, so a change that makes
+// ab2 drift further from exact fails here. Measured (L = 20, h = 0.5): see the printout.
+TEST(LicSchemes, Ab2CorrelatesWithExactScheme) {
+  struct Case {
+    const char* name;
+    VectorField field;
+    double bound;
+  };
+  std::vector<Case> cases;
+  for (const auto& [name, kind, bound] :
+       {std::tuple{"tornado", AnalyticField::Tornado, 0.999},
+        std::tuple{"corner", AnalyticField::Corner, 0.999},
+        std::tuple{"abc", AnalyticField::Abc, 0.999},
+        std::tuple{"vortex", AnalyticField::Vortex, 0.999},
+        std::tuple{"solenoidal", AnalyticField::Solenoidal, 0.985}})
+    cases.push_back({name, makeAnalyticField(kind, Dims(32)), bound});
+  cases.push_back({"carotid", *readVectorField(test::dataFolder() / "carotid.vtk"), 0.85});
+  cases.push_back(
+      {"femm", *readVectorField(test::dataFolder() / "example-femm-3d.vtk"), 0.999});
+  for (const Case& c : cases) {
+    const NoiseVolume noise = makeWhiteNoise(c.field.dims, 7);
+    LicParams exact;
+    exact.scheme = StepScheme::Exact;
+    LicParams ab2 = exact;
+    ab2.scheme = StepScheme::Ab2;
+    LicParams rk4 = exact;
+    rk4.integrator = Integrator::Rk4;
+    const ScalarVolume reference = *computeLicReference(c.field, noise, exact);
+    const ScalarVolume fast = *computeLicReference(c.field, noise, ab2);
+    const double r = correlation(fast, reference);
+    const double rRk4 = correlation(*computeLicReference(c.field, noise, rk4), reference);
+    // Where the flow is (|v| at least 3 % of the largest, as the gallery shows the carotid):
+    // elsewhere real data holds measurement noise, whose streamlines wander at random.
+    const double top = maxMagnitude(c.field);
+    const double rFlow = correlation(fast, reference, [&](std::size_t i) {
+      return glm::length(c.field.vectors[i]) >= 0.03 * top;
+    });
+    std::printf("%-10s %3dx%3dx%3d  r(ab2, exact) = %.5f (where |v| >= 3 %% of max: %.5f)  "
+                "r(rk4, exact) = %.5f\n",
+                c.name, c.field.dims.x, c.field.dims.y, c.field.dims.z, r, rFlow, rRk4);
+    EXPECT_GE(r, c.bound) << c.name;
+  }
+}
+
+// The byte texture: 8-bit directions and noise, so not the reference's numbers, but the same
+// picture: the volume correlates with the float texture's, and colour by magnitude decodes the
+// square-root packing (a texture read as u / max|u| would make the slow flow far too slow).
+TEST_F(GpuTest, BytePackedFieldGivesTheSameVolumeAndColours) {
+  const VectorField field = makeAnalyticField(AnalyticField::Tornado, Dims(40));
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 3);
+  LicParams params;
+  params.length = 10;
+  const ScalarVolume full = gpuLic(context(), field, noise, params, FieldPrecision::Float);
+  const ScalarVolume packed = gpuLic(context(), field, noise, params, FieldPrecision::Byte);
+  const double r = correlation(full, packed);
+  std::printf("tornado 40^3: r(byte, float) = %.5f, mean |diff| = %.2e\n", r,
+              compareVolumes(full, packed).mean);
+  EXPECT_GE(r, 0.99);
+  EXPECT_LE(compareVolumes(full, packed).mean, 1e-2);
+
+  ViewParams view;
+  view.width = view.height = 96;
+  view.color = ColorMode::Magnitude;
+  RgbaImage images[2];
+  int i = 0;
+  for (const FieldPrecision precision : {FieldPrecision::Float, FieldPrecision::Byte}) {
+    Result<LicRenderer> renderer = LicRenderer::create(context(), {precision});
+    ASSERT_TRUE(renderer.ok());
+    ASSERT_TRUE(renderer->setInputs(field, noise).ok());
+    Result<RgbaImage> image = renderer->render(params, view);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    images[i++] = std::move(*image);
+  }
+  double difference = 0.0;
+  for (std::size_t p = 0; p < images[0].pixels.size(); ++p)
+    difference += std::abs(static_cast<int>(images[0].pixels[p]) - static_cast<int>(images[1].pixels[p]));
+  difference /= static_cast<double>(images[0].pixels.size());
+  std::printf("colour by magnitude, byte against float: mean |difference| %.2f of 255\n",
+              difference);
+  EXPECT_LE(difference, 3.0);
+}
+
+}  // namespace
+}  // namespace lic3d
