@@ -16,6 +16,7 @@
 #include <system_error>
 
 #include "colormap.h"
+#include "file_util.h"
 #include "nrrd.h"
 #include "session.h"
 #include "vti.h"
@@ -52,53 +53,24 @@ Result<void> checkOutputPathOneOf(const std::string& path, const std::string& fl
 // width (0 for plain %d). Only %d and %0Nd (N = 1..9) are frame numbers, as ffmpeg's image2
 // reader takes them; %% is a literal '%'. Anything else is refused, so a pattern never reaches a
 // printf-like formatter with a conversion that could misread its arguments.
-struct Conversion {
-  std::size_t begin = 0;
-  std::size_t end = 0;
-  int width = 0;
-};
+using Conversion = NumberConversion;
 
 Result<Conversion> findConversion(const std::string& pattern) {
   const std::string problem = "-o " + pattern +
                               ": an animation writes one PNG per frame, so -o "
                               "needs a pattern with one %d or %0Nd for the frame number (e.g. "
                               "frame_%04d.png)";
-  std::optional<Conversion> found;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] != '%') continue;
-    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
-      ++i;
-      continue;
-    }
-    Conversion c;
-    c.begin = i;
-    std::size_t j = i + 1;
-    if (j + 1 < pattern.size() && pattern[j] == '0' && pattern[j + 1] >= '1' &&
-        pattern[j + 1] <= '9') {
-      c.width = pattern[j + 1] - '0';
-      j += 2;
-    }
-    if (j >= pattern.size() || pattern[j] != 'd')
+  const NumberScan scan = scanNumberConversion(pattern);
+  switch (scan.problem) {
+    case NumberScan::Problem::None: return scan.conversion;
+    case NumberScan::Problem::NotAConversion:
       return inputError(problem + "; '" +
-                        pattern.substr(i, std::min<std::size_t>(4, pattern.size() - i)) +
+                        pattern.substr(scan.at, std::min<std::size_t>(4, pattern.size() - scan.at)) +
                         "...' is not one (write %% for a literal %)");
-    if (found) return inputError(problem + "; it has more than one");
-    c.end = j + 1;
-    found = c;
-    i = j;
+    case NumberScan::Problem::MoreThanOne: return inputError(problem + "; it has more than one");
+    case NumberScan::Problem::NoConversion: break;
   }
-  if (!found) return inputError(problem);
-  return *found;
-}
-
-// %% becomes %.
-std::string unescapePercent(std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
-  }
-  return out;
+  return inputError(problem);
 }
 
 bool isExecutableFile(const fs::path& path) {

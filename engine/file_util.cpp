@@ -402,4 +402,48 @@ std::string FileReader::failureReason() const {
   return errorNumber_ != 0 ? systemError(errorNumber_) : std::string("unexpected end of file");
 }
 
+NumberScan scanNumberConversion(std::string_view pattern) {
+  NumberScan scan;
+  bool found = false;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    NumberConversion c;
+    c.begin = i;
+    std::size_t j = i + 1;
+    if (j + 1 < pattern.size() && pattern[j] == '0' && pattern[j + 1] >= '1' &&
+        pattern[j + 1] <= '9') {
+      c.width = pattern[j + 1] - '0';
+      j += 2;
+    }
+    if (j >= pattern.size() || pattern[j] != 'd') {
+      scan.problem = NumberScan::Problem::NotAConversion;
+      scan.at = i;
+      return scan;
+    }
+    if (found) {
+      scan.problem = NumberScan::Problem::MoreThanOne;
+      return scan;
+    }
+    c.end = j + 1;
+    scan.conversion = c;
+    found = true;
+    i = j;
+  }
+  if (!found) scan.problem = NumberScan::Problem::NoConversion;
+  return scan;
+}
+
+std::string unescapePercent(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+  }
+  return out;
+}
+
 }  // namespace lic3d

@@ -109,4 +109,20 @@ class FileReader {
   int errorNumber_ = 0;
 };
 
+// A numbered file pattern's one %d or %0Nd (%% is a literal %), as ffmpeg takes them: output
+// frames (`-o frame_%04d.png`) and input time steps (`--field step_%03d.vti`).
+struct NumberConversion {
+  std::size_t begin = 0, end = 0;  // [begin, end) is the conversion in the pattern
+  int width = 0;                   // N of %0Nd, 0 for %d
+};
+struct NumberScan {
+  enum class Problem { None, NotAConversion, MoreThanOne, NoConversion };
+  Problem problem = Problem::None;
+  NumberConversion conversion;  // when problem is None
+  std::size_t at = 0;           // where a NotAConversion % stands
+};
+NumberScan scanNumberConversion(std::string_view pattern);
+// %% becomes %.
+std::string unescapePercent(std::string_view text);
+
 }  // namespace lic3d

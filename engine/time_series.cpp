@@ -8,56 +8,29 @@
 #include <utility>
 
 #include "field_io.h"
+#include "file_util.h"
 
 namespace lic3d {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The one %d or %0Nd of a pattern (%% is a literal %), as ffmpeg and `-o` patterns take it.
-struct Conversion {
-  std::size_t begin = 0, end = 0;
-  int width = 0;
-};
+using Conversion = NumberConversion;
 
+// The pattern's step number, or why it has none usable.
 std::optional<Conversion> findConversion(std::string_view text, std::string* problem) {
-  std::optional<Conversion> found;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] != '%') continue;
-    if (i + 1 < text.size() && text[i + 1] == '%') {
-      ++i;
-      continue;
-    }
-    Conversion c;
-    c.begin = i;
-    std::size_t j = i + 1;
-    if (j + 1 < text.size() && text[j] == '0' && text[j + 1] >= '1' && text[j + 1] <= '9') {
-      c.width = text[j + 1] - '0';
-      j += 2;
-    }
-    if (j >= text.size() || text[j] != 'd') {
-      if (problem) *problem = "only %d or %0Nd can number the steps (write %% for a literal %)";
-      return std::nullopt;
-    }
-    if (found) {
-      if (problem) *problem = "it holds more than one step number";
-      return std::nullopt;
-    }
-    c.end = j + 1;
-    found = c;
-    i = j;
+  const NumberScan scan = scanNumberConversion(text);
+  const char* why = nullptr;
+  switch (scan.problem) {
+    case NumberScan::Problem::None: return scan.conversion;
+    case NumberScan::Problem::NotAConversion:
+      why = "only %d or %0Nd can number the steps (write %% for a literal %)";
+      break;
+    case NumberScan::Problem::MoreThanOne: why = "it holds more than one step number"; break;
+    case NumberScan::Problem::NoConversion: why = "it holds no step number"; break;
   }
-  if (!found && problem) *problem = "it holds no step number";
-  return found;
-}
-
-std::string unescapePercent(std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
-  }
-  return out;
+  if (problem) *problem = why;
+  return std::nullopt;
 }
 
 bool isDigits(std::string_view text) {
