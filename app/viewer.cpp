@@ -38,8 +38,12 @@ constexpr std::uint32_t kFramesInFlight = 2;
 // GPU time the frame-paced LIC may take per frame: the UI stays responsive while the volume is
 // recomputed in slabs, even on a CPU driver.
 constexpr double kLicBudgetMs = 12.0;
-// Where the session goes when the app stops on an error.
+// Where the session goes when the app stops on an error or loses its device.
 constexpr const char* kRecoveryFile = "lic3d-recovery.json";
+// A device lost more than kMaxLossStreak times with fewer than kLossStreakFrames frames between
+// the losses is given up on: the app exits with the error (the session is in the recovery file).
+constexpr int kMaxLossStreak = 3;
+constexpr std::uint64_t kLossStreakFrames = 100;
 // --soak (tests/test_viewer.cpp, docs/RELIABILITY.md).
 constexpr std::uint64_t kSoakChangeEvery = 10;
 constexpr std::uint64_t kSoakResizeEvery = 250;
@@ -136,6 +140,9 @@ class App {
 
  private:
   Result<void> init();
+  Result<void> createGpu();
+  void destroyGpu();
+  Result<void> recoverDevice(const Error& error);
   Result<void> createSwapchain();
   Result<void> startLoading(const FieldSource& field, const NoiseSource& noise);
   Result<void> finishLoading();
@@ -167,7 +174,8 @@ class App {
   std::vector<VkFramebuffer> framebuffers_;
   VkRenderPass uiPass_ = VK_NULL_HANDLE;
   VkDescriptorPool uiPool_ = VK_NULL_HANDLE;
-  bool imguiReady_ = false;
+  bool imguiReady_ = false;        // Dear ImGui's context and GLFW backend
+  bool imguiVulkanReady_ = false;  // its Vulkan backend, made again with the device
   Image offscreen_;
   std::array<Frame, kFramesInFlight> frames_;
   std::uint64_t frameNumber_ = 0;
@@ -189,6 +197,11 @@ class App {
   std::future<Result<std::vector<std::pair<int, VectorField>>>> stepLoading_;
   double timePhase_ = 0.0;
   bool loadedOnce_ = false;  // a field load has completed (or the app started in 2D)
+  bool reloadField_ = false;  // the volume's field must be read again (a new device has none)
+  int deviceLosses_ = 0;
+  std::size_t lostValidationMessages_ = 0;  // validation messages of devices made before this one
+  int lossStreak_ = 0;
+  std::uint64_t lastLossFrame_ = 0;
   // The 2D mode's picture.
   std::optional<PlaneView> planeView_;
   std::optional<std::pair<FieldSource, cli::TimeDomain>> planeDomain_;
@@ -212,32 +225,39 @@ class App {
 };
 
 App::~App() {
-  if (context_) vkDeviceWaitIdle(context_->device());
+  destroyGpu();
   if (imguiReady_) {
-    ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
   }
-  if (context_) {
-    VkDevice device = context_->device();
-    destroySwapchainObjects();
-    for (Frame& f : frames_) {
-      if (f.fence) vkDestroyFence(device, f.fence, nullptr);
-      if (f.imageAvailable) vkDestroySemaphore(device, f.imageAvailable, nullptr);
-      if (f.pool) vkDestroyCommandPool(device, f.pool, nullptr);
-      f.timer = GpuTimer();
-      f.readback = Buffer();
-    }
-    if (uiPass_) vkDestroyRenderPass(device, uiPass_, nullptr);
-    if (uiPool_) vkDestroyDescriptorPool(device, uiPool_, nullptr);
-    offscreen_ = Image();
-    planeView_.reset();
-    renderer_.reset();
-    swapchain_ = Swapchain();
-    context_.reset();
-  }
   if (window_) glfwDestroyWindow(window_);
   glfwTerminate();
+}
+
+// Everything made on the device, and the device. After VK_ERROR_DEVICE_LOST the waits return
+// that error at once, and destroying is still valid.
+void App::destroyGpu() {
+  if (!context_) return;
+  VkDevice device = context_->device();
+  vkDeviceWaitIdle(device);
+  if (imguiVulkanReady_) ImGui_ImplVulkan_Shutdown();
+  imguiVulkanReady_ = false;
+  destroySwapchainObjects();
+  for (Frame& f : frames_) {
+    if (f.fence) vkDestroyFence(device, f.fence, nullptr);
+    if (f.imageAvailable) vkDestroySemaphore(device, f.imageAvailable, nullptr);
+    if (f.pool) vkDestroyCommandPool(device, f.pool, nullptr);
+    f = Frame();
+  }
+  if (uiPass_) vkDestroyRenderPass(device, uiPass_, nullptr);
+  uiPass_ = VK_NULL_HANDLE;
+  if (uiPool_) vkDestroyDescriptorPool(device, uiPool_, nullptr);
+  uiPool_ = VK_NULL_HANDLE;
+  offscreen_ = Image();
+  planeView_.reset();
+  renderer_.reset();
+  swapchain_ = Swapchain();
+  context_.reset();
 }
 
 void App::destroySwapchainObjects() {
@@ -264,6 +284,31 @@ Result<void> App::init() {
   glfwSetKeyCallback(window_, onKey);
   glfwSetFramebufferSizeCallback(window_, onFramebufferSize);
 
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  float scale = 1.0f;
+  glfwGetWindowContentScale(window_, &scale, nullptr);
+  if (scale > 1.0f) {
+    ImGui::GetStyle().ScaleAllSizes(scale);
+    ImGui::GetIO().FontGlobalScale = scale;
+  }
+  ImGui_ImplGlfw_InitForVulkan(window_, true);
+  imguiReady_ = true;
+  LIC3D_TRY(createGpu());
+
+  ui_.visible = !options_.hideUi;
+  ui_.pendingField = session_.field;
+  ui_.pendingNoise = session_.noise;
+  ui_.pendingTimeSteps = session_.timeSteps;
+  // The 2D mode makes its own plane; the volume's field is read when the 3D mode is chosen.
+  if (!session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
+  loadedOnce_ = session_.twoD;
+  return {};
+}
+
+// The device and everything the app draws with: made at the start and again after a lost device.
+Result<void> App::createGpu() {
   ContextOptions contextOptions;
   contextOptions.validation = global_.validation;
   contextOptions.device = global_.device;
@@ -328,16 +373,6 @@ Result<void> App::init() {
   LIC3D_TRY(checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &uiPool_), "vkCreateDescriptorPool"));
   context_->setDebugName(uiPool_, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "imgui descriptors");
 
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
-  float scale = 1.0f;
-  glfwGetWindowContentScale(window_, &scale, nullptr);
-  if (scale > 1.0f) {
-    ImGui::GetStyle().ScaleAllSizes(scale);
-    ImGui::GetIO().FontGlobalScale = scale;
-  }
-  ImGui_ImplGlfw_InitForVulkan(window_, true);
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = context_->instance();
   info.PhysicalDevice = context_->physicalDevice();
@@ -350,19 +385,46 @@ Result<void> App::init() {
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = checkImguiVk;
   ImGui_ImplVulkan_Init(&info, uiPass_);
-  imguiReady_ = true;
+  imguiVulkanReady_ = true;
   LIC3D_TRY(submitAndWait(
       *context_, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); },
       "imgui fonts"));
   ImGui_ImplVulkan_DestroyFontUploadObjects();
+  return {};
+}
 
-  ui_.visible = !options_.hideUi;
-  ui_.pendingField = session_.field;
-  ui_.pendingNoise = session_.noise;
-  ui_.pendingTimeSteps = session_.timeSteps;
-  // The 2D mode makes its own plane; the volume's field is read when the 3D mode is chosen.
-  if (!session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
-  loadedOnce_ = session_.twoD;
+// After VK_ERROR_DEVICE_LOST (a driver reset, a GPU fault) nothing made on the device can be used
+// again. The session is saved to the recovery file, the device and everything on it are made
+// again, the volume's field is read again and its LIC recomputed from the session, and a dialog
+// says what happened. A device lost again and again is given up on (the error is returned).
+Result<void> App::recoverDevice(const Error& error) {
+  saveRecovery();
+  lossStreak_ = deviceLosses_ > 0 && frameNumber_ - lastLossFrame_ < kLossStreakFrames
+                    ? lossStreak_ + 1
+                    : 1;
+  if (lossStreak_ > kMaxLossStreak) {
+    Error fatal = error;
+    fatal.message += " (the device was lost " + std::to_string(lossStreak_) + " times within " +
+                     std::to_string(kLossStreakFrames) + " frames of each other: giving up)";
+    return fatal;
+  }
+  ++deviceLosses_;
+  lastLossFrame_ = frameNumber_;
+  std::fprintf(stderr, "lic3d-view: %s: making the device again\n", error.message.c_str());
+  // Steps of a series being read belong to the old blend: the new series is read from scratch.
+  // A field being read (stats_.loading) is CPU work: it goes on and is uploaded to the new device.
+  if (stepLoading_.valid()) stepLoading_.wait();
+  stepLoading_ = {};
+  series_.reset();
+  blended_.reset();
+  licSumMs_ = 0.0;
+  lostValidationMessages_ += context_->validationMessageCount();
+  destroyGpu();
+  LIC3D_TRY(createGpu());
+  reloadField_ = !stats_.loading;
+  stats_.alertTitle = "lic3d: the GPU device was lost";
+  stats_.alert = error.message + ". The device was made again and the session restored; a copy of "
+                 "the session is in " + kRecoveryFile + ".";
   return {};
 }
 
@@ -431,7 +493,7 @@ Result<void> App::createSwapchain() {
     renderFinished_.push_back(semaphore);
     context_->setDebugName(semaphore, VK_OBJECT_TYPE_SEMAPHORE, "render finished " + std::to_string(i));
   }
-  if (imguiReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
+  if (imguiVulkanReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
 
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
@@ -459,7 +521,8 @@ Result<void> App::startLoading(const FieldSource& field, const NoiseSource& nois
   stats_.loading = true;
   // Reading a large file or sampling a large grid takes a while: off the drawing thread.
   // --grid with a file field is an error on the command line only, not when loading later.
-  const bool gridGiven = !renderer_->hasVolume() && inputs_.grid.given();
+  const bool gridGiven = !renderer_->hasVolume() && deviceLosses_ == 0 && inputs_.grid.given();
+  reloadField_ = false;
   const double time = session_.time;
   const int timeSteps = session_.timeSteps > 0 ? session_.timeSteps : kDefaultTimeSteps;
   loading_ = std::async(
@@ -519,6 +582,7 @@ Result<void> App::finishLoading() {
                                         .timeSeries = loaded->series.has_value()});
       !r) {
     if (!renderer_->hasVolume()) return std::move(r).error();  // nothing to keep: exit status 3
+    stats_.alertTitle = "lic3d: not done";
     stats_.alert = r.error().message + ". The previous field stays loaded.";
     ui_.pendingField = session_.field;
     return {};
@@ -822,8 +886,7 @@ Result<bool> App::frame() {
     LIC3D_TRY(createSwapchain());
     return true;
   }
-  if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR)
-    return runtimeError(std::string("vkAcquireNextImageKHR failed: ") + vkResultName(acquired));
+  if (acquired != VK_SUBOPTIMAL_KHR) LIC3D_TRY(checkVk(acquired, "vkAcquireNextImageKHR"));
   LIC3D_TRY(checkVk(vkResetFences(device, 1, &f.fence), "vkResetFences"));
 
   // UI and input.
@@ -856,7 +919,8 @@ Result<bool> App::frame() {
     updatePlane();
   } else {
     // Back from the 2D mode with another field: the volume's field is read again.
-    if (!stats_.loading && !(loadedField_ == session_.field && loadedNoise_ == session_.noise))
+    if (!stats_.loading &&
+        (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
       LIC3D_TRY(startLoading(session_.field, session_.noise));
     LIC3D_TRY(updateTime());
     if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
@@ -973,7 +1037,7 @@ Result<bool> App::frame() {
   submit.pCommandBufferInfos = &cmdInfo;
   submit.signalSemaphoreInfoCount = 1;
   submit.pSignalSemaphoreInfos = &signal;
-  LIC3D_TRY(checkVk(vkQueueSubmit2(context_->queue(), 1, &submit, f.fence), "vkQueueSubmit2"));
+  LIC3D_TRY(submitToQueue(*context_, submit, f.fence));
 
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   present.waitSemaphoreCount = 1;
@@ -985,8 +1049,8 @@ Result<bool> App::frame() {
   const VkResult presented = vkQueuePresentKHR(context_->queue(), &present);
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
     input_.resized = true;
-  } else if (presented != VK_SUCCESS) {
-    return runtimeError(std::string("vkQueuePresentKHR failed: ") + vkResultName(presented));
+  } else {
+    LIC3D_TRY(checkVk(presented, "vkQueuePresentKHR"));
   }
   ++frameNumber_;
   if (options_.frames > 0 && frameNumber_ > static_cast<std::uint64_t>(options_.frames) + 100000)
@@ -1081,6 +1145,11 @@ int App::run() {
   drawnSession_ = session_;
   while (true) {
     Result<bool> more = frame();
+    if (!more && more.error().deviceLost) {
+      Result<void> recovered = recoverDevice(more.error());
+      if (recovered) continue;
+      more = std::move(recovered).error();
+    }
     if (!more) {
       exitStatus_ = cli::reportError(more.error());
       saveRecovery();
@@ -1088,6 +1157,7 @@ int App::run() {
     }
     if (!*more) break;
   }
+  if (!context_) return exitStatus_;  // the device was lost and could not be made again
   // Let the last screenshot's frame finish (a scripted run quits right after recording it).
   vkDeviceWaitIdle(context_->device());
   for (Frame& f : frames_)
@@ -1102,9 +1172,10 @@ int App::run() {
     else
       std::fprintf(stderr, "lic3d-view: wrote %s\n", options_.saveSession.c_str());
   }
-  if (context_->validationEnabled() && context_->validationMessageCount() > 0) {
-    std::fprintf(stderr, "lic3d-view: error: %zu validation message(s)\n",
-                 context_->validationMessageCount());
+  const std::size_t validationMessages =
+      lostValidationMessages_ + context_->validationMessageCount();
+  if (context_->validationEnabled() && validationMessages > 0) {
+    std::fprintf(stderr, "lic3d-view: error: %zu validation message(s)\n", validationMessages);
     if (exitStatus_ == cli::kExitOk) exitStatus_ = cli::kExitFailure;
   }
   return exitStatus_;

@@ -373,15 +373,16 @@ void helpPanel(UiState& ui) {
 
 }  // namespace
 
-// A request the app refused (e.g. a field too large for the device), until dismissed; shown even
-// with the panels hidden.
+// A request the app refused (e.g. a field too large for the device) or a lost device, until
+// dismissed; shown even with the panels hidden.
 void alertDialog(const Stats& stats, Actions& actions) {
   if (stats.alert.empty()) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Always,
                           ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowSize(ImVec2(ImGui::GetFontSize() * 32.0f, 0.0f), ImGuiCond_Always);
-  if (ImGui::Begin("lic3d: not done", nullptr,
+  const std::string title = (stats.alertTitle.empty() ? "lic3d" : stats.alertTitle) + "###alert";
+  if (ImGui::Begin(title.c_str(), nullptr,
                    ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::TextWrapped("%s", stats.alert.c_str());
     if (ImGui::Button("OK")) actions.dismissAlert = true;

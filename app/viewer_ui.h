@@ -22,7 +22,8 @@ struct Stats {
   bool waitingForMask = false;
   bool loading = false;
   std::string message;  // the last error or notice, shown until replaced
-  std::string alert;    // a refused request, shown in a dialog until dismissed
+  std::string alert;    // a refused request or a lost device, shown in a dialog until dismissed
+  std::string alertTitle;
   float minMagnitude = 0.0f, maxMagnitude = 1.0f;
   // The field's time (docs/TIME.md): the slider runs over [0, timeEnd].
   bool timeDependent = false;

@@ -20,6 +20,9 @@ enum class ErrorKind {
 struct Error {
   ErrorKind kind = ErrorKind::Runtime;
   std::string message;
+  // VK_ERROR_DEVICE_LOST or VK_ERROR_SURFACE_LOST_KHR: nothing made on the device can be used
+  // again, but a new device (and surface) can carry on (the desktop app does, docs/RELIABILITY.md).
+  bool deviceLost = false;
 };
 
 inline Error inputError(std::string message) { return {ErrorKind::InvalidInput, std::move(message)}; }

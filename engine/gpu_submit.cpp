@@ -1,10 +1,42 @@
 #include "gpu_submit.h"
 
+#include <atomic>
+#include <cstdlib>
 #include <cstring>
 
 #include "vk_check.h"
 
 namespace lic3d {
+namespace {
+
+// LIC3D_LOSE_DEVICE=N: the N-th submission of the process; =every:N: every N-th. Read once.
+bool injectedDeviceLoss() {
+  struct Hook {
+    long n = 0;
+    bool every = false;
+  };
+  static const Hook hook = [] {
+    Hook h;
+    const char* text = std::getenv("LIC3D_LOSE_DEVICE");
+    if (!text) return h;
+    h.every = std::strncmp(text, "every:", 6) == 0;
+    h.n = std::strtol(h.every ? text + 6 : text, nullptr, 10);
+    return h;
+  }();
+  static std::atomic<long> count{0};
+  if (hook.n <= 0) return false;
+  const long k = ++count;
+  return hook.every ? k % hook.n == 0 : k == hook.n;
+}
+
+}  // namespace
+
+Result<void> submitToQueue(const Context& context, const VkSubmitInfo2& submit, VkFence fence) {
+  const VkResult result = vkQueueSubmit2(context.queue(), 1, &submit, fence);
+  if (result == VK_SUCCESS && injectedDeviceLoss())
+    return checkVk(VK_ERROR_DEVICE_LOST, "vkQueueSubmit2");
+  return checkVk(result, "vkQueueSubmit2");
+}
 
 Result<void> submitAndWait(const Context& context, const std::function<void(VkCommandBuffer)>& record,
                            const char* what) {
@@ -52,8 +84,7 @@ Result<void> submitAndWait(const Context& context, const std::function<void(VkCo
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
-  Result<void> result = checkVk(vkQueueSubmit2(context.queue(), 1, &submit, fence),
-                                "vkQueueSubmit2");
+  Result<void> result = submitToQueue(context, submit, fence);
   if (result) result = checkVk(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX),
                                "vkWaitForFences");
   if (!result) {

@@ -20,6 +20,12 @@ namespace lic3d {
 Result<void> submitAndWait(const Context& context, const std::function<void(VkCommandBuffer)>& record,
                            const char* what);
 
+// vkQueueSubmit2 of one submission to the context's queue, checked. Every submission of lic3d goes
+// through here. Test hook (docs/RELIABILITY.md): LIC3D_LOSE_DEVICE=N reports the N-th submission
+// of the process as VK_ERROR_DEVICE_LOST (after making it, so nothing is left half-submitted);
+// LIC3D_LOSE_DEVICE=every:N reports every N-th.
+Result<void> submitToQueue(const Context& context, const VkSubmitInfo2& submit, VkFence fence);
+
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,

@@ -56,7 +56,9 @@ void abortOnAssert(const char* condition, const char* file, int line) {
 
 Result<void> checkVk(VkResult result, const char* call) {
   if (result == VK_SUCCESS) return {};
-  return runtimeError(std::string(call) + " failed: " + vkResultName(result));
+  Error error = runtimeError(std::string(call) + " failed: " + vkResultName(result));
+  error.deviceLost = result == VK_ERROR_DEVICE_LOST || result == VK_ERROR_SURFACE_LOST_KHR;
+  return error;
 }
 
 }  // namespace lic3d

@@ -927,6 +927,30 @@ TEST_F(CliTest, EveryAllocationFailureIsReportedAndLeavesNothing) {
   EXPECT_TRUE(fs::exists(path("out.png"))) << "the run past the last allocation succeeds";
 }
 
+// A device lost at any submission of a render or a volume export (the submission hook, as a
+// driver reset would): status 1 naming the call and VK_ERROR_DEVICE_LOST, no validation message,
+// and no output file at all.
+TEST_F(CliTest, ALostDeviceIsReportedAndLeavesNothing) {
+  for (const char* command : {"render --grid 8 --width 32 --height 32 -q -o out.png",
+                              "compute --grid 8 -q -o out.nrrd"}) {
+    int lost = 0;
+    for (int n = 1; n <= 40; ++n) {
+      for (const fs::directory_entry& e : fs::directory_iterator(folder())) fs::remove(e.path());
+      const CommandRun r = run(std::string("--validation ") + command,
+                               "LIC3D_LOSE_DEVICE=" + std::to_string(n));
+      if (r.status == 0) break;  // past the last submission
+      ++lost;
+      EXPECT_EQ(r.status, 1) << command << ", submission " << n << ": " << r.output;
+      EXPECT_NE(r.output.find("vkQueueSubmit2 failed: VK_ERROR_DEVICE_LOST"), std::string::npos)
+          << r.output;
+      EXPECT_EQ(r.output.find("alidation"), std::string::npos) << r.output;
+      EXPECT_EQ(listFolder(), std::vector<std::string>{}) << command << ", submission " << n;
+    }
+    EXPECT_GT(lost, 2) << command << ": the hook should reach every submission";
+    EXPECT_FALSE(listFolder().empty()) << command << ": the run past the last submission succeeds";
+  }
+}
+
 // Killed at any moment, a batch render never leaves a truncated file under a real name: each
 // frame is written to a temporary name in the same folder and renamed once complete.
 TEST_F(CliTest, KillingABatchRenderLeavesOnlyCompleteFrames) {

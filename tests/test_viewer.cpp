@@ -49,8 +49,11 @@ class ViewerTest : public test::TempFolderTest {
   }
 
   // lic3d-view in a fresh virtual screen, in the test's folder.
-  CommandRun view(const std::string& args, const std::string& size = "") const {
-    return runShell("cd '" + folder().string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' '" +
+  // `environment`: assignments put before the command (test hooks).
+  CommandRun view(const std::string& args, const std::string& size = "",
+                  const std::string& environment = "") const {
+    return runShell("cd '" + folder().string() + "' && " + environment +
+                    " xvfb-run -a -s '-screen 0 1280x800x24' '" +
                     std::string(LIC3D_VIEWER) + "' --validation --window-size " +
                     (size.empty() ? std::to_string(kWidth) + "x" + std::to_string(kHeight) : size) +
                     " " + args);
@@ -241,6 +244,71 @@ TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
     sawRecovery = true;
   }
   EXPECT_TRUE(sawRecovery) << "none of the injected failures hit the running app";
+}
+
+// A lost device (the submission hook reports VK_ERROR_DEVICE_LOST, as a driver reset would): the
+// app saves the session, makes the device again, reads the field and recomputes the LIC from the
+// session, and says so in a dialog. Lost while the first volume is computed and after it is shown,
+// the picture outside the dialog is the undisturbed run's, pixel for pixel.
+TEST_F(ViewerTest, ALostDeviceIsMadeAgainAndTheSessionRestored) {
+  writeBytes("in.json",
+             R"({"field": {"source": "tornado", "grid": [24, 24, 24]}, "lic": {"length": 9}})");
+  constexpr int kW = 640, kH = 480;
+  const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  const std::string args = "--session in.json --frames 30 --hide-ui --screenshot shot.png";
+  const CommandRun reference = view(args, size);
+  ASSERT_EQ(reference.status, 0) << reference.output;
+  fs::rename(path("shot.png"), path("reference.png"));
+  const test::RgbaPixels expected = test::readRgbaPng(path("reference.png"));
+  ASSERT_EQ(expected.width, kW);
+
+  // The dialog sits in the middle of the window; the rows above and below it are compared.
+  const Box top{0, 0, kW, kH / 2 - 80}, bottom{0, kH / 2 + 80, kW, kH};
+  for (const int n : {4, 14}) {
+    SCOPED_TRACE("lost at submission " + std::to_string(n));
+    fs::remove(path("lic3d-recovery.json"));
+    const CommandRun r = view("--save-session after.json " + args, size,
+                              "LIC3D_LOSE_DEVICE=" + std::to_string(n));
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("vkQueueSubmit2 failed: VK_ERROR_DEVICE_LOST: making the device again"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+    for (const char* file : {"lic3d-recovery.json", "after.json"}) {
+      Result<Session> saved = readSession(path(file));
+      ASSERT_TRUE(saved) << file << "\n" << r.output;
+      EXPECT_EQ(saved->field.grid, Dims(24)) << file;
+      EXPECT_EQ(saved->lic.length, 9) << file;
+    }
+    const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+    ASSERT_EQ(shot.width, kW);
+    ASSERT_EQ(shot.height, kH);
+    EXPECT_GT(fraction(shot, {0, kH / 2 - 80, kW, kH / 2 + 80}, imguiBlue), 0.01)
+        << "the dialog saying the device was lost is missing";
+    for (const Box& box : {top, bottom}) {
+      EXPECT_GT(fraction(expected, box, lit), 0.2) << "the compared rows should show the volume";
+      int differing = 0;
+      for (int y = box.y0; y < box.y1; ++y)
+        for (int x = box.x0; x < box.x1; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const std::size_t i = 4 * (static_cast<std::size_t>(y) * kW + x) + c;
+            if (shot.rgba[i] != expected.rgba[i]) ++differing;
+          }
+      EXPECT_EQ(differing, 0) << "the restored picture differs from the undisturbed one";
+    }
+  }
+}
+
+// A device lost again and again (every 6th submission) is given up on: exit status 1 with the
+// error, the session in the recovery file.
+TEST_F(ViewerTest, ADeviceLostAgainAndAgainIsGivenUpOn) {
+  writeBytes("in.json", R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 7}})");
+  const CommandRun r = view("--session in.json --frames 200", "320x240", "LIC3D_LOSE_DEVICE=every:6");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("giving up"), std::string::npos) << r.output;
+  Result<Session> saved = readSession(path("lic3d-recovery.json"));
+  ASSERT_TRUE(saved) << r.output;
+  EXPECT_EQ(saved->lic.length, 7);
 }
 
 TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
