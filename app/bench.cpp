@@ -15,6 +15,7 @@
 #include "noise.h"
 #include "shader_library.h"
 #include "sparsity.h"
+#include "volume_compare.h"
 
 namespace lic3d::cli {
 namespace {
@@ -376,26 +377,6 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
     report["recompute"].push_back(row);
   }
   return report;
-}
-
-// Pearson correlation of two volumes on the same grid.
-double correlation(const ScalarVolume& a, const ScalarVolume& b) {
-  const std::size_t n = a.values.size();
-  double ma = 0.0, mb = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    ma += a.values[i];
-    mb += b.values[i];
-  }
-  ma /= static_cast<double>(n);
-  mb /= static_cast<double>(n);
-  double ab = 0.0, aa = 0.0, bb = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double da = a.values[i] - ma, db = b.values[i] - mb;
-    ab += da * db;
-    aa += da * da;
-    bb += db * db;
-  }
-  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : 1.0;
 }
 
 struct KernelVariant {

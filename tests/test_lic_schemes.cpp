@@ -15,36 +15,13 @@
 #include "lic_renderer.h"
 #include "noise.h"
 #include "test_support.h"
+#include "volume_compare.h"
 
 namespace lic3d {
 namespace {
 
 using test::compareVolumes;
 using test::GpuTest;
-
-// Pearson correlation over the voxels `keep` accepts (all of them by default).
-double correlation(const ScalarVolume& a, const ScalarVolume& b,
-                   const std::function<bool(std::size_t)>& keep = {}) {
-  const std::size_t n = a.values.size();
-  double ma = 0.0, mb = 0.0, count = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (keep && !keep(i)) continue;
-    ma += a.values[i];
-    mb += b.values[i];
-    ++count;
-  }
-  ma /= count;
-  mb /= count;
-  double ab = 0.0, aa = 0.0, bb = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (keep && !keep(i)) continue;
-    const double da = a.values[i] - ma, db = b.values[i] - mb;
-    ab += da * db;
-    aa += da * da;
-    bb += db * db;
-  }
-  return ab / std::sqrt(aa * bb);
-}
 
 ScalarVolume gpuLic(const Context& context, const VectorField& field, const NoiseVolume& noise,
                     const LicParams& params, FieldPrecision precision) {
