@@ -217,7 +217,14 @@ class App {
     std::uint64_t deviceBytes;
   };
   std::vector<MemorySample> soakSamples_;
-  int soakBaseLength_ = 0;
+  std::optional<Session> soakBase_;  // the session the soak's changes are set from and undone to
+  bool soakSampleDue_ = false;
+  struct SoakCounts {
+    std::uint64_t masks = 0;         // sparsity masks asked for
+    std::uint64_t volumes = 0;       // LIC volumes finished and shown
+    std::uint64_t fieldReads = 0;    // fields read on the loading thread
+    std::uint64_t stepReads = 0;     // time steps read on a worker thread
+  } soak_;
   int swapchainsCreated_ = 0;
   void soakStep();
   void saveRecovery() const;
@@ -561,6 +568,7 @@ Result<void> App::finishLoading() {
     return {};
   Result<Loaded> loaded = loading_.get();
   stats_.loading = false;
+  if (loaded) ++soak_.fieldReads;
   // The app's first field failing to load ends it (nothing to show); later failures are messages.
   const bool firstLoad = !renderer_->hasVolume() && !loadedOnce_;
   loadedOnce_ = true;
@@ -692,6 +700,7 @@ Result<void> App::updateTime() {
       stats_.message = steps.error().message;
       return {};
     }
+    soak_.stepReads += steps->size();
     // Steps for a time already left behind are not uploaded: they would evict the ones in use.
     for (const auto& [k, step] : *steps)
       if (k == b.first || k == b.second)
@@ -857,7 +866,10 @@ Result<bool> App::frame() {
   const std::uint32_t slot = static_cast<std::uint32_t>(frameNumber_ % kFramesInFlight);
   VkDevice device = context_->device();
   LIC3D_TRY(checkVk(vkWaitForFences(device, 1, &f.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences"));
-  if (f.finishedLic) renderer_->collectStatistics(slot);
+  if (f.finishedLic) {
+    renderer_->collectStatistics(slot);
+    ++soak_.volumes;
+  }
   if (f.timed) {
     LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
     LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
@@ -1069,17 +1081,46 @@ std::uint64_t residentBytes() {
 }
 
 // One frame of the soak: a parameter change every kSoakChangeEvery frames, alternately of the LIC
-// (recompute) and of the view (redraw), a window resize every kSoakResizeEvery frames, and a
-// memory sample every kSoakSampleEvery frames.
+// and of the view (redraw), a window resize every kSoakResizeEvery frames, and a memory sample
+// every kSoakSampleEvery frames. The LIC changes take turns among everything the app recomputes
+// asynchronously: the length (LIC slabs over frames), sparsity (the mask on a worker thread), the
+// noise seed (field and noise read again on the loading thread) and, for an unsteady field, the
+// time (steps read on a worker thread and blended on the GPU). Each is set and undone in turn.
 void App::soakStep() {
   if (options_.frames <= 0 || frameNumber_ >= static_cast<std::uint64_t>(options_.frames)) return;
-  if (soakBaseLength_ == 0) soakBaseLength_ = session_.lic.length;
+  if (!soakBase_) soakBase_ = session_;
+  const Session& base = *soakBase_;
   const std::uint64_t n = frameNumber_;
   if (n > 0 && n % kSoakChangeEvery == 0) {
-    if ((n / kSoakChangeEvery) % 2 == 1)
-      session_.lic.length = session_.lic.length == soakBaseLength_ ? soakBaseLength_ + 1 : soakBaseLength_;
-    else
+    if ((n / kSoakChangeEvery) % 2 == 1) {
+      switch ((n / (2 * kSoakChangeEvery)) % 4) {
+        case 0:
+          session_.lic.length = session_.lic.length == base.lic.length ? base.lic.length + 1 : base.lic.length;
+          break;
+        case 1:
+          if (session_.lic.sparsity == base.lic.sparsity) {
+            // A new seed each time: the mask is made again, not taken from the last one.
+            session_.lic.sparsity = SparsityParams{};
+            session_.lic.sparsity.distribution = SparsityDistribution::Poisson;
+            session_.lic.sparsity.seed = ++soak_.masks;
+          } else {
+            session_.lic.sparsity = base.lic.sparsity;
+          }
+          break;
+        case 2:
+          session_.noise.seed = session_.noise.seed == base.noise.seed ? base.noise.seed + 1 : base.noise.seed;
+          break;
+        default:
+          // Two and a half steps on: neither step of the bracket is resident.
+          if (series_ && !stats_.loading) {
+            const double step = series_->stepTime(1) - series_->stepTime(0);
+            session_.time = session_.time == base.time ? base.time + 2.5 * step : base.time;
+          }
+          break;
+      }
+    } else {
       session_.view.camera.azimuth = std::fmod(session_.view.camera.azimuth + 7.0f, 360.0f);
+    }
   }
   // A resize every kSoakResizeEvery frames, undone 10 frames later: both recreate the swapchain,
   // and the memory samples (multiples of 50) all see the window at its own size.
@@ -1088,8 +1129,13 @@ void App::soakStep() {
     glfwSetWindowSize(window_, options_.windowWidth + (larger ? 64 : 0),
                       options_.windowHeight + (larger ? 48 : 0));
   }
-  if (n % kSoakSampleEvery == 0)
+  // Memory is sampled at rest: the first frame from each multiple of kSoakSampleEvery on at which
+  // nothing is being read, masked or recomputed (work in flight holds old and new at once).
+  if (n % kSoakSampleEvery == 0) soakSampleDue_ = true;
+  if (soakSampleDue_ && !stats_.loading && !renderer_->licStatus().pending && !timePending()) {
     soakSamples_.push_back({n, residentBytes(), context_->allocatedBytes()});
+    soakSampleDue_ = false;
+  }
 }
 
 // After the warm-up, memory must not grow: the largest sample of the second half may exceed the
@@ -1117,11 +1163,17 @@ int App::soakVerdict() const {
   const double mib = 1.0 / (1 << 20);
   std::printf("lic3d-view soak: %llu frames, samples every %d after %d warm-up frames; RSS max "
               "%.1f MiB (first half) -> %.1f MiB (second half); device memory max %.1f -> %.1f MiB; "
-              "%d swapchains\n",
+              "%d swapchains; %llu LIC volumes, %llu of %llu sparsity masks, %llu field reads, "
+              "%llu time steps read\n",
               static_cast<unsigned long long>(frameNumber_), static_cast<int>(kSoakSampleEvery),
               static_cast<int>(kSoakWarmupFrames), static_cast<double>(rss1) * mib,
               static_cast<double>(rss2) * mib, static_cast<double>(dev1) * mib,
-              static_cast<double>(dev2) * mib, swapchainsCreated_);
+              static_cast<double>(dev2) * mib, swapchainsCreated_,
+              static_cast<unsigned long long>(soak_.volumes),
+              static_cast<unsigned long long>(renderer_->maskBuildCount()),
+              static_cast<unsigned long long>(soak_.masks),
+              static_cast<unsigned long long>(soak_.fieldReads),
+              static_cast<unsigned long long>(soak_.stepReads));
   if (rss2 > rss1 + kSoakRssSlack || dev2 > dev1) {
     std::fprintf(stderr, "lic3d-view: error: memory grew during the soak (tolerance: %.0f MiB of "
                          "RSS, no device memory)\n", static_cast<double>(kSoakRssSlack) * mib);

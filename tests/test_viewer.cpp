@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 #include <string>
 
 #include "png_read.h"
@@ -197,8 +198,8 @@ TEST_F(ViewerTest, TheTimeOfAnUnsteadyFieldIsShownAndSaved) {
 }
 
 // The short soak (docs/RELIABILITY.md has the 10,000-frame run): 500 frames with a LIC or view
-// change every 10 and a resize at 250, undone at 260 (the swapchain is recreated each time); RSS and device memory do not
-// grow after the warm-up, and validation stays clean throughout.
+// change every 10 and a resize at 250, undone at 260 (the swapchain is recreated each time); RSS
+// and device memory do not grow after the warm-up, and validation stays clean throughout.
 TEST_F(ViewerTest, SoakKeepsMemoryFlat) {
   const CommandRun r = view("--grid 16 --frames 500 --soak", "320x240");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -208,6 +209,18 @@ TEST_F(ViewerTest, SoakKeepsMemoryFlat) {
   ASSERT_NE(at, std::string::npos) << r.output;
   const std::size_t start = r.output.rfind(' ', at - 1);
   EXPECT_GE(std::stoi(r.output.substr(start + 1, at - start - 1)), 3) << r.output;
+  // The LIC changes reached every kind of asynchronous work (tsan-app runs this under
+  // ThreadSanitizer): volumes recomputed, sparsity masks made on a worker thread, the field read
+  // again on the loading thread, time steps of the (unsteady) tornado read on a worker thread.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m,
+                                std::regex("(\\d+) LIC volumes, (\\d+) of (\\d+) sparsity masks, "
+                                           "(\\d+) field reads, (\\d+) time steps read")))
+      << r.output;
+  EXPECT_GE(std::stoi(m[1]), 10) << r.output;
+  EXPECT_GE(std::stoi(m[2]), 2) << r.output;
+  EXPECT_GE(std::stoi(m[4]), 3) << r.output;
+  EXPECT_GE(std::stoi(m[5]), 4) << r.output;
 }
 
 // A soak without --frames cannot end: refused.
