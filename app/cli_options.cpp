@@ -196,6 +196,43 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
           ->capture_default_str();
 }
 
+namespace {
+
+// Grey mapping and colour, the same for the volume (`render`) and the 2D image (`render2d`):
+// `what` names what the contrast stretch measures, `colorNote` ends the --color help.
+void addGreyAndColorOptions(CLI::App& app, SessionOptions& options, const char* what,
+                            const char* colorNote) {
+  ViewParams& view = options.session.view;
+  addText(app, "--contrast", options.contrast,
+          std::string("on: stretch ") + what +
+              " LIC values to mean 0.5 and deviation 0.25 (a histogram stretch); off: grey = "
+              "LIC value",
+          "on")
+      .option->check(CLI::IsMember({"on", "off"}));
+  addText(app, "--window", options.window,
+          "Intensity window mapped to black..white instead of the contrast stretch: auto or "
+          "LO,HI in 0..1",
+          "auto");
+  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
+      ->check(CLI::Range(-1.0, 1.0))
+      ->capture_default_str();
+  addEnumOption(app, "--color", view.color,
+                std::string("none: grey LIC; magnitude: colour by |v| through --colormap, the LIC "
+                            "intensity modulating it") +
+                    colorNote);
+  addEnumOption(app, "--colormap", view.colormap, "Colour map");
+  addText(app, "--color-range", options.colorRange,
+          "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
+          "auto");
+  app.add_flag("--legend", view.legend,
+               "Draw the colour legend into the image (with --color magnitude)");
+}
+
+}  // namespace
+
 void addViewOptions(CLI::App& app, SessionOptions& options) {
   ViewParams& view = options.session.view;
   app.add_option("--width", view.width, "Image width in pixels")
@@ -237,31 +274,7 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
   addText(app, "--background", options.background,
           "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1", "0,0,0");
 
-  addText(app, "--contrast", options.contrast,
-          "on: stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25 (a "
-          "histogram stretch); off: grey = LIC value",
-          "on")
-      .option->check(CLI::IsMember({"on", "off"}));
-  addText(app, "--window", options.window,
-          "Intensity window mapped to black..white instead of the contrast stretch: auto or "
-          "LO,HI in 0..1",
-          "auto");
-  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
-      ->check(CLI::Range(-1.0, 1.0))
-      ->capture_default_str();
-
-  addEnumOption(app, "--color", view.color,
-                "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
-                "modulating it (thesis 5.1.2)");
-  addEnumOption(app, "--colormap", view.colormap, "Colour map");
-  addText(app, "--color-range", options.colorRange,
-          "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
-          "auto");
-  app.add_flag("--legend", view.legend,
-               "Draw the colour legend into the image (with --color magnitude)");
+  addGreyAndColorOptions(app, options, "the drawn voxels'", " (thesis 5.1.2)");
   app.add_flag("--axes", view.axes,
                "Draw the box's edges and label each axis with its physical range (the grid's "
                "origin and spacing)");
@@ -311,7 +324,6 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
 
 void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane) {
   PlaneParams& p = options.session.plane;
-  ViewParams& view = options.session.view;
   app.add_option("--width", p.width,
                  "Width of the LIC image in pixels (default: the field's grid; with --height "
                  "alone, keeping the grid's aspect). Larger than the grid, the noise is finer "
@@ -322,30 +334,7 @@ void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane
   addText(app, "--slice", plane.slice,
           "The plane of a 3D field (analytic or file): AXIS or AXIS:INDEX, x, y or z, INDEX in "
           "voxels (default z, the middle layer)");
-  addText(app, "--contrast", options.contrast,
-          "on: stretch the image's LIC values to mean 0.5 and deviation 0.25; off: grey = LIC "
-          "value",
-          "on")
-      .option->check(CLI::IsMember({"on", "off"}));
-  addText(app, "--window", options.window,
-          "Intensity window mapped to black..white instead of the contrast stretch: auto or "
-          "LO,HI in 0..1",
-          "auto");
-  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
-      ->check(CLI::Range(-1.0, 1.0))
-      ->capture_default_str();
-  addEnumOption(app, "--color", view.color,
-                "none: grey LIC; magnitude: colour by |v| through --colormap, the LIC intensity "
-                "modulating it");
-  addEnumOption(app, "--colormap", view.colormap, "Colour map");
-  addText(app, "--color-range", options.colorRange,
-          "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
-          "auto");
-  app.add_flag("--legend", view.legend,
-               "Draw the colour legend into the image (with --color magnitude)");
+  addGreyAndColorOptions(app, options, "the image's", "");
   addText(app, "--background", options.background,
           "Background colour R,G,B the legend's text is set against (0..1, or 0..255)", "0,0,0");
 }
