@@ -120,6 +120,20 @@ void addTimeAnimationOptions(CLI::App& app, BatchOptions& options) {
       "period)");
 }
 
+// --frames (a piece of an animation) and --video, for every command that renders frames.
+void addFrameRangeAndVideoOptions(CLI::App& app, BatchOptions& options) {
+  options.frames.option = app.add_option(
+      "--frames", options.frames.text,
+      "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
+      "whole animation: one piece of a job array");
+  app.add_option("--video", options.video,
+                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
+                 ".webm (VP9) or .gif; needs every frame of the animation");
+  app.add_option("--fps", options.fps, "Frames per second of --video")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
@@ -132,16 +146,7 @@ void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
                  "field, frame N would be frame 0 again); the LIC volume is recomputed per frame")
       ->check(CLI::Range(1, 1000000));
   addTimeAnimationOptions(app, options);
-  options.frames.option = app.add_option(
-      "--frames", options.frames.text,
-      "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
-      "whole animation: one piece of a job array");
-  app.add_option("--video", options.video,
-                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
-                 ".webm (VP9) or .gif; needs every frame of the animation");
-  app.add_option("--fps", options.fps, "Frames per second of --video")
-      ->check(CLI::Range(0.1, 1000.0))
-      ->capture_default_str();
+  addFrameRangeAndVideoOptions(app, options);
   app.add_option("--rgba-volume", options.rgbaVolume,
                  "Also write the colour-mapped volume as 8-bit RGBA (.vti or .nrrd): grey or "
                  "colour and the opacity per voxel, as the slices draw it (docs/BATCH.md)");
@@ -154,16 +159,7 @@ void addImageBatchOptions(CLI::App& app, BatchOptions& options) {
                  "lasts N frames")
       ->check(CLI::Range(1, 1000000));
   addTimeAnimationOptions(app, options);
-  options.frames.option = app.add_option(
-      "--frames", options.frames.text,
-      "A:B renders only frames A..B-1 of the animation (0 <= A < B <= N), numbered as in the "
-      "whole animation: one piece of a job array");
-  app.add_option("--video", options.video,
-                 "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
-                 ".webm (VP9) or .gif; needs every frame of the animation");
-  app.add_option("--fps", options.fps, "Frames per second of --video")
-      ->check(CLI::Range(0.1, 1000.0))
-      ->capture_default_str();
+  addFrameRangeAndVideoOptions(app, options);
 }
 
 void addComputeBatchOptions(CLI::App& app, BatchOptions& options) {
