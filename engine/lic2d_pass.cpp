@@ -8,6 +8,7 @@
 #include "gpu_submit.h"
 #include "lic2d_reference.h"
 #include "lic_reference.h"
+#include "lic_push.h"
 #include "shader_library.h"
 #include "shared_layout.h"
 
@@ -171,19 +172,11 @@ Result<void> Lic2DPass::record(VkCommandBuffer cmd, const Lic2DInputs& inputs, c
   push.size = glm::ivec4(size.x, size.y, 0, 0);
   push.invSize =
       glm::vec4(1.0f / static_cast<float>(size.x), 1.0f / static_cast<float>(size.y), 0.0f, 0.0f);
-  push.licLength = params.length;
-  push.bias = params.bias;
-  push.step = params.step;
-  push.criticalEpsilon = static_cast<float>(kCriticalFraction);
-  push.hannDenominator = static_cast<float>(params.length + std::abs(params.bias) + 1);
-  push.gaussScale = params.length > 0 ? 1.0f / (0.5f * static_cast<float>(params.length)) : 0.0f;
+  setLicPushParams(push, params);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 
-  auto groups = [](int n, std::uint32_t local) {
-    return (static_cast<std::uint32_t>(n) + local - 1) / local;
-  };
-  vkCmdDispatch(cmd, groups(size.x, specialization.localSizeX),
-                groups(size.y, specialization.localSizeY), 1);
+  vkCmdDispatch(cmd, groupCount(size.x, specialization.localSizeX),
+                groupCount(size.y, specialization.localSizeY), 1);
   return {};
 }
 

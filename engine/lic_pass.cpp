@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdlib>
 
+#include "lic_push.h"
 #include "shader_library.h"
 #include "shared_layout.h"
 #include "vk_check.h"
@@ -95,20 +96,12 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   gpu::LicPushConstants push{};
   push.dims = glm::ivec4(dims, zBegin);
   push.invDims = glm::vec4(1.0f / glm::vec3(dims), 0.0f);
-  push.licLength = params.length;
-  push.bias = params.bias;
-  push.step = params.step;
-  push.criticalEpsilon = static_cast<float>(kCriticalFraction);
-  push.hannDenominator = static_cast<float>(params.length + std::abs(params.bias) + 1);
-  push.gaussScale = params.length > 0 ? 1.0f / (0.5f * static_cast<float>(params.length)) : 0.0f;
+  setLicPushParams(push, params);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 
-  auto groups = [](int n, std::uint32_t size) {
-    return (static_cast<std::uint32_t>(n) + size - 1) / size;
-  };
-  vkCmdDispatch(cmd, groups(dims.x, specialization.localSizeX),
-                groups(dims.y, specialization.localSizeY),
-                groups(zEnd - zBegin, specialization.localSizeZ));
+  vkCmdDispatch(cmd, groupCount(dims.x, specialization.localSizeX),
+                groupCount(dims.y, specialization.localSizeY),
+                groupCount(zEnd - zBegin, specialization.localSizeZ));
   return {};
 }
 
