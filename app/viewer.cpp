@@ -143,6 +143,7 @@ class App {
   Result<void> createGpu();
   void destroyGpu();
   Result<void> recoverDevice(const Error& error);
+  bool showStopped(const Error& error);
   Result<void> createSwapchain();
   Result<void> startLoading(const FieldSource& field, const NoiseSource& noise);
   Result<void> finishLoading();
@@ -199,6 +200,9 @@ class App {
   bool loadedOnce_ = false;  // a field load has completed (or the app started in 2D)
   bool reloadField_ = false;  // the volume's field must be read again (a new device has none)
   int deviceLosses_ = 0;
+  // Set when the app has stopped on an error it cannot carry on from: it then only shows the
+  // error in a dialog, on a fresh device, until the window is closed (see showStopped).
+  bool stopped_ = false;
   std::size_t lostValidationMessages_ = 0;  // validation messages of devices made before this one
   int lossStreak_ = 0;
   std::uint64_t lastLossFrame_ = 0;
@@ -861,7 +865,7 @@ Result<bool> App::frame() {
     LIC3D_TRY(createSwapchain());
   }
 
-  LIC3D_TRY(finishLoading());
+  if (!stopped_) LIC3D_TRY(finishLoading());
   Frame& f = frames_[frameNumber_ % kFramesInFlight];
   const std::uint32_t slot = static_cast<std::uint32_t>(frameNumber_ % kFramesInFlight);
   VkDevice device = context_->device();
@@ -913,21 +917,26 @@ Result<bool> App::frame() {
   stats_.computeFraction = status.fraction;
   stats_.waitingForMask = status.waitingForMask;
   stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
-  if (!session_.twoD) drawAxes();
+  if (!session_.twoD && !stopped_) drawAxes();
   Actions actions = drawUi(session_, ui_, stats_);
+  if (stopped_ && actions.dismissAlert) return false;  // the dialog's OK quits
   ImGui::Render();
   actions.resetView = actions.resetView || in.resetView;
   actions.screenshot = actions.screenshot || in.screenshot;
   if (!session_.twoD && renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse)
     updateCamera(in);
-  animate(seconds);
-  LIC3D_TRY(handleActions(actions));
-  if (options_.soak) soakStep();
+  if (!stopped_) {
+    animate(seconds);
+    LIC3D_TRY(handleActions(actions));
+  }
+  if (options_.soak && !stopped_) soakStep();
   if (auto r = validate(session_.view); !r) {
     stats_.message = r.error().message;
     session_.view = drawnSession_.view;
   }
-  if (session_.twoD) {
+  if (stopped_) {
+    // Nothing is read or computed any more: the session stays as it was saved.
+  } else if (session_.twoD) {
     updatePlane();
   } else {
     // Back from the 2D mode with another field: the volume's field is read again.
@@ -944,10 +953,12 @@ Result<bool> App::frame() {
   }
   drawnSession_ = session_;
 
-  // A scripted run takes its screenshot once the volume for the current parameters is shown.
-  const bool ready = session_.twoD ? planeView_ && planeView_->hasPicture()
-                                   : !stats_.loading && renderer_->hasVolume() &&
-                                         !renderer_->licStatus().pending && !timePending();
+  // A scripted run takes its screenshot once the volume for the current parameters is shown
+  // (stopped: at once, showing the error).
+  const bool ready = stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
+                                                : !stats_.loading && renderer_->hasVolume() &&
+                                                      !renderer_->licStatus().pending &&
+                                                      !timePending());
   const bool scriptedShot = options_.frames > 0 &&
                             frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
                             ready;
@@ -981,14 +992,14 @@ Result<bool> App::frame() {
   if (f.timed) f.timer.begin(cmd, 1);
   beginClearedRendering(cmd, offscreen_.view(), extent, session_.view.background);
   const Result<void> drawn =
-      session_.twoD ? Result<void>()
+      session_.twoD || stopped_ ? Result<void>()
                     : renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);
 
   VkImage target = swapchain_.image(imageIndex);
-  if (session_.twoD && planeView_) {
+  if (session_.twoD && planeView_ && !stopped_) {
     planeView_->record(cmd, offscreen_.handle(), extent);  // leaves it ready for the blit below
   } else {
     imageBarrier(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -1182,6 +1193,23 @@ int App::soakVerdict() const {
   return cli::kExitOk;
 }
 
+// An error the app cannot carry on from (out of device memory while it runs, a device lost
+// again and again) ends the session; the window then stays open on a fresh device and shows the
+// error in a dialog until it is closed or OK is pressed (a scripted run shows it for one frame).
+// False when even that cannot be done (a device that keeps getting lost, or none to be made).
+bool App::showStopped(const Error& error) {
+  if (stopped_ || error.deviceLost || !imguiReady_) return false;
+  stopped_ = true;
+  if (context_) lostValidationMessages_ += context_->validationMessageCount();
+  destroyGpu();
+  if (!createGpu()) return false;
+  ui_.visible = false;
+  stats_.alertTitle = "lic3d: stopped on an error";
+  stats_.alert = error.message + ". The session was saved to " + kRecoveryFile +
+                 " (lic3d-view --session " + kRecoveryFile + " resumes it). OK quits.";
+  return true;
+}
+
 // Nothing the user set up is lost when the app stops on an error: the session goes to a file.
 void App::saveRecovery() const {
   if (auto r = writeSession(kRecoveryFile, session_); r)
@@ -1205,6 +1233,7 @@ int App::run() {
     if (!more) {
       exitStatus_ = cli::reportError(more.error());
       saveRecovery();
+      if (showStopped(more.error())) continue;
       break;
     }
     if (!*more) break;

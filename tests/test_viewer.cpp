@@ -230,21 +230,24 @@ TEST_F(ViewerTest, SoakNeedsFrames) {
 }
 
 // A device allocation that fails while the app runs (the allocator's test hook) stops it with
-// the call named, and the session is saved to lic3d-recovery.json first.
+// the call named, and the session is saved to lic3d-recovery.json first. The window then shows
+// the error in a dialog (a scripted run for one frame, in its screenshot) and exits with status 1.
 TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
   writeBytes("in.json", R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 9}})");
-  bool sawRecovery = false;
+  bool sawRecovery = false, sawDialog = false;
   for (int n : {12, 14, 16}) {
     std::filesystem::remove(path("lic3d-recovery.json"));
     // The app's own exit status goes to a file: xvfb-run's status can also report a failure to
     // clean up its temporary folder, which happens under load and says nothing about the app.
     std::filesystem::remove(path("status.txt"));
+    std::filesystem::remove(path("shot.png"));
     const CommandRun failed = runShell("cd '" + folder().string() + "' && LIC3D_FAIL_ALLOCATION=" +
                                        std::to_string(n) +
                                        " xvfb-run -a -s '-screen 0 1280x800x24' sh -c '\"$0\" \"$@\"; "
                                        "echo $? > status.txt' '" +
                                        std::string(LIC3D_VIEWER) +
-                                       "' --window-size 320x240 --session in.json --frames 3");
+                                       "' --window-size 640x480 --session in.json --frames 3 "
+                                       "--screenshot shot.png");
     const std::string status = test::readWhole(path("status.txt"));
     ASSERT_FALSE(status.empty()) << failed.output;
     if (std::stoi(status) == 0) continue;
@@ -254,9 +257,16 @@ TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
     ASSERT_TRUE(saved) << failed.output;
     EXPECT_EQ(saved->field.field, "abc");
     EXPECT_EQ(saved->lic.length, 9);
+    if (failed.output.find("lic3d-view: wrote shot.png") != std::string::npos) {
+      const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+      EXPECT_GT(fraction(shot, {100, 160, 540, 320}, imguiBlue), 0.01)
+          << "the dialog showing the error is missing";
+      sawDialog = true;
+    }
     sawRecovery = true;
   }
   EXPECT_TRUE(sawRecovery) << "none of the injected failures hit the running app";
+  EXPECT_TRUE(sawDialog) << "no failure was shown in the window";
 }
 
 // A lost device (the submission hook reports VK_ERROR_DEVICE_LOST, as a driver reset would): the
