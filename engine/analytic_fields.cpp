@@ -112,25 +112,9 @@ VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
 VectorField makeAnalyticFieldPlane(AnalyticField field, Dims dims, int axis, int index,
                                    double time) {
   const GridGeometry geometry = cubicGeometry(domainOf(field), dims);
-  const glm::ivec2 in = planeAxes(axis);
-  VectorField plane;
-  plane.dims = Dims(dims[in.x], dims[in.y], 1);
-  plane.geometry.spacing =
-      glm::dvec3(geometry.spacing[in.x], geometry.spacing[in.y], geometry.spacing[axis]);
-  plane.geometry.origin = glm::dvec3(geometry.origin[in.x], geometry.origin[in.y],
-                                     geometry.origin[axis] + index * geometry.spacing[axis]);
-  plane.vectors.resize(voxelCount(plane.dims));
-  for (int j = 0; j < plane.dims.y; ++j)
-    for (int i = 0; i < plane.dims.x; ++i) {
-      glm::ivec3 voxel(index);
-      voxel[in.x] = i;
-      voxel[in.y] = j;
-      const glm::dvec3 p = geometry.origin + glm::dvec3(voxel) * geometry.spacing;
-      const glm::dvec3 v = evaluate(field, p, time);
-      plane.vectors[voxelIndex(plane.dims, i, j, 0)] =
-          glm::vec3(static_cast<float>(v[in.x]), static_cast<float>(v[in.y]), 0.0f);
-    }
-  return plane;
+  return makePlane(dims, geometry, axis, index, [&](glm::ivec3 voxel) {
+    return evaluate(field, geometry.origin + glm::dvec3(voxel) * geometry.spacing, time);
+  });
 }
 
 double timePeriod(AnalyticField field) {

@@ -26,23 +26,9 @@ Result<VectorField> extractPlane(const VectorField& field, int axis, int index) 
     return inputError("the grid " + gridText(d) + " has " + std::to_string(d[axis]) +
                       " layers across " + std::string(1, static_cast<char>('x' + axis)) + " (0.." +
                       std::to_string(d[axis] - 1) + "), not " + std::to_string(index));
-  const glm::ivec2 in = planeAxes(axis);
-  VectorField plane;
-  plane.dims = Dims(d[in.x], d[in.y], 1);
-  const GridGeometry& g = field.geometry;
-  plane.geometry.spacing = glm::dvec3(g.spacing[in.x], g.spacing[in.y], g.spacing[axis]);
-  plane.geometry.origin =
-      glm::dvec3(g.origin[in.x], g.origin[in.y], g.origin[axis] + index * g.spacing[axis]);
-  plane.vectors.resize(voxelCount(plane.dims));
-  for (int j = 0; j < plane.dims.y; ++j)
-    for (int i = 0; i < plane.dims.x; ++i) {
-      glm::ivec3 voxel(index);
-      voxel[in.x] = i;
-      voxel[in.y] = j;
-      const glm::vec3& v = field.at(voxel.x, voxel.y, voxel.z);
-      plane.vectors[voxelIndex(plane.dims, i, j, 0)] = glm::vec3(v[in.x], v[in.y], 0.0f);
-    }
-  return plane;
+  return makePlane(d, field.geometry, axis, index, [&](glm::ivec3 voxel) {
+    return glm::dvec3(field.at(voxel.x, voxel.y, voxel.z));
+  });
 }
 
 Result<VectorField> planarField(const VectorField& field, const std::string& what) {
