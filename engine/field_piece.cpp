@@ -19,6 +19,14 @@ Result<void> checkBox(Dims whole, Dims offset, Dims dims) {
   return {};
 }
 
+// The grid of the box at `offset` of a grid with `whole`'s geometry.
+GridGeometry boxGeometry(const GridGeometry& whole, Dims offset) {
+  GridGeometry box;
+  box.spacing = whole.spacing;
+  box.origin = whole.origin + glm::dvec3(offset) * whole.spacing;
+  return box;
+}
+
 }  // namespace
 
 int licGhostLayers(const LicParams& params) {
@@ -30,8 +38,7 @@ Result<VectorField> cutFieldPiece(const VectorField& whole, Dims offset, Dims di
   LIC3D_TRY(checkBox(whole.dims, offset, dims));
   VectorField piece;
   piece.dims = dims;
-  piece.geometry.spacing = whole.geometry.spacing;
-  piece.geometry.origin = whole.geometry.origin + glm::dvec3(offset) * whole.geometry.spacing;
+  piece.geometry = boxGeometry(whole.geometry, offset);
   piece.vectors.resize(voxelCount(dims));
   for (int k = 0; k < dims.z; ++k)
     for (int j = 0; j < dims.y; ++j)
@@ -46,8 +53,7 @@ Result<ScalarVolume> cutVolume(const ScalarVolume& volume, Dims offset, Dims dim
   LIC3D_TRY(checkBox(volume.dims, offset, dims));
   ScalarVolume out;
   out.dims = dims;
-  out.geometry.spacing = volume.geometry.spacing;
-  out.geometry.origin = volume.geometry.origin + glm::dvec3(offset) * volume.geometry.spacing;
+  out.geometry = boxGeometry(volume.geometry, offset);
   out.values.resize(voxelCount(dims));
   if (!volume.drawn.empty()) out.drawn.resize(voxelCount(dims));
   for (int k = 0; k < dims.z; ++k)
