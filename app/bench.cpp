@@ -84,6 +84,15 @@ std::string today() {
   return text;
 }
 
+// What every report starts with: the device, its driver and the date (UTC).
+nlohmann::json newReport(const Context& context) {
+  nlohmann::json report;
+  report["device"] = context.deviceInfo().name;
+  report["driver"] = context.deviceInfo().driver;
+  report["date"] = today();
+  return report;
+}
+
 Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions& options) {
   LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 2048));
   LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
@@ -96,10 +105,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   const DeviceInfo& device = context.deviceInfo();
   const double memory = static_cast<double>(device.deviceLocalBytes);
   double budgetLeft = options.budgetSeconds;
-  nlohmann::json report;
-  report["device"] = device.name;
-  report["driver"] = device.driver;
-  report["date"] = today();
+  nlohmann::json report = newReport(context);
   report["field"] = options.field;
   report["repeats"] = options.repeats;
   report["warmup"] = options.warmup;
@@ -245,10 +251,7 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
               size, n, n, options.repeats, options.warmup);
   std::printf("%-30s %15s %15s %8s\n", "modes", "specialized ms", "runtime ms", "ratio");
 
-  nlohmann::json report;
-  report["device"] = device.name;
-  report["driver"] = device.driver;
-  report["date"] = today();
+  nlohmann::json report = newReport(context);
   report["image"] = size;
   report["volume"] = n;
   report["rows"] = nlohmann::json::array();
@@ -290,9 +293,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
   const Dims dims(n);
   const double voxels = static_cast<double>(voxelCount(dims));
   const DeviceInfo& device = context.deviceInfo();
-  nlohmann::json report;
-  report["device"] = device.name;
-  report["date"] = today();
+  nlohmann::json report = newReport(context);
   report["volume"] = n;
   report["generation"] = nlohmann::json::array();
   std::printf("lic3d bench --distributions, %d^3 volume, %s\n", n, today().c_str());
@@ -413,10 +414,7 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
   };
 
   const DeviceInfo& device = context.deviceInfo();
-  nlohmann::json report;
-  report["device"] = device.name;
-  report["driver"] = device.driver;
-  report["date"] = today();
+  nlohmann::json report = newReport(context);
   report["field"] = options.field;
   report["repeats"] = options.repeats;
   report["rows"] = nlohmann::json::array();
