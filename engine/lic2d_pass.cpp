@@ -133,12 +133,7 @@ Result<VkPipeline> Lic2DPass::pipelineFor(const Lic2DSpecialization& specializat
   for (const auto& [spec, pipeline] : pipelines_)
     if (spec == specialization) return pipeline.get();
   const Specialization<Lic2DSpecialization> constants(specialization);
-  const std::string name =
-      "lic 2d " + std::string(toString(static_cast<Integrator>(specialization.integrator))) + "/" +
-      std::string(toString(static_cast<Kernel>(specialization.kernel))) + "/" +
-      std::string(toString(static_cast<NoiseFilter>(specialization.noiseFilter))) + "/" +
-      std::string(toString(static_cast<DirectionMode>(specialization.direction))) + "/" +
-      std::string(toString(static_cast<StepScheme>(specialization.scheme)));
+  const std::string name = licPipelineName("lic 2d ", specialization);
   LIC3D_TRY_ASSIGN(Pipeline pipeline,
                    createComputePipeline(*context_, shader_, layout_, constants.info(), name));
   const VkPipeline handle = pipeline.get();

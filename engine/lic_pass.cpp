@@ -55,11 +55,7 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
 
   const Specialization<LicSpecialization> constants(specialization);
   const std::string name =
-      std::string(separateNoise_ ? "naive lic " : "lic ") + std::string(toString(static_cast<Integrator>(specialization.integrator))) + "/" +
-      std::string(toString(static_cast<Kernel>(specialization.kernel))) + "/" +
-      std::string(toString(static_cast<NoiseFilter>(specialization.noiseFilter))) + "/" +
-      std::string(toString(static_cast<DirectionMode>(specialization.direction))) +
-      "/" + std::string(toString(static_cast<StepScheme>(specialization.scheme))) +
+      licPipelineName(separateNoise_ ? "naive lic " : "lic ", specialization) +
       (specialization.packing ? "/byte" : "") + (specialization.sparsity ? "/sparse" : "");
   LIC3D_TRY_ASSIGN(Pipeline pipeline,
                    createComputePipeline(*context_, shader_, layout_, constants.info(), name));

@@ -1,9 +1,10 @@
 #pragma once
-// What the 3D and the 2D LIC passes push alike: the LicParams fields of their push constants
-// (shaders/shared_layout.h) and the dispatch size.
+// What the 3D and the 2D LIC passes share: the LicParams fields of their push constants
+// (shaders/shared_layout.h), the dispatch size and their pipelines' debug names.
 
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 
 #include "lic_params.h"
 
@@ -23,6 +24,17 @@ void setLicPushParams(Push& push, const LicParams& params) {
 // Work groups of `localSize` invocations that cover `n` (n >= 0).
 inline std::uint32_t groupCount(int n, std::uint32_t localSize) {
   return (static_cast<std::uint32_t>(n) + localSize - 1) / localSize;
+}
+
+// "integrator/kernel/noise filter/direction/scheme" of a LIC pass's specialization constants,
+// after `prefix`: the debug name of its pipeline.
+template <class Specialization>
+std::string licPipelineName(const std::string& prefix, const Specialization& s) {
+  return prefix + std::string(toString(static_cast<Integrator>(s.integrator))) + "/" +
+         std::string(toString(static_cast<Kernel>(s.kernel))) + "/" +
+         std::string(toString(static_cast<NoiseFilter>(s.noiseFilter))) + "/" +
+         std::string(toString(static_cast<DirectionMode>(s.direction))) + "/" +
+         std::string(toString(static_cast<StepScheme>(s.scheme)));
 }
 
 }  // namespace lic3d
