@@ -190,6 +190,8 @@ Result<void> LicRenderer::setTimeNoise(const NoiseVolume& noise) {
   vkQueueWaitIdle(context_->queue());  // an interpolation may still read the old noise
   LIC3D_TRY(interpolation_->setNoise(noise));
   interpolated_.reset();  // the texture's noise must be written again
+  // A new series: its step k is not the last series' step k.
+  for (FieldStep& step : timeSteps_) step = FieldStep();
   return {};
 }
 

@@ -122,7 +122,8 @@ class LicRenderer {
   // GPU (FieldInterpolation). A new field recomputes the LIC volume at the next updateLic or
   // requestLic; the shown volume stays until then, so a time slider never blanks the picture.
 
-  // The noise of the series, on the steps' grid; set it before the first interpolateTime.
+  // Starts a series: its noise, on the steps' grid, set before the first interpolateTime. The
+  // steps resident from an earlier series are dropped.
   Result<void> setTimeNoise(const NoiseVolume& noise);
   // Uploads `step` as step `index` of the series into the resident slot that does not hold step
   // `keep` (the other step in use): only two steps are ever on the device.

@@ -191,5 +191,34 @@ TEST_F(GpuTest, LicOfATimeSeriesIsTheLicOfTheBlendedField) {
   EXPECT_FALSE(renderer->hasTimeStep(0));
 }
 
+// Setting a series' noise starts a new series: steps of the last one with the same numbers are
+// not taken for the new one's (the app loading another series, or the tornado with another step
+// count).
+TEST_F(GpuTest, ANewSeriesDoesNotReuseTheLastSeriesSteps) {
+  const Dims dims{16, 16, 12};
+  // Step 1 of 4 over the period is another time than step 1 of 3.
+  const Result<TimeSeries> four = analyticSeries(AnalyticField::Tornado, dims, 4);
+  const Result<TimeSeries> three = analyticSeries(AnalyticField::Tornado, dims, 3);
+  ASSERT_TRUE(four.ok() && three.ok());
+  const NoiseVolume noise = makeWhiteNoise(dims, 3);
+  Result<LicRenderer> renderer = LicRenderer::create(context(), {FieldPrecision::Float});
+  ASSERT_TRUE(renderer.ok());
+  LicParams params;
+  params.length = 6;
+  for (const TimeSeries* series : {&*four, &*three}) {
+    ASSERT_TRUE(renderer->setTimeNoise(noise).ok());
+    EXPECT_FALSE(renderer->hasTimeStep(0));
+    ASSERT_TRUE(renderer->setTimeStep(0, *series->loadStep(0), 1).ok());
+    ASSERT_TRUE(renderer->setTimeStep(1, *series->loadStep(1), 0).ok());
+    ASSERT_TRUE(renderer->interpolateTime(0, 1, 0.5).ok());
+    ASSERT_TRUE(renderer->updateLic(params).ok());
+    const Result<ScalarVolume> gpu = renderer->readLicVolume();
+    ASSERT_TRUE(gpu.ok());
+    const VectorField blend = *interpolateFields(*series->loadStep(0), *series->loadStep(1), 0.5);
+    expectClose(compareVolumes(*gpu, *computeLicReference(blend, noise, params)),
+                series->describe());
+  }
+}
+
 }  // namespace
 }  // namespace lic3d
