@@ -262,7 +262,11 @@ Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
   job.params = params;
   job.needsMask = params.sparsity.distribution != SparsityDistribution::None &&
                   !(maskParams_ && *maskParams_ == params.sparsity);
-  if (job.needsMask) {
+  if (job.needsMask && job_ && job_->needsMask && job_->params.sparsity == params.sparsity) {
+    // The mask the dropped job was waiting for serves this one (a new field, e.g. the next
+    // time of a series, does not change it): not made again, and not waited for here.
+    job.mask = job_->mask;
+  } else if (job.needsMask) {
     // Some distributions take seconds (best candidate): never on the thread that draws.
     job.mask = std::async(std::launch::async, [sparsity = params.sparsity, dims = field_.dims,
                                                piece = piece_] {
