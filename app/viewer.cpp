@@ -196,6 +196,8 @@ class App {
   std::optional<TimeSeries> series_;
   std::optional<TimeBracket> blended_;
   std::future<Result<std::vector<std::pair<int, VectorField>>>> stepLoading_;
+  std::vector<int> stepsLoading_;  // what stepLoading_ reads
+  std::vector<int> failedSteps_;   // steps that could not be read: not read again every frame
   double timePhase_ = 0.0;
   bool loadedOnce_ = false;  // a field load has completed (or the app started in 2D)
   bool reloadField_ = false;  // the volume's field must be read again (a new device has none)
@@ -606,6 +608,7 @@ Result<void> App::finishLoading() {
   series_ = loaded->series;
   blended_.reset();
   stepLoading_ = {};
+  failedSteps_.clear();
   if (series_) {
     // The two steps around the time, blended on the GPU by updateTime.
     LIC3D_TRY(renderer_->setTimeNoise(loaded->noise));
@@ -702,6 +705,7 @@ Result<void> App::updateTime() {
     Result<std::vector<std::pair<int, VectorField>>> steps = stepLoading_.get();
     if (!steps) {
       stats_.message = steps.error().message;
+      failedSteps_ = stepsLoading_;
       return {};
     }
     soak_.stepReads += steps->size();
@@ -715,6 +719,8 @@ Result<void> App::updateTime() {
   for (const int k : {b.first, b.second})
     if (!renderer_->hasTimeStep(k)) missing.push_back(k);
   if (!missing.empty()) {
+    if (missing == failedSteps_) return {};  // the message says why; another time may work
+    stepsLoading_ = missing;
     stepLoading_ = std::async(
         std::launch::async, [series = *series_, missing, array = session_.field.array]() {
           Result<std::vector<std::pair<int, VectorField>>> steps =
@@ -728,6 +734,9 @@ Result<void> App::updateTime() {
         });
     return {};
   }
+  // The time moves on once the volume of the last blend is shown: a new blend restarts the LIC,
+  // and where a volume takes more than a frame, blending every frame would never show one.
+  if (blended_ && renderer_->licStatus().pending) return {};
   if (auto r = renderer_->interpolateTime(b.first, b.second, b.weight); !r) {
     stats_.message = r.error().message;
     return {};
