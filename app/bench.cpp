@@ -11,6 +11,7 @@
 #include "analytic_fields.h"
 #include "commands.h"
 #include "file_util.h"
+#include "gpu_timer.h"
 #include "lic_renderer.h"
 #include "noise.h"
 #include "shader_library.h"
@@ -27,12 +28,6 @@ struct Timing {
   double minMs = 0.0;
   int repeats = 0;
 };
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // Runs `once` for warm-up, then `repeats` times; gives up early when the warm-up shows the
 // repeats would not fit in the remaining budget.

@@ -15,6 +15,7 @@
 #include "lic2d_pass.h"
 #include "lic2d_reference.h"
 #include "lic_reference.h"
+#include "gpu_timer.h"
 #include "lic_renderer.h"
 #include "memory_budget.h"
 #include "plane_inputs.h"
@@ -71,12 +72,6 @@ struct Inputs {
   int stepsRead = 0;                     // of the series, for the closing report
   std::vector<double> blendMs;           // GPU time of each blend
 };
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 
 // --time given for a field that has none is a mistake worth naming.
 Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {

@@ -6,6 +6,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gpu_submit.h"
+#include "lic_push.h"
 #include "lic_reference.h"
 #include "shader_library.h"
 #include "shared_layout.h"
@@ -237,8 +238,8 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
                       &noiseInfo),
       descriptorWrite(gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &targetInfo),
       descriptorWrite(gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo)};
-  const std::uint32_t groupsX = (target.dims.x + gpu::kLerpLocalSizeX - 1) / gpu::kLerpLocalSizeX;
-  const std::uint32_t groupsY = (target.dims.y + gpu::kLerpLocalSizeY - 1) / gpu::kLerpLocalSizeY;
+  const std::uint32_t groupsX = groupCount(target.dims.x, gpu::kLerpLocalSizeX);
+  const std::uint32_t groupsY = groupCount(target.dims.y, gpu::kLerpLocalSizeY);
   const std::uint32_t groupsZ = static_cast<std::uint32_t>(target.dims.z);
 
   // Frames and LIC slabs still in flight may read the texture that is about to be rewritten.

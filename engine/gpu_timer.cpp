@@ -1,5 +1,7 @@
 #include "gpu_timer.h"
 
+#include <algorithm>
+
 #include <utility>
 
 #include "vk_check.h"
@@ -68,6 +70,13 @@ Result<double> GpuTimer::milliseconds(std::uint32_t region) const {
                     "vkGetQueryPoolResults"));
   const std::uint64_t elapsed = (ticks[1] - ticks[0]) & tickMask_;
   return static_cast<double>(elapsed) * nanosecondsPerTick_ * 1e-6;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace lic3d

@@ -37,4 +37,7 @@ class GpuTimer {
   std::uint64_t tickMask_ = ~0ull;  // timestampValidBits of the queue
 };
 
+// The median of repeated timings (the mean of the two middle ones for an even count; 0 for none).
+double median(std::vector<double> values);
+
 }  // namespace lic3d
