@@ -775,12 +775,16 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
   field.geometry = layout.geometry;
   field.vectors.resize(static_cast<std::size_t>(layout.voxels));
 
-  const std::uint64_t components = layout.components;  // 3, or 2 on a 2D grid (z is 0)
-  std::uint64_t next = 0;  // index of the next component, over all voxels
+  // 3 components per voxel, or 2 on a 2D grid (z stays 0).
+  const glm::length_t components = static_cast<glm::length_t>(layout.components);
+  std::size_t voxel = 0;       // of the next value
+  glm::length_t component = 0;
   const auto store = [&](double value) {
-    field.vectors[static_cast<std::size_t>(next / components)]
-                 [static_cast<glm::length_t>(next % components)] = vectorComponent(value);
-    ++next;
+    field.vectors[voxel][component] = vectorComponent(value);
+    if (++component == components) {
+      component = 0;
+      ++voxel;
+    }
   };
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
     forEachValue(layout.type, data, bytes, store);
