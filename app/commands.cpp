@@ -289,7 +289,13 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
 
   if (!batch.rgbaVolume.empty()) {
     LIC3D_TRY_ASSIGN(const ScalarVolume lic, renderer.readLicVolume());
-    LIC3D_TRY_ASSIGN(const VectorField field, hostFieldAt(session, inputs, inputs.time));
+    // The field the volume was made from is inputs.field, except a series blended on the GPU.
+    std::optional<VectorField> blend;
+    if (inputs.series && !options.cpu) {
+      LIC3D_TRY_ASSIGN(VectorField host, hostFieldAt(session, inputs, inputs.time));
+      blend = std::move(host);
+    }
+    const VectorField& field = blend ? *blend : inputs.field;
     const RgbaVolume rgba = colourLicVolume(lic, field, session.view, renderer.volumeFacts());
     LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
     outputs.push_back(batch.rgbaVolume);
