@@ -20,6 +20,9 @@ bool sameField(const Session& a, const Session& b) {
 bool sameInputs(const Session& a, const Session& b) {
   return sameField(a, b) && a.noise == b.noise && a.plane == b.plane && a.precision == b.precision;
 }
+bool samePicture(const Session& a, const Session& b) {
+  return sameInputs(a, b) && a.lic == b.lic && a.view == b.view;
+}
 
 }  // namespace
 
@@ -32,9 +35,19 @@ Result<PlaneView> PlaneView::create(const Context& context) {
 }
 
 Result<void> PlaneView::update(const Session& session) {
-  if (made_ && sameInputs(*made_, session) && made_->lic == session.lic &&
-      made_->view == session.view)
-    return {};
+  if (made_ && samePicture(*made_, session)) return {};
+  // A picture that could not be made is tried again only once the session changes, not every
+  // frame (a field file that cannot be read would be read at each).
+  if (failed_ && samePicture(*failed_, session)) return {};
+  Result<void> made = make(session);
+  if (made)
+    failed_.reset();
+  else
+    failed_ = session;
+  return made;
+}
+
+Result<void> PlaneView::make(const Session& session) {
   LIC3D_TRY(checkLic2DParams(session.lic));
   const bool newField = !made_ || !sameField(*made_, session);
   const bool newInputs = !made_ || !sameInputs(*made_, session);
@@ -46,7 +59,8 @@ Result<void> PlaneView::update(const Session& session) {
   }
   if (newInputs) {
     const Dims size = cli::imageSize(field_.dims, session.plane);
-    if (newField || noise_.dims != size || !(made_->noise == session.noise)) {
+    // The noise depends on the image's size and the noise source only.
+    if (!made_ || noise_.dims != size || !(made_->noise == session.noise)) {
       LIC3D_TRY_ASSIGN(noise_, cli::loadNoise(session.noise, size));
     }
     inputs_.reset();

@@ -25,7 +25,8 @@ class PlaneView {
 
   // Makes the picture of `session` (its field, plane, time, noise, LIC and grey and colour
   // parameters) unless it already shows it. Waits for the queue first when the picture is
-  // replaced (frames in flight read it). On an error the previous picture stays.
+  // replaced (frames in flight read it). On an error the previous picture stays, and the same
+  // session is not tried again (Ok at once) until it changes.
   Result<void> update(const Session& session);
 
   // Records the picture over `target`, which holds the cleared background in
@@ -42,6 +43,8 @@ class PlaneView {
   double licMilliseconds() const { return licMs_; }  // wall time of the last LIC image
 
  private:
+  Result<void> make(const Session& session);
+
   const Context* context_ = nullptr;
   std::optional<Lic2DPass> pass_;
   cli::PlaneSource source_;
@@ -50,7 +53,8 @@ class PlaneView {
   std::optional<Lic2DInputs> inputs_;
   ScalarVolume lic_;
   Image picture_;                // RGBA8, kept in TRANSFER_SRC_OPTIMAL
-  std::optional<Session> made_;  // what picture_ shows
+  std::optional<Session> made_;    // what picture_ shows
+  std::optional<Session> failed_;  // the last session whose picture could not be made
   float minMagnitude_ = 0.0f, maxMagnitude_ = 1.0f;
   double licMs_ = 0.0;
 };
