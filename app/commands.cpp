@@ -67,6 +67,7 @@ struct Inputs {
   bool fromFile = false;
   std::optional<AnalyticField> sampled;
   std::optional<TimeSeries> series;
+  std::optional<int> fieldStep;  // the step of the series `field` is, until it is replaced
   double time = 0.0;
   std::map<int, VectorField> hostSteps;  // --cpu with a series: at most the two in use
   int stepsRead = 0;                     // of the series, for the closing report
@@ -125,6 +126,8 @@ Result<Inputs> loadInputs(const ComputeOptions& options) {
     const int first = inputs.series->bracket(session.time).first;
     LIC3D_TRY_ASSIGN(inputs.field,
                      inputs.series->loadStep(first, session.field.array, &inputs.info));
+    inputs.fieldStep = first;  // used as the step itself, not read again
+    inputs.stepsRead = 1;
   } else {
     LIC3D_TRY_ASSIGN(inputs.field, loadField(session.field, options.inputs.grid.given(),
                                              &inputs.info, session.time));
@@ -146,6 +149,10 @@ Result<VectorField> hostFieldAt(const Session& session, Inputs& inputs, double t
     it = it->first == b.first || it->first == b.second ? std::next(it) : inputs.hostSteps.erase(it);
   for (const int k : {b.first, b.second})
     if (!inputs.hostSteps.count(k)) {
+      if (inputs.fieldStep == k) {
+        inputs.hostSteps.emplace(k, inputs.field);
+        continue;
+      }
       LIC3D_TRY_ASSIGN(VectorField step, loadSeriesStep(session, inputs, k));
       inputs.hostSteps.emplace(k, std::move(step));
     }
@@ -165,14 +172,20 @@ Result<void> moveToTime(const Session& session, bool cpu, Inputs& inputs, double
   inputs.time = time;
   if (inputs.sampled || cpu) {
     LIC3D_TRY_ASSIGN(inputs.field, hostFieldAt(session, inputs, time));
+    inputs.fieldStep.reset();
     return renderer.setInputs(inputs.field, inputs.noise);
   }
   if (first) LIC3D_TRY(renderer.setTimeNoise(inputs.noise));
   const TimeBracket b = inputs.series->bracket(time);
   for (const int k : {b.first, b.second})
     if (!renderer.hasTimeStep(k)) {
+      const int keep = k == b.first ? b.second : b.first;
+      if (inputs.fieldStep == k) {
+        LIC3D_TRY(renderer.setTimeStep(k, inputs.field, keep));
+        continue;
+      }
       LIC3D_TRY_ASSIGN(const VectorField step, loadSeriesStep(session, inputs, k));
-      LIC3D_TRY(renderer.setTimeStep(k, step, k == b.first ? b.second : b.first));
+      LIC3D_TRY(renderer.setTimeStep(k, step, keep));
     }
   LIC3D_TRY(renderer.interpolateTime(b.first, b.second, b.weight));
   inputs.blendMs.push_back(renderer.lastBlendMilliseconds());
@@ -533,6 +546,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
       Result<VectorField> field = hostFieldAt(session, *inputs, session.time);
       if (!field) return reportError(field.error());
       inputs->field = std::move(*field);
+      inputs->fieldStep.reset();
     }
     const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
     if (!volume) return reportError(volume.error());
