@@ -15,11 +15,11 @@
 #include <optional>
 #include <system_error>
 
-#include "colormap.h"
-#include "file_util.h"
-#include "nrrd.h"
-#include "session.h"
-#include "vti.h"
+#include "core/colormap.h"
+#include "io/file_util.h"
+#include "io/nrrd.h"
+#include "core/session.h"
+#include "io/vti.h"
 
 namespace lic3d::cli {
 namespace {
@@ -101,10 +101,6 @@ int runProgram(const std::vector<std::string>& args) {
     if (errno != EINTR) return -1;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-}
-
-std::uint8_t toByte(float value) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
 }
 
 void addTimeAnimationOptions(CLI::App& app, BatchOptions& options) {
@@ -463,40 +459,6 @@ Result<void> writeLicSlicePng(const std::string& path, const ScalarVolume& volum
     }
   LIC3D_TRY_ASSIGN(const PngText text, pngText(session));
   return writePngGray16(path, width, height, values, text);
-}
-
-RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
-                           const ViewParams& view, const VolumeFacts& facts) {
-  // The slice pass's own numbers for this view, so that the volume and the pictures agree: grey =
-  // transfer.x * I + transfer.y, t = (|v| - magnitude.x) * magnitude.y.
-  const SliceFrame frame = makeSliceFrame(view, facts, Eye::Mono, 1.0f);
-  const glm::vec4 transfer = frame.uniforms.transfer;
-  const glm::vec4 magnitude = frame.uniforms.magnitude;
-  const bool byMagnitude = view.color == ColorMode::Magnitude;
-  const bool magnitudeOpacity = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f;
-
-  RgbaVolume out;
-  out.dims = lic.dims;
-  out.geometry = field.geometry;
-  out.rgba.resize(4 * lic.values.size());
-  for (std::size_t i = 0; i < lic.values.size(); ++i) {
-    const float grey = std::clamp(transfer.x * lic.values[i] + transfer.y, 0.0f, 1.0f);
-    float alpha = view.opacityMode == OpacityMode::Intensity ? view.alpha * grey : view.alpha;
-    if (!lic.drawn.empty() && !lic.drawn[i]) alpha = 0.0f;
-    glm::vec3 rgb(grey);
-    if (byMagnitude || magnitudeOpacity) {
-      const float speed = glm::length(field.vectors[i]);
-      const float t = std::clamp((speed - magnitude.x) * magnitude.y, 0.0f, 1.0f);
-      if (byMagnitude) rgb = sampleColormap(view.colormap, t) * grey;
-      if (magnitudeOpacity)
-        alpha *= t < view.magnitudeThreshold ? 0.0f : std::pow(t, view.magnitudeOpacity);
-    }
-    out.rgba[4 * i + 0] = toByte(rgb.r);
-    out.rgba[4 * i + 1] = toByte(rgb.g);
-    out.rgba[4 * i + 2] = toByte(rgb.b);
-    out.rgba[4 * i + 3] = toByte(alpha);
-  }
-  return out;
 }
 
 Result<void> writeRgbaVolumeFile(const std::string& path, const RgbaVolume& volume) {

@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "cli_options.h"
-#include "rgba_image.h"
-#include "slice_pass.h"
-#include "volume.h"
-#include "volume_io.h"
+#include "core/rgba_image.h"
+#include "io/png_writer.h"
+#include "passes/slice_pass.h"
+#include "core/volume.h"
+#include "io/volume_io.h"
 
 namespace lic3d::cli {
 
@@ -109,14 +110,6 @@ Result<LicSlice> parseSlice(const std::string& text);
 Result<void> writeLicSlicePng(const std::string& path, const ScalarVolume& volume, LicSlice slice,
                               const Session& session);
 
-// The colour-mapped LIC volume as 8-bit RGBA, per voxel what the slice shader assigns before
-// lighting, fog, clipping and the region of interest: grey = the grey transfer (contrast,
-// window, gain, brightness) of the LIC value; RGB = grey, or with --color magnitude the colour
-// map at |v| over the colour range times grey; A = the opacity per voxel of depth: alpha (times
-// grey with --opacity intensity, times the magnitude opacity), 0 where sparsity hides the voxel.
-// Not premultiplied.
-RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
-                           const ViewParams& view, const VolumeFacts& facts);
 Result<void> writeRgbaVolumeFile(const std::string& path, const RgbaVolume& volume);
 
 // The machine-readable last line of render and compute on stdout:

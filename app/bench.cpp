@@ -8,15 +8,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analytic_fields.h"
+#include "lic/analytic_fields.h"
 #include "commands.h"
-#include "file_util.h"
-#include "gpu_timer.h"
-#include "lic_renderer.h"
-#include "noise.h"
-#include "shader_library.h"
-#include "sparsity.h"
-#include "volume_compare.h"
+#include "io/file_util.h"
+#include "gpu/gpu_timer.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
+#include "gpu/shader_library.h"
+#include "lic/sparsity.h"
+#include "core/volume_compare.h"
 
 namespace lic3d::cli {
 namespace {
@@ -94,7 +94,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
                    parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
   LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
                    parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
-  const auto fieldKind = parseAnalyticField(options.field);
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
 
   const DeviceInfo& device = context.deviceInfo();
@@ -110,7 +110,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   const LicParams defaults;
   std::printf("LIC compute: %s field, rk2 (%s scheme), box kernel, h = 0.5, trilinear noise, %s "
               "field texture; median of %d after %d warm-up (GPU timestamps)\n",
-              options.field.c_str(), std::string(toString(defaults.scheme)).c_str(),
+              options.field.c_str(), std::string(enumName(defaults.scheme)).c_str(),
               std::string(fieldTextureFormatName(resolvePrecision(context, options.precision))).c_str(),
               options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
@@ -118,7 +118,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
   const FieldPrecision precision = renderer.fieldPrecision();
   report["field_precision"] = fieldTextureFormatName(precision);
-  report["scheme"] = toString(defaults.scheme);
+  report["scheme"] = enumName(defaults.scheme);
   report["lic"] = nlohmann::json::array();
   for (const int n : sizes) {
     if (residentBytes(n, precision) > 0.8 * memory) {
@@ -198,7 +198,7 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   if (!hasRuntimeModeShaders())
     return unsupportedError("bench --variants needs a build configured with "
                             "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
-  const auto fieldKind = parseAnalyticField(options.field);
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
                    parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
@@ -295,8 +295,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
   std::printf("Mask generation on the CPU (wall clock, one run each):\n");
   std::printf("%-16s %12s %14s %12s\n", "distribution", "requested", "black voxels", "ms");
   double budgetLeft = options.budgetSeconds;
-  for (std::string_view name : sparsityDistributionNames()) {
-    const SparsityDistribution d = *parseSparsityDistribution(name);
+  for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
     if (d == SparsityDistribution::None) continue;
     for (const double count : {1e3, 1e4, 1e5, 1e6}) {
       SparsityParams p;
@@ -340,12 +339,11 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
               device.name.c_str(), options.repeats);
   std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
-  const auto fieldKind = parseAnalyticField(options.field);
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
   report["recompute"] = nlohmann::json::array();
-  for (std::string_view name : sparsityDistributionNames()) {
-    const SparsityDistribution d = *parseSparsityDistribution(name);
+  for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
     if (d == SparsityDistribution::None) continue;
     std::vector<double> wall, gpu;
     for (int i = 0; i < options.repeats && budgetLeft > 0.0; ++i) {
@@ -392,7 +390,7 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
   LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 2048));
   LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
                    parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
-  const auto fieldKind = parseAnalyticField(options.field);
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   const FieldPrecision automatic = resolvePrecision(context, FieldPrecision::Auto);
   const std::vector<KernelVariant> variants{
@@ -431,7 +429,7 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
       double naiveMs = 0.0;
       for (const KernelVariant& v : variants) {
         nlohmann::json row{{"n", n}, {"length", length}, {"kernel", v.name},
-                           {"scheme", toString(v.scheme)},
+                           {"scheme", enumName(v.scheme)},
                            {"precision", fieldTextureFormatName(v.precision)},
                            {"default", isDefault(v)}};
         RendererOptions rendererOptions;

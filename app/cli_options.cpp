@@ -8,12 +8,15 @@
 
 #include <unistd.h>
 
-#include "analytic_fields.h"
-#include "field_io.h"
-#include "memory_budget.h"
-#include "enum_names.h"
-#include "noise.h"
-#include "time_series.h"
+#include "lic/analytic_fields.h"
+#include "io/field_io.h"
+#include "io/session_file.h"
+#include "gpu/gpu_resources.h"
+#include "passes/volume_textures.h"
+#include "core/memory_budget.h"
+#include "core/enum_names.h"
+#include "lic/noise.h"
+#include "lic/time_series.h"
 
 namespace lic3d::cli {
 namespace {
@@ -39,19 +42,6 @@ std::vector<std::string_view> splitCommas(std::string_view text) {
     start = comma + 1;
   }
   return parts;
-}
-
-std::string fieldNameList() {
-  std::string names;
-  for (std::string_view n : analyticFieldNames()) names += (names.empty() ? "" : "|") + std::string(n);
-  return names;
-}
-
-std::string field2DNameList() {
-  std::string names;
-  for (std::string_view n : analyticField2DNames())
-    names += (names.empty() ? "" : "|") + std::string(n);
-  return names;
 }
 
 TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
@@ -95,12 +85,12 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
                  "Start from a session file (JSON, as the viewer saves it); other flags override "
                  "its values");
   app.add_option("--field", s.field.field,
-                 planar ? "Vector field: a 2D analytic field (" + field2DNameList() +
-                              "), a plane of a 3D one (" + fieldNameList() +
+                 planar ? "Vector field: a 2D analytic field (" + enumChoices<AnalyticField2D>() +
+                              "), a plane of a 3D one (" + enumChoices<AnalyticField>() +
                               ", see --slice), a file (.vtk, .vti, .nrrd, .nhdr, .raw; 2D, or a "
                               "plane of a 3D one), or a time series of files: step_%03d.vti or "
                               "'step_*.vti' (docs/TIME.md)"
-                        : "Vector field: an analytic field (" + fieldNameList() +
+                        : "Vector field: an analytic field (" + enumChoices<AnalyticField>() +
                               "), a file (.vtk, .vti, .nrrd, .nhdr, .raw), or a time series of "
                               "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
       ->capture_default_str();
@@ -501,10 +491,10 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
 Result<TimeDomain> timeDomainOf(const Session& session) {
   const std::string& field = session.field.field;
   double period = 0.0;
-  if (const auto analytic = parseAnalyticField(field)) period = timePeriod(*analytic);
-  if (const auto analytic = parseAnalyticField2D(field)) period = timePeriod(*analytic);
+  if (const auto analytic = parseEnum<AnalyticField>(field)) period = timePeriod(*analytic);
+  if (const auto analytic = parseEnum<AnalyticField2D>(field)) period = timePeriod(*analytic);
   if (period > 0.0) return TimeDomain{0.0, period, true, true};
-  if (!parseAnalyticField(field) && !parseAnalyticField2D(field) && isFieldSeriesPattern(field)) {
+  if (!parseEnum<AnalyticField>(field) && !parseEnum<AnalyticField2D>(field) && isFieldSeriesPattern(field)) {
     LIC3D_TRY_ASSIGN(const TimeSeries series, fileSeries(field));
     return TimeDomain{0.0, series.endTime(), false, true};
   }
@@ -541,7 +531,7 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
                               double time) {
-  if (const auto analytic = parseAnalyticField(source.field)) {
+  if (const auto analytic = parseEnum<AnalyticField>(source.field)) {
     if (!source.array.empty())
       return inputError("--array " + source.array + ": " + source.field +
                         " is an analytic field; --array picks a vector array of a .vtk or .vti "
@@ -549,7 +539,7 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
     LIC3D_TRY(checkHostMemory(source.grid));
     return makeAnalyticField(*analytic, source.grid, time);
   }
-  if (parseAnalyticField2D(source.field))
+  if (parseEnum<AnalyticField2D>(source.field))
     return inputError("--field " + source.field +
                       " is a 2D field: make its LIC with `lic3d render2d` (or the app's 2D mode)");
   if (isFieldSeriesPattern(source.field))
@@ -560,7 +550,7 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
   const std::filesystem::path path(source.field);
   if (!path.has_extension())
     return inputError("--field: '" + source.field + "' is neither an analytic field (" +
-                      fieldNameList() + ") nor a file name with an extension");
+                      enumChoices<AnalyticField>() + ") nor a file name with an extension");
   return readVectorField(path, source.array, info);
 }
 

@@ -9,11 +9,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "enum_names.h"
-#include "error.h"
-#include "session.h"
-#include "volume.h"
-#include "volume_io.h"
+#include "core/enum_names.h"
+#include "core/error.h"
+#include "core/session.h"
+#include "core/volume.h"
+#include "io/volume_io.h"
 
 namespace lic3d {
 class Context;

@@ -7,21 +7,22 @@
 #include <map>
 #include <optional>
 
-#include "analytic_fields.h"
-#include "field_interpolation.h"
-#include "field_plane.h"
-#include "file_util.h"
-#include "lic2d_image.h"
-#include "lic2d_pass.h"
-#include "lic2d_reference.h"
-#include "lic_reference.h"
-#include "gpu_timer.h"
-#include "lic_renderer.h"
-#include "memory_budget.h"
+#include "io/png_writer.h"
+#include "lic/analytic_fields.h"
+#include "passes/field_interpolation.h"
+#include "lic/field_plane.h"
+#include "io/file_util.h"
+#include "lic/colouring.h"
+#include "passes/lic2d_pass.h"
+#include "lic/lic2d_reference.h"
+#include "lic/lic_reference.h"
+#include "gpu/gpu_timer.h"
+#include "passes/lic_renderer.h"
+#include "core/memory_budget.h"
 #include "plane_inputs.h"
 #include "progress.h"
-#include "time_series.h"
-#include "vulkan_context.h"
+#include "lic/time_series.h"
+#include "gpu/vulkan_context.h"
 
 namespace lic3d::cli {
 namespace {
@@ -47,10 +48,6 @@ int finish(const Context& context, int status) {
     return status == kExitOk ? kExitFailure : status;
   }
   return status;
-}
-
-std::string gridText(Dims d) {
-  return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
 std::string tripleText(glm::dvec3 v) {
@@ -110,7 +107,7 @@ Result<Inputs> loadInputs(const ComputeOptions& options) {
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
   Inputs inputs;
   inputs.time = session.time;
-  const std::optional<AnalyticField> analytic = parseAnalyticField(session.field.field);
+  const std::optional<AnalyticField> analytic = parseEnum<AnalyticField>(session.field.field);
   if (analytic && session.timeSteps > 0) {
     LIC3D_TRY(checkHostMemory(session.field.grid));
     LIC3D_TRY_ASSIGN(inputs.series,
@@ -309,7 +306,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       blend = std::move(host);
     }
     const VectorField& field = blend ? *blend : inputs.field;
-    const RgbaVolume rgba = colourLicVolume(lic, field, session.view, renderer.volumeFacts());
+    const RgbaVolume rgba = colourLicVolume(lic, field, session.view, renderer.volumeFacts().transfer());
     LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
     outputs.push_back(batch.rgbaVolume);
   }
@@ -336,14 +333,12 @@ struct PlaneInputs {
   double time = 0.0;
 };
 
-std::string sizeText(Dims d) { return std::to_string(d.x) + "x" + std::to_string(d.y); }
-
 Result<PlaneInputs> loadPlaneInputs(const ComputeOptions& options, const TimeDomain& domain) {
   const Session& session = options.inputs.session;
   LIC3D_TRY(checkLic2DParams(session.lic));
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
   const FieldSource& source = session.field;
-  if (parseAnalyticField2D(source.field) && options.inputs.grid.given() &&
+  if (parseEnum<AnalyticField2D>(source.field) && options.inputs.grid.given() &&
       std::count(options.inputs.grid.text.begin(), options.inputs.grid.text.end(), ',') == 2)
     return inputError("--grid " + options.inputs.grid.text + ": " + source.field +
                       " is a 2D field; give N or NX,NY");
@@ -514,7 +509,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   if (!options.cpu) {
     context.emplace(openContext(global));
     if (!*context) return reportError(context->error());
-    if (parseAnalyticField(session.field.field))
+    if (parseEnum<AnalyticField>(session.field.field))
       if (auto r =
               checkRequestMemory(**context, session, session.field.grid,
                                  {.volumeReadback = true, .timeSeries = session.timeSteps > 0});
@@ -604,7 +599,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   Result<Context> context = openContext(global);
   if (!context) return reportError(context.error());
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
-  if (parseAnalyticField(session.field.field))
+  if (parseEnum<AnalyticField>(session.field.field))
     if (auto r = checkRequestMemory(
             *context, session, session.field.grid,
             {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <string>
 
-#include "analytic_fields.h"
+#include "lic/analytic_fields.h"
 #include "cli_options.h"
-#include "field_interpolation.h"
-#include "field_plane.h"
+#include "passes/field_interpolation.h"
+#include "lic/field_plane.h"
 
 namespace lic3d::cli {
 namespace {
@@ -30,12 +30,12 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
                                PlaneSource& inputs) {
   const FieldSource& source = session.field;
   const PlaneParams& p = session.plane;
-  if (const auto field2D = parseAnalyticField2D(source.field)) {
+  if (const auto field2D = parseEnum<AnalyticField2D>(source.field)) {
     if (!source.array.empty())
       return inputError("--array: " + source.field + " is an analytic field");
     return makeAnalyticField2D(*field2D, {source.grid.x, source.grid.y}, time);
   }
-  if (const auto field3D = parseAnalyticField(source.field)) {
+  if (const auto field3D = parseEnum<AnalyticField>(source.field)) {
     if (!source.array.empty())
       return inputError("--array: " + source.field + " is an analytic field");
     const int index = p.index >= 0 ? p.index : source.grid[p.axis] / 2;

@@ -6,11 +6,11 @@
 #include <map>
 #include <optional>
 
-#include "error.h"
-#include "session.h"
-#include "time_series.h"
-#include "volume.h"
-#include "volume_io.h"
+#include "core/error.h"
+#include "core/session.h"
+#include "lic/time_series.h"
+#include "core/volume.h"
+#include "io/volume_io.h"
 
 namespace lic3d::cli {
 

@@ -19,17 +19,19 @@
 
 #include <glm/trigonometric.hpp>
 
-#include "gpu_submit.h"
-#include "gpu_timer.h"
-#include "legend.h"
-#include "lic_renderer.h"
-#include "rgba_image.h"
-#include "slice_geometry.h"
+#include "gpu/gpu_submit.h"
+#include "io/png_writer.h"
+#include "io/session_file.h"
+#include "gpu/gpu_timer.h"
+#include "lic/legend.h"
+#include "passes/lic_renderer.h"
+#include "core/rgba_image.h"
+#include "core/slice_geometry.h"
 #include "swapchain.h"
-#include "time_series.h"
+#include "lic/time_series.h"
 #include "viewer_plane.h"
 #include "viewer_ui.h"
-#include "vk_check.h"
+#include "gpu/vk_check.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -542,11 +544,11 @@ Result<void> App::startLoading(const FieldSource& field, const NoiseSource& nois
       std::launch::async, [field, noise, gridGiven, time, timeSteps]() -> Result<Loaded> {
         Loaded loaded;
         // An unsteady field is a series: the tornado's steps over its period, or numbered files.
-        const std::optional<AnalyticField> analytic = parseAnalyticField(field.field);
+        const std::optional<AnalyticField> analytic = parseEnum<AnalyticField>(field.field);
         if (analytic && timePeriod(*analytic) > 0.0) {
           LIC3D_TRY(cli::checkHostMemory(field.grid));
           LIC3D_TRY_ASSIGN(loaded.series, analyticSeries(*analytic, field.grid, timeSteps));
-        } else if (!analytic && !parseAnalyticField2D(field.field) &&
+        } else if (!analytic && !parseEnum<AnalyticField2D>(field.field) &&
                    isFieldSeriesPattern(field.field)) {
           LIC3D_TRY_ASSIGN(loaded.series, fileSeries(field.field));
         }

@@ -4,10 +4,10 @@
 #include <chrono>
 
 #include "cli_options.h"
-#include "gpu_submit.h"
-#include "lic2d_image.h"
-#include "lic2d_reference.h"
-#include "noise.h"
+#include "gpu/gpu_submit.h"
+#include "lic/colouring.h"
+#include "lic/lic2d_reference.h"
+#include "lic/noise.h"
 
 namespace lic3d::viewer {
 namespace {

@@ -8,13 +8,13 @@
 #include <optional>
 #include <string>
 
-#include "error.h"
-#include "gpu_resources.h"
-#include "lic2d_image.h"
-#include "lic2d_pass.h"
+#include "core/error.h"
+#include "gpu/gpu_resources.h"
+#include "lic/colouring.h"
+#include "passes/lic2d_pass.h"
 #include "plane_inputs.h"
-#include "session.h"
-#include "vulkan_context.h"
+#include "core/session.h"
+#include "gpu/vulkan_context.h"
 
 namespace lic3d::viewer {
 

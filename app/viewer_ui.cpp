@@ -7,9 +7,9 @@
 
 #include <imgui.h>
 
-#include "analytic_fields.h"
-#include "colormap.h"
-#include "enum_names.h"
+#include "lic/analytic_fields.h"
+#include "core/colormap.h"
+#include "core/enum_names.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -53,12 +53,12 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   tip("2D LIC of a plane (thesis chapter 3): a 2D field, or a plane of the 3D field");
   session.twoD = mode == 1;
   FieldSource& f = ui.pendingField;
-  const bool analytic = parseAnalyticField(f.field) || parseAnalyticField2D(f.field);
+  const bool analytic = parseEnum<AnalyticField>(f.field) || parseEnum<AnalyticField2D>(f.field);
   if (ImGui::BeginCombo("analytic", analytic ? f.field.c_str() : "(file)")) {
-    for (std::string_view name : analyticFieldNames())
+    for (const auto& [value, name] : enumNames<AnalyticField>())
       if (ImGui::Selectable(std::string(name).c_str(), f.field == name)) f.field = name;
     if (session.twoD)
-      for (std::string_view name : analyticField2DNames())
+      for (const auto& [value, name] : enumNames<AnalyticField2D>())
         if (ImGui::Selectable(std::string(name).c_str(), f.field == name)) f.field = name;
     ImGui::EndCombo();
   }
@@ -68,7 +68,7 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   text("file", f.field,
        "Or a field file: .vtk, .vti, .nrrd, or a time series step_%03d.vti / step_*.vti "
        "(press Load)");
-  if (parseAnalyticField(f.field) && timePeriod(*parseAnalyticField(f.field)) > 0.0 &&
+  if (parseEnum<AnalyticField>(f.field) && timePeriod(*parseEnum<AnalyticField>(f.field)) > 0.0 &&
       !session.twoD) {
     ImGui::InputInt("time steps", &ui.pendingTimeSteps);
     ui.pendingTimeSteps = std::clamp(ui.pendingTimeSteps, 0, 4096);
@@ -76,7 +76,7 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
     tip("The tornado as a series of steps over its period, blended on the GPU (0: 64)");
   }
   // A file brings its own grid: the grid is edited for analytic fields only.
-  if (parseAnalyticField(f.field)) {
+  if (parseEnum<AnalyticField>(f.field)) {
     ImGui::InputInt3("grid", &f.grid.x);
     f.grid = glm::clamp(f.grid, glm::ivec3(1), glm::ivec3(2048));
     tip("Voxels of an analytic field along x, y, z");

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "session.h"
+#include "core/session.h"
 
 namespace lic3d::viewer {
 

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "noise.h"
+#include "lic/noise.h"
 
 namespace lic3d::test {
 

@@ -12,11 +12,11 @@
 
 #include <gtest/gtest.h>
 
-#include "lic_renderer.h"
-#include "rgba_image.h"
-#include "view_params.h"
-#include "volume.h"
-#include "vulkan_context.h"
+#include "passes/lic_renderer.h"
+#include "core/rgba_image.h"
+#include "core/view_params.h"
+#include "core/volume.h"
+#include "gpu/vulkan_context.h"
 
 namespace lic3d::test {
 

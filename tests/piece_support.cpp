@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "field_piece.h"
-#include "noise.h"
+#include "lic/field_piece.h"
+#include "lic/noise.h"
 
 namespace lic3d::test {
 

@@ -6,9 +6,9 @@
 #include <functional>
 #include <string>
 
-#include "error.h"
-#include "lic_params.h"
-#include "volume.h"
+#include "core/error.h"
+#include "core/lic_params.h"
+#include "core/volume.h"
 
 namespace lic3d::test {
 

@@ -5,19 +5,19 @@
 
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
+#include "lic/analytic_fields.h"
 
 namespace lic3d {
 namespace {
 
 TEST(AnalyticFields, NamesRoundTrip) {
-  for (std::string_view name : analyticFieldNames()) {
-    const auto field = parseAnalyticField(name);
+  for (const auto& [value, name] : enumNames<AnalyticField>()) {
+    const auto field = parseEnum<AnalyticField>(name);
     ASSERT_TRUE(field.has_value()) << name;
-    EXPECT_EQ(toString(*field), name);
+    EXPECT_EQ(enumName(*field), name);
   }
-  EXPECT_FALSE(parseAnalyticField("Tornado").has_value());
-  EXPECT_FALSE(parseAnalyticField("").has_value());
+  EXPECT_FALSE(parseEnum<AnalyticField>("Tornado").has_value());
+  EXPECT_FALSE(parseEnum<AnalyticField>("").has_value());
 }
 
 TEST(AnalyticFields, CubicGridSpansTheDomain) {
@@ -61,7 +61,7 @@ TEST(AnalyticFields, SolenoidalAndAbcAreDivergenceFree) {
           worst = std::max(worst, std::abs(div));
           scale = std::max(scale, static_cast<double>(glm::length(f.at(i, j, k))) / h);
         }
-    EXPECT_LT(worst, 1e-4 * scale) << toString(kind);
+    EXPECT_LT(worst, 1e-4 * scale) << enumName(kind);
   }
 }
 

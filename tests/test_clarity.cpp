@@ -7,12 +7,12 @@
 
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
+#include "lic/analytic_fields.h"
 #include "gpu_test_support.h"
-#include "lic_reference.h"
-#include "lic_renderer.h"
-#include "noise.h"
-#include "shader_library.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
+#include "gpu/shader_library.h"
 
 namespace lic3d {
 namespace {
@@ -52,11 +52,11 @@ void expectMaskMatchesReference(const Context& context, SparsityDistribution dis
     drawnGpu += gpu.drawn[i];
   }
   const double n = static_cast<double>(cpu.drawn.size());
-  EXPECT_GE(agree / n, 0.995) << toString(distribution);
+  EXPECT_GE(agree / n, 0.995) << enumName(distribution);
   // The expected fraction is removed, and it is a real fraction: not nothing, not everything.
-  EXPECT_NEAR(drawnGpu / n, drawnCpu / n, 0.005) << toString(distribution);
-  EXPECT_GT(drawnCpu / n, 0.05) << toString(distribution);
-  EXPECT_LT(drawnCpu / n, 0.95) << toString(distribution);
+  EXPECT_NEAR(drawnGpu / n, drawnCpu / n, 0.005) << enumName(distribution);
+  EXPECT_GT(drawnCpu / n, 0.05) << enumName(distribution);
+  EXPECT_LT(drawnCpu / n, 0.95) << enumName(distribution);
 }
 
 TEST_F(GpuTest, SparsityMaskMatchesTheReferenceForEveryDistribution) {

@@ -17,15 +17,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analytic_fields.h"
-#include "colormap.h"
-#include "lic_reference.h"
-#include "nrrd.h"
-#include "noise.h"
+#include "lic/analytic_fields.h"
+#include "core/colormap.h"
+#include "lic/lic_reference.h"
+#include "io/nrrd.h"
+#include "lic/noise.h"
 #include "png_read.h"
-#include "session.h"
+#include "core/session.h"
 #include "test_support.h"
-#include "vti.h"
+#include "io/vti.h"
 
 namespace lic3d {
 namespace {
@@ -178,7 +178,7 @@ TEST_F(CliTest, SchemeAndByteTextureFlagsReachTheLicPass) {
     params.scheme = scheme;
     const ScalarVolume reference =
         *computeLicReference(field, makeWhiteNoise(field.dims, 1), params);
-    const std::string name(toString(scheme));
+    const std::string name(enumName(scheme));
     // GPU with float texels, the CPU reference itself, GPU with 8-bit texels.
     for (const auto& [suffix, tolerance] :
          {std::pair{"", 1e-3}, std::pair{"_cpu", 1e-6}, std::pair{"_byte", 1e-2}}) {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gpu_test_support.h"
-#include "vulkan_context.h"
+#include "gpu/vulkan_context.h"
 
 namespace lic3d {
 namespace {

@@ -2,8 +2,8 @@
 // of one layer, with 2- or 3-component vectors.
 #include <gtest/gtest.h>
 
-#include "field_io.h"
-#include "field_plane.h"
+#include "io/field_io.h"
+#include "lic/field_plane.h"
 #include "test_support.h"
 
 namespace lic3d {

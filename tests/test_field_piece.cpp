@@ -4,12 +4,12 @@
 
 #include <functional>
 
-#include "analytic_fields.h"
-#include "field_piece.h"
-#include "lic_reference.h"
-#include "noise.h"
+#include "lic/analytic_fields.h"
+#include "lic/field_piece.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
 #include "piece_support.h"
-#include "sparsity.h"
+#include "lic/sparsity.h"
 
 namespace lic3d {
 namespace {

@@ -2,10 +2,10 @@
 // ParaView plugin does under MPI, against the GPU's LIC of the whole field.
 #include <gtest/gtest.h>
 
-#include "analytic_fields.h"
-#include "field_piece.h"
+#include "lic/analytic_fields.h"
+#include "lic/field_piece.h"
 #include "gpu_test_support.h"
-#include "lic_renderer.h"
+#include "passes/lic_renderer.h"
 #include "piece_support.h"
 
 namespace lic3d {

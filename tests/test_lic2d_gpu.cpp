@@ -8,16 +8,16 @@
 #include <glm/gtc/packing.hpp>
 #include <tuple>
 
-#include "analytic_fields.h"
-#include "field_interpolation.h"
-#include "gpu_submit.h"
+#include "lic/analytic_fields.h"
+#include "passes/field_interpolation.h"
+#include "gpu/gpu_submit.h"
 #include "gpu_test_support.h"
-#include "lic2d_pass.h"
-#include "lic2d_reference.h"
-#include "lic_reference.h"
-#include "lic_renderer.h"
-#include "noise.h"
-#include "time_series.h"
+#include "passes/lic2d_pass.h"
+#include "lic/lic2d_reference.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
+#include "lic/time_series.h"
 
 namespace lic3d {
 namespace {
@@ -70,8 +70,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Combine(::testing::Values(Integrator::Euler, Integrator::Rk2, Integrator::Rk4),
                        ::testing::Values(Kernel::Box, Kernel::Hann, Kernel::Gauss)),
     [](const ::testing::TestParamInfo<Variant>& variant) {
-      return std::string(toString(std::get<0>(variant.param))) + "_" +
-             std::string(toString(std::get<1>(variant.param)));
+      return std::string(enumName(std::get<0>(variant.param))) + "_" +
+             std::string(enumName(std::get<1>(variant.param)));
     });
 
 TEST_F(GpuTest, Lic2DNearestNoiseMagnitudeStepsExactSchemeAndHalfTextures) {

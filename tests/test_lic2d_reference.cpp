@@ -5,11 +5,11 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
-#include "field_plane.h"
-#include "lic2d_reference.h"
-#include "lic_reference.h"
-#include "noise.h"
+#include "lic/analytic_fields.h"
+#include "lic/field_plane.h"
+#include "lic/lic2d_reference.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
 
 namespace lic3d {
 namespace {
@@ -33,7 +33,7 @@ TEST(Lic2DReference, AtTheFieldsResolutionItIsTheThreeDReferenceOnOneLayer) {
     const Result<ScalarVolume> volume = computeLicReference(field, noise, params, 2);
     ASSERT_TRUE(image.ok()) << image.error().message;
     ASSERT_TRUE(volume.ok());
-    EXPECT_EQ(image->values, volume->values) << toString(integrator);
+    EXPECT_EQ(image->values, volume->values) << enumName(integrator);
     EXPECT_EQ(image->geometry, field.geometry);
   }
 }

@@ -8,13 +8,13 @@
 
 #include <glm/gtc/packing.hpp>
 
-#include "analytic_fields.h"
-#include "field_io.h"
+#include "lic/analytic_fields.h"
+#include "io/field_io.h"
 #include "gpu_test_support.h"
-#include "lic_reference.h"
-#include "gpu_submit.h"
-#include "lic_renderer.h"
-#include "noise.h"
+#include "lic/lic_reference.h"
+#include "gpu/gpu_submit.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -107,9 +107,9 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(Kernel::Box, Kernel::Hann, Kernel::Gauss),
                        ::testing::Values(NoiseFilter::Nearest, NoiseFilter::Linear)),
     [](const ::testing::TestParamInfo<Variant>& variant) {
-      return std::string(toString(std::get<0>(variant.param))) + "_" +
-             std::string(toString(std::get<1>(variant.param))) + "_" +
-             std::string(toString(std::get<2>(variant.param)));
+      return std::string(enumName(std::get<0>(variant.param))) + "_" +
+             std::string(enumName(std::get<1>(variant.param))) + "_" +
+             std::string(enumName(std::get<2>(variant.param)));
     });
 
 // With half precision the GPU stores v / max|v| and the noise as half floats. Away from the
@@ -224,7 +224,7 @@ TEST_F(GpuTest, GpuMatchesCpuReferenceOnAnisotropicGrid) {
   magnitude.step = 0.7f;
   for (const LicParams& params : {normalized, magnitude}) {
     const std::string what =
-        "abc on a 0.5 x 1 x 2 grid, " + std::string(toString(params.direction));
+        "abc on a 0.5 x 1 x 2 grid, " + std::string(enumName(params.direction));
     const Comparison c = compareWithReference(context(), field, params);
     expectWithin(c.difference, toleranceFor(params), what);
     const ScalarVolume onCubicGrid =

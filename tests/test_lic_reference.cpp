@@ -5,9 +5,9 @@
 
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
-#include "lic_reference.h"
-#include "noise.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
 
 namespace lic3d {
 namespace {
@@ -198,7 +198,7 @@ TEST(LicReference, StreamlinesOnAnisotropicGridsFollowThePhysicalDirection) {
     ASSERT_EQ(line.size(), 21u);
     for (std::size_t i = 1; i < line.size(); ++i) {
       const glm::dvec3 step = line[i] - line[i - 1];
-      EXPECT_NEAR(glm::length(step - 0.5 * expected), 0.0, 1e-12) << toString(integrator) << i;
+      EXPECT_NEAR(glm::length(step - 0.5 * expected), 0.0, 1e-12) << enumName(integrator) << i;
       // Back in physical units the step points along the field.
       const glm::dvec3 physical = glm::normalize(step * kMirrorSpacing);
       EXPECT_NEAR(glm::length(physical - glm::normalize(glm::dvec3(1.0))), 0.0, 1e-12);

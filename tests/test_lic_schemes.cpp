@@ -8,14 +8,14 @@
 
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
-#include "field_io.h"
+#include "lic/analytic_fields.h"
+#include "io/field_io.h"
 #include "gpu_test_support.h"
-#include "lic_reference.h"
-#include "lic_renderer.h"
-#include "noise.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
 #include "test_support.h"
-#include "volume_compare.h"
+#include "core/volume_compare.h"
 
 namespace lic3d {
 namespace {
@@ -55,8 +55,8 @@ TEST_F(GpuTest, BothRk2SchemesMatchCpuReference) {
     for (const FieldPrecision precision : {FieldPrecision::Float, FieldPrecision::Half}) {
       const ScalarVolume gpu = gpuLic(context(), field, noise, params, precision);
       const test::VolumeDifference d = compareVolumes(gpu, cpu);
-      const std::string what = std::string(toString(scheme)) + ", " +
-                               std::string(toString(direction)) +
+      const std::string what = std::string(enumName(scheme)) + ", " +
+                               std::string(enumName(direction)) +
                                (precision == FieldPrecision::Half ? ", half" : ", float");
       EXPECT_LE(d.mean, 1e-3) << what;
       EXPECT_LE(d.quantile999, 2e-2) << what;

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "memory_budget.h"
+#include "core/memory_budget.h"
 
 namespace lic3d {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "noise.h"
+#include "lic/noise.h"
 
 namespace lic3d {
 namespace {

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "field_io.h"
-#include "file_util.h"
-#include "nrrd.h"
+#include "io/field_io.h"
+#include "io/file_util.h"
+#include "io/nrrd.h"
 #include "test_support.h"
 
 namespace lic3d {

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "png_read.h"
-#include "rgba_image.h"
+#include "core/rgba_image.h"
+#include "io/png_writer.h"
 #include "test_support.h"
 
 namespace lic3d {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "field_io.h"
-#include "raw_volume.h"
+#include "io/field_io.h"
+#include "io/raw_volume.h"
 #include "test_support.h"
 
 namespace lic3d {

@@ -7,10 +7,10 @@
 
 #include <glm/glm.hpp>
 
-#include "analytic_fields.h"
+#include "lic/analytic_fields.h"
 #include "gpu_test_support.h"
-#include "lic_renderer.h"
-#include "noise.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
 
 namespace lic3d {
 namespace {

@@ -5,7 +5,8 @@
 
 #include <string>
 
-#include "session.h"
+#include "core/session.h"
+#include "io/session_file.h"
 #include "test_support.h"
 
 namespace lic3d {

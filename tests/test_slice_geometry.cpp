@@ -4,9 +4,9 @@
 
 #include <glm/glm.hpp>
 
-#include "camera.h"
-#include "legend.h"
-#include "slice_geometry.h"
+#include "core/camera.h"
+#include "lic/legend.h"
+#include "core/slice_geometry.h"
 
 namespace lic3d {
 namespace {

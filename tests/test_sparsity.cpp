@@ -12,8 +12,8 @@
 
 #include <glm/glm.hpp>
 
-#include "noise.h"
-#include "sparsity.h"
+#include "lic/noise.h"
+#include "lic/sparsity.h"
 
 namespace lic3d {
 namespace {
@@ -128,17 +128,18 @@ SparsityParams paramsFor(SparsityDistribution distribution) {
 }
 
 TEST(Sparsity, NamesRoundTrip) {
-  const auto names = sparsityDistributionNames();
+  std::vector<std::string_view> names;
+  for (const auto& n : enumNames<SparsityDistribution>()) names.push_back(n.name);
   ASSERT_EQ(names.size(), 7u);
   EXPECT_EQ(names[3], "poisson-approx");
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const auto parsed = parseSparsityDistribution(names[i]);
+    const auto parsed = parseEnum<SparsityDistribution>(names[i]);
     ASSERT_TRUE(parsed.has_value()) << names[i];
     EXPECT_EQ(static_cast<std::size_t>(*parsed), i);
-    EXPECT_EQ(toString(*parsed), names[i]);
+    EXPECT_EQ(enumName(*parsed), names[i]);
   }
-  EXPECT_FALSE(parseSparsityDistribution("Poisson").has_value());
-  EXPECT_FALSE(parseSparsityDistribution("").has_value());
+  EXPECT_FALSE(parseEnum<SparsityDistribution>("Poisson").has_value());
+  EXPECT_FALSE(parseEnum<SparsityDistribution>("").has_value());
 }
 
 TEST(Sparsity, RadicalInverseKnownValues) {
@@ -506,7 +507,7 @@ TEST(Sparsity, AutomaticParametersAimAtTheDefaultFraction) {
         SparsityDistribution::Jitter, SparsityDistribution::Halton,
         SparsityDistribution::Hammersley}) {
     const auto mask = makeSparsityMask(paramsFor(distribution), dims);
-    ASSERT_TRUE(mask.ok()) << toString(distribution) << ": " << mask.error().message;
+    ASSERT_TRUE(mask.ok()) << enumName(distribution) << ": " << mask.error().message;
     const double fraction = blackFraction(*mask);
     // Best candidate is capped: its cost grows with the square of the points.
     const double target =
@@ -515,8 +516,8 @@ TEST(Sparsity, AutomaticParametersAimAtTheDefaultFraction) {
                        static_cast<double>(kAutomaticBestCandidatePoints) /
                            static_cast<double>(voxelCount(dims)))
             : kDefaultBlackFraction;
-    EXPECT_GT(fraction, 0.5 * target) << toString(distribution);
-    EXPECT_LT(fraction, 2.0 * target) << toString(distribution);
+    EXPECT_GT(fraction, 0.5 * target) << enumName(distribution);
+    EXPECT_LT(fraction, 2.0 * target) << enumName(distribution);
     EXPECT_EQ(static_cast<std::size_t>(std::count(mask->black.begin(), mask->black.end(), 1)),
               mask->blackCount);
   }
@@ -638,7 +639,7 @@ TEST(Sparsity, AutomaticValuesOnHugeGridsMoveToTheLimits) {
         SparsityDistribution::Jitter, SparsityDistribution::Halton,
         SparsityDistribution::Hammersley, SparsityDistribution::Checkerboard}) {
     const Result<void> result = validate(paramsFor(distribution), huge);
-    EXPECT_TRUE(result.ok()) << toString(distribution) << ": " << result.error().message;
+    EXPECT_TRUE(result.ok()) << enumName(distribution) << ": " << result.error().message;
   }
 }
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "analytic_fields.h"
-#include "field_interpolation.h"
-#include "memory_budget.h"
-#include "nrrd.h"
-#include "session.h"
+#include "lic/analytic_fields.h"
+#include "passes/field_interpolation.h"
+#include "core/memory_budget.h"
+#include "io/nrrd.h"
+#include "core/session.h"
 #include "test_support.h"
-#include "time_series.h"
+#include "lic/time_series.h"
 
 namespace lic3d {
 namespace {

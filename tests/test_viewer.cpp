@@ -12,7 +12,8 @@
 #include <string>
 
 #include "png_read.h"
-#include "session.h"
+#include "core/session.h"
+#include "io/session_file.h"
 #include "test_support.h"
 
 namespace lic3d {

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "field_io.h"
+#include "io/field_io.h"
 #include "test_support.h"
-#include "vti.h"
+#include "io/vti.h"
 
 namespace lic3d {
 namespace {

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "field_io.h"
+#include "io/field_io.h"
 #include "test_support.h"
-#include "vtk_legacy.h"
+#include "io/vtk_legacy.h"
 
 namespace lic3d {
 namespace {

@@ -23,11 +23,11 @@
 #include "vtkUnsignedCharArray.h"
 
 // The lic3d engine.
-#include "field_piece.h"
-#include "lic_reference.h"
-#include "lic_renderer.h"
-#include "noise.h"
-#include "vulkan_context.h"
+#include "lic/field_piece.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_renderer.h"
+#include "lic/noise.h"
+#include "gpu/vulkan_context.h"
 
 vtkStandardNewMacro(vtkLic3dFilter);
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "fuzz_support.h"
-#include "nrrd.h"
+#include "io/nrrd.h"
 
 namespace {
 

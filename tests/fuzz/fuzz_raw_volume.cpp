@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "fuzz_support.h"
-#include "raw_volume.h"
+#include "io/raw_volume.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace lic3d;

@@ -13,8 +13,8 @@
 #include <string_view>
 #include <system_error>
 
-#include "error.h"
-#include "volume.h"
+#include "core/error.h"
+#include "core/volume.h"
 
 namespace lic3d::fuzz {
 

@@ -2,7 +2,7 @@
 // array), a scalar volume and an RGBA volume.
 
 #include "fuzz_support.h"
-#include "vti.h"
+#include "io/vti.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace lic3d;

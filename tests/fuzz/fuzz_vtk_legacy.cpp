@@ -2,7 +2,7 @@
 // (which takes the other array-selection paths: cell data, names listed in errors).
 
 #include "fuzz_support.h"
-#include "vtk_legacy.h"
+#include "io/vtk_legacy.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace lic3d;

@@ -1,0 +1,48 @@
+#pragma once
+// A swapchain for the context's surface: images to present, recreated on resize. Knows nothing
+// of the window system: the surface comes from the front end.
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/error.h"
+#include "gpu/vulkan_context.h"
+
+namespace lic3d {
+
+class Swapchain {
+ public:
+  Swapchain() = default;
+  // `extent` is the framebuffer size the window reports (used when the surface leaves it open).
+  // With vsync the presentation waits for the display (FIFO); without, MAILBOX or IMMEDIATE.
+  // `old` (may be null) is retired and its images may still be presented meanwhile.
+  static Result<Swapchain> create(const Context& context, VkExtent2D extent, bool vsync,
+                                  VkSwapchainKHR old = VK_NULL_HANDLE);
+  Swapchain(Swapchain&& other) noexcept;
+  Swapchain& operator=(Swapchain&& other) noexcept;
+  ~Swapchain();
+
+  VkSwapchainKHR handle() const { return swapchain_; }
+  VkFormat format() const { return format_; }
+  VkExtent2D extent() const { return extent_; }
+  std::uint32_t imageCount() const { return static_cast<std::uint32_t>(images_.size()); }
+  std::uint32_t minImageCount() const { return minImageCount_; }
+  VkImage image(std::uint32_t i) const { return images_[i]; }
+  VkImageView view(std::uint32_t i) const { return views_[i]; }
+  VkPresentModeKHR presentMode() const { return presentMode_; }
+
+ private:
+  void release();
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  VkFormat format_ = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent_{};
+  std::uint32_t minImageCount_ = 0;
+  VkPresentModeKHR presentMode_ = VK_PRESENT_MODE_FIFO_KHR;
+  std::vector<VkImage> images_;
+  std::vector<VkImageView> views_;
+};
+
+}  // namespace lic3d

@@ -1,0 +1,85 @@
+#pragma once
+// What the LIC volume depends on. Any change here means the compute pass runs again; nothing
+// else (camera, opacity, slices) does.
+
+#include <cstdint>
+#include <string>
+
+#include "core/enum_names.h"
+#include "core/error.h"
+
+namespace lic3d {
+
+enum class Integrator : std::uint32_t { Euler = 0, Rk2 = 1, Rk4 = 2 };
+enum class Kernel : std::uint32_t { Box = 0, Hann = 1, Gauss = 2 };
+enum class NoiseFilter : std::uint32_t { Nearest = 0, Linear = 1 };
+// Normalized: unit steps of h voxels. Magnitude: steps of h * |v| / max|v| voxels (the thesis'
+// velocity-scaled steps, which shorten streamlines in slow regions).
+enum class DirectionMode : std::uint32_t { Normalized = 0, Magnitude = 1 };
+// How the rk2 integrator steps (docs/LIC_SEMANTICS.md). Exact: every step of h is an RK2
+// (midpoint) step, two texture fetches per sample. Ab2: the first step is RK2, the others
+// two-step Adams-Bashforth steps of h, second order from the directions at the last two
+// samples: one fetch per sample. Euler and RK4 ignore it.
+enum class StepScheme : std::uint32_t { Exact = 0, Ab2 = 1 };
+
+LIC3D_ENUM_NAMES(Integrator, {Integrator::Euler, "euler"}, {Integrator::Rk2, "rk2"},
+                 {Integrator::Rk4, "rk4"})
+LIC3D_ENUM_NAMES(Kernel, {Kernel::Box, "box"}, {Kernel::Hann, "hann"}, {Kernel::Gauss, "gauss"})
+LIC3D_ENUM_NAMES(NoiseFilter, {NoiseFilter::Nearest, "nearest"}, {NoiseFilter::Linear, "linear"})
+LIC3D_ENUM_NAMES(DirectionMode, {DirectionMode::Normalized, "normalized"},
+                 {DirectionMode::Magnitude, "magnitude"})
+LIC3D_ENUM_NAMES(StepScheme, {StepScheme::Exact, "exact"}, {StepScheme::Ab2, "ab2"})
+
+// Sparsity masks (thesis 5.1.4, lic/sparsity.h): the point distribution whose black voxels hide
+// the LIC voxels whose streamlines touch them.
+enum class SparsityDistribution : std::uint32_t {
+  None,
+  Checkerboard,
+  Poisson,
+  PoissonApprox,
+  Jitter,
+  Halton,
+  Hammersley,
+};
+LIC3D_ENUM_NAMES(SparsityDistribution, {SparsityDistribution::None, "none"},
+                 {SparsityDistribution::Checkerboard, "checkerboard"},
+                 {SparsityDistribution::Poisson, "poisson"},
+                 {SparsityDistribution::PoissonApprox, "poisson-approx"},
+                 {SparsityDistribution::Jitter, "jitter"}, {SparsityDistribution::Halton, "halton"},
+                 {SparsityDistribution::Hammersley, "hammersley"})
+
+struct SparsityParams {
+  SparsityDistribution distribution = SparsityDistribution::None;
+  int points = 0;  // black points for poisson, poisson-approx, halton, hammersley; 0 = automatic
+  float radius = 0.0f;  // minimum distance in voxels for poisson and jitter; 0 = automatic
+  float ratio = 0.05f;  // checkerboard: fraction of black voxels, in (0, 1)
+  std::uint64_t seed = 1;
+  bool operator==(const SparsityParams&) const = default;
+};
+
+struct LicParams {
+  int length = 20;      // L: steps each way (before bias); with h = 0.5, 10 voxels
+  float step = 0.5f;    // h: step length in voxels
+  int bias = 0;         // Lb = L - bias steps backward, Lf = L + bias forward; |bias| <= L
+  Integrator integrator = Integrator::Rk2;
+  Kernel kernel = Kernel::Box;
+  NoiseFilter noiseFilter = NoiseFilter::Linear;
+  DirectionMode direction = DirectionMode::Normalized;
+  StepScheme scheme = StepScheme::Exact;  // ab2 is not the default: docs/LIC_SEMANTICS.md
+  // Thesis 5.1.4: voxels whose streamline touches a black voxel of this mask are not drawn.
+  SparsityParams sparsity;
+
+  bool operator==(const LicParams&) const = default;
+};
+
+// Checks ranges: 0 <= L <= kMaxLicLength, 0 < h <= 8, |bias| <= L.
+Result<void> validate(const LicParams& params);
+inline constexpr int kMaxLicLength = 4096;
+
+// A streamline stops where |v| <= kCriticalFraction * max|v| (a critical point).
+inline constexpr double kCriticalFraction = 1e-6;
+
+// Kernel weight of sample i (i = -Lb..Lf), the same formula on CPU and GPU.
+double kernelWeight(Kernel kernel, int i, int length, int bias);
+
+}  // namespace lic3d

@@ -1,0 +1,68 @@
+#pragma once
+// A session: everything that makes a picture (the field, the noise, LicParams, ViewParams) as a
+// JSON file. The desktop app saves and loads it; `lic3d render --session` makes the same picture
+// from it.
+
+#include <cstdint>
+#include <string>
+
+#include "core/error.h"
+#include "core/lic_params.h"
+#include "core/view_params.h"
+#include "core/field_precision.h"
+#include "core/volume.h"
+
+namespace lic3d {
+
+struct FieldSource {
+  std::string field = "tornado";  // an analytic field's name or a file path
+  Dims grid{128};                 // the analytic field's grid
+  std::string array;              // the vector array in a file with several ("" = the first)
+
+  bool operator==(const FieldSource&) const = default;
+};
+
+struct NoiseSource {
+  std::string file;        // a noise volume file, or "" for generated noise
+  std::uint64_t seed = 1;  // of the white noise (and of the seed noise's spots)
+  int seedSpots = 0;       // > 0: sparse seed noise with this many spots
+
+  bool operator==(const NoiseSource&) const = default;
+};
+
+// 2D LIC (`lic3d render2d`, the app's 2D mode; thesis chapter 3): which plane of a 3D field, and
+// the size of the LIC image.
+struct PlaneParams {
+  int axis = 2;    // a 3D field is cut across this axis (0, 1, 2: x, y, z)
+  int index = -1;  // at this voxel layer; -1: the middle one
+  int width = 0;   // the LIC image; 0: the field's grid (the other side given: keeping its aspect)
+  int height = 0;
+
+  bool operator==(const PlaneParams&) const = default;
+};
+
+struct Session {
+  FieldSource field;
+  NoiseSource noise;
+  FieldPrecision precision = FieldPrecision::Auto;
+  LicParams lic;
+  ViewParams view;
+  bool twoD = false;  // 2D LIC of a plane instead of the 3D volume
+  PlaneParams plane;
+  // An analytic field's time, or a file series' position in steps (docs/TIME.md).
+  double time = 0.0;
+  // > 0: a time-dependent analytic field is a series of this many steps over its period, blended
+  // on the GPU like files; 0: it is sampled at each time exactly.
+  int timeSteps = 0;
+
+  bool operator==(const Session&) const = default;
+};
+
+inline constexpr int kSessionVersion = 1;
+
+std::string sessionToJson(const Session& session);
+// Missing keys keep their defaults; an unknown key, a wrong type or an unknown name is an
+// InvalidInput error naming `source` and the key.
+Result<Session> sessionFromJson(const std::string& text, const std::string& source);
+
+}  // namespace lic3d

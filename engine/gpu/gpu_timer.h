@@ -1,0 +1,43 @@
+#pragma once
+// GPU timestamps around regions of a command buffer: what the benchmark and the stats report.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/error.h"
+#include "gpu/vulkan_context.h"
+
+namespace lic3d {
+
+class GpuTimer {
+ public:
+  GpuTimer() = default;
+  static Result<GpuTimer> create(const Context& context, std::uint32_t regions,
+                                 const std::string& name);
+  GpuTimer(GpuTimer&& other) noexcept;
+  GpuTimer& operator=(GpuTimer&& other) noexcept;
+  ~GpuTimer();
+
+  bool valid() const { return pool_ != VK_NULL_HANDLE; }
+  // Record reset, begin and end of one region in one command buffer, then read it once that
+  // command buffer completed.
+  void reset(VkCommandBuffer cmd, std::uint32_t region) const;
+  void begin(VkCommandBuffer cmd, std::uint32_t region) const;
+  void end(VkCommandBuffer cmd, std::uint32_t region) const;
+  Result<double> milliseconds(std::uint32_t region) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueryPool pool_ = VK_NULL_HANDLE;
+  std::uint32_t regions_ = 0;
+  double nanosecondsPerTick_ = 1.0;
+  std::uint64_t tickMask_ = ~0ull;  // timestampValidBits of the queue
+};
+
+// The median of repeated timings (the mean of the two middle ones for an even count; 0 for none).
+double median(std::vector<double> values);
+
+}  // namespace lic3d

@@ -1,0 +1,449 @@
+#include "io/file_util.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <ostream>
+#include <streambuf>
+#include <utility>
+
+namespace lic3d {
+namespace {
+
+constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
+
+std::string systemError(int errorNumber) { return std::strerror(errorNumber); }
+
+// A streambuf over a file descriptor that remembers errno of the first failed write, so the
+// error message can say "No space left on device" instead of a bare stream failure.
+class FdStreamBuf : public std::streambuf {
+ public:
+  explicit FdStreamBuf(int fd) : fd_(fd), buffer_(64 * 1024) {
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  }
+  FdStreamBuf(const FdStreamBuf&) = delete;
+  FdStreamBuf& operator=(const FdStreamBuf&) = delete;
+
+  int errorNumber() const { return errorNumber_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!flushBuffer()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+
+  std::streamsize xsputn(const char* data, std::streamsize count) override {
+    // Large blocks (volume payloads) bypass the buffer.
+    if (count >= static_cast<std::streamsize>(buffer_.size())) {
+      if (!flushBuffer() || !writeAll(data, static_cast<std::size_t>(count))) return 0;
+      return count;
+    }
+    return std::streambuf::xsputn(data, count);
+  }
+
+  int sync() override { return flushBuffer() ? 0 : -1; }
+
+ private:
+  bool flushBuffer() {
+    const std::size_t pending = static_cast<std::size_t>(pptr() - pbase());
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return writeAll(buffer_.data(), pending);
+  }
+
+  bool writeAll(const char* data, std::size_t count) {
+    if (errorNumber_ != 0) return false;
+    while (count > 0) {
+      const ssize_t written =
+          ::write(fd_, data, std::min<std::size_t>(count, std::size_t{1} << 30));
+      if (written < 0) {
+        if (errno == EINTR) continue;
+        errorNumber_ = errno;
+        return false;
+      }
+      data += written;
+      count -= static_cast<std::size_t>(written);
+    }
+    return true;
+  }
+
+  int fd_;
+  std::vector<char> buffer_;
+  int errorNumber_ = 0;
+};
+
+// Removes the temporary file on every path out of writeFileAtomically except success, including
+// an exception thrown by the writer.
+class TemporaryFile {
+ public:
+  TemporaryFile(std::filesystem::path path, int fd) : path_(std::move(path)), fd_(fd) {}
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!committed_) ::unlink(path_.c_str());
+  }
+
+  // close() reports delayed write errors (NFS, quotas), so its result matters.
+  int close() {
+    const int result = ::close(fd_);
+    fd_ = -1;
+    return result;
+  }
+  void commit() { committed_ = true; }
+
+ private:
+  std::filesystem::path path_;
+  int fd_;
+  bool committed_ = false;
+};
+
+// from_chars takes no leading '+', which some writers put before positive numbers.
+template <class T>
+bool parseReal(std::string_view text, T& value) {
+  if (!text.empty() && text.front() == '+') {
+    text.remove_prefix(1);
+    if (!text.empty() && (text.front() == '+' || text.front() == '-')) return false;
+  }
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  return !text.empty() && error == std::errc() && stop == end;
+}
+
+Error writeError(ErrorKind kind, const std::filesystem::path& path, const std::string& reason) {
+  return {kind, "cannot write '" + path.string() + "': " + reason};
+}
+
+}  // namespace
+
+Error fileError(const std::filesystem::path& path, std::string_view problem) {
+  std::string message = path.string();
+  message += ": ";
+  message += problem;
+  return inputError(std::move(message));
+}
+
+std::string quoteForMessage(std::string_view text) {
+  constexpr std::size_t kMaxShown = 60;
+  std::string quoted = "'";
+  for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      quoted += static_cast<char>(c);
+    } else {
+      constexpr char kHex[] = "0123456789abcdef";
+      quoted += "\\x";
+      quoted += kHex[c >> 4];
+      quoted += kHex[c & 15];
+    }
+  }
+  quoted += text.size() > kMaxShown ? "'..." : "'";
+  return quoted;
+}
+
+bool parseUnsigned(std::string_view text, std::uint64_t& value) {
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  return !text.empty() && error == std::errc() && stop == end;
+}
+
+bool parseDouble(std::string_view text, double& value) { return parseReal(text, value); }
+bool parseFloat(std::string_view text, float& value) { return parseReal(text, value); }
+
+std::string formatDouble(double value) {
+  std::array<char, 32> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() ? std::string(text.data(), end) : std::string("nan");
+}
+
+bool isAsciiSpace(int c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+std::string asciiLowerCase(std::string_view text) {
+  std::string lowered(text);
+  for (char& c : lowered)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return lowered;
+}
+
+std::vector<std::string_view> splitWords(std::string_view text) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && isAsciiSpace(text[i])) ++i;
+    const std::size_t start = i;
+    while (i < text.size() && !isAsciiSpace(text[i])) ++i;
+    if (i > start) words.push_back(text.substr(start, i - start));
+  }
+  return words;
+}
+
+std::string voxelText(Dims dims, std::uint64_t index) {
+  const std::uint64_t nx = static_cast<std::uint64_t>(std::max(dims.x, 1));
+  const std::uint64_t ny = static_cast<std::uint64_t>(std::max(dims.y, 1));
+  // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
+  std::string text = "(";
+  text += std::to_string(index % nx);
+  text += ',';
+  text += std::to_string(index / nx % ny);
+  text += ',';
+  text += std::to_string(index / (nx * ny));
+  text += ')';
+  return text;
+}
+
+void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order) {
+  if (order == std::endian::native || valueBytes < 2) return;
+  for (std::size_t i = 0; i < count; ++i)
+    std::reverse(data + i * valueBytes, data + (i + 1) * valueBytes);
+}
+
+Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes) {
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
+  if (reader.size() > maxBytes)
+    return fileError(path, "file is too large (" + std::to_string(reader.size()) +
+                               " bytes, the limit is " + std::to_string(maxBytes) + ")");
+  std::string bytes(static_cast<std::size_t>(reader.size()), '\0');
+  const std::size_t got = reader.read(bytes.data(), bytes.size());
+  if (got != bytes.size()) return fileError(path, "cannot read: " + reader.failureReason());
+  // The file may have grown since it was opened; the limit still holds.
+  char extra = 0;
+  if (reader.read(&extra, 1) != 0)
+    return fileError(path, "file is too large (it grew while being read; the limit is " +
+                               std::to_string(maxBytes) + " bytes)");
+  return bytes;
+}
+
+Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
+  return writeFileAtomically(path, [bytes](std::ostream& out) {
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return static_cast<bool>(out);
+  });
+}
+
+Result<void> writeFileAtomically(const std::filesystem::path& path,
+                                 const std::function<bool(std::ostream&)>& writer) {
+  const std::filesystem::path name = path.filename();
+  if (name.empty() || name == "." || name == "..")
+    return writeError(ErrorKind::InvalidInput, path, "the path does not name a file");
+
+  static std::atomic<unsigned> counter{0};
+  std::string temporaryName = ".";
+  temporaryName += name.string();
+  temporaryName +=
+      ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  const std::filesystem::path temporaryPath = path.parent_path() / temporaryName;
+  const int fd = ::open(temporaryPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) return writeError(ErrorKind::InvalidInput, path, systemError(errno));
+  TemporaryFile temporary(temporaryPath, fd);
+
+  FdStreamBuf buffer(fd);
+  std::ostream out(&buffer);
+  const bool produced = writer(out);
+  out.flush();
+  if (buffer.errorNumber() != 0)
+    return writeError(ErrorKind::Runtime, path, systemError(buffer.errorNumber()));
+  if (!produced || !out)
+    return writeError(ErrorKind::Runtime, path, "producing the content failed");
+  // Without fsync a crash shortly after the rename can leave an empty file under the real name.
+  if (::fsync(fd) != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
+  if (temporary.close() != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
+  // Renaming fails for reasons the user can fix: a folder in the way, no permission.
+  if (::rename(temporaryPath.c_str(), path.c_str()) != 0)
+    return writeError(ErrorKind::InvalidInput, path, systemError(errno));
+  temporary.commit();
+
+  // Makes the rename itself durable; failing here loses nothing already visible, so it is not
+  // reported.
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  const int folderFd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folderFd >= 0) {
+    ::fsync(folderFd);
+    ::close(folderFd);
+  }
+  return {};
+}
+
+FileReader::FileReader(std::filesystem::path path, int fd, std::uint64_t size)
+    : path_(std::move(path)), fd_(fd), size_(size) {}
+
+FileReader::FileReader(FileReader&& other) noexcept
+    : path_(std::move(other.path_)),
+      fd_(std::exchange(other.fd_, -1)),
+      size_(other.size_),
+      position_(other.position_),
+      buffer_(std::move(other.buffer_)),
+      begin_(other.begin_),
+      end_(other.end_),
+      errorNumber_(other.errorNumber_) {}
+
+FileReader& FileReader::operator=(FileReader&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    path_ = std::move(other.path_);
+    fd_ = std::exchange(other.fd_, -1);
+    size_ = other.size_;
+    position_ = other.position_;
+    buffer_ = std::move(other.buffer_);
+    begin_ = other.begin_;
+    end_ = other.end_;
+    errorNumber_ = other.errorNumber_;
+  }
+  return *this;
+}
+
+FileReader::~FileReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Result<FileReader> FileReader::open(const std::filesystem::path& path) {
+  // O_NONBLOCK keeps open() from waiting for a writer when the path is a FIFO; it does not
+  // change reads from regular files.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return fileError(path, "cannot open: " + systemError(errno));
+  FileReader reader(path, fd, 0);
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) return fileError(path, "cannot open: " + systemError(errno));
+  // Pipes and devices have no size to check payloads against.
+  if (!S_ISREG(info.st_mode)) return fileError(path, "not a regular file");
+  reader.size_ = static_cast<std::uint64_t>(info.st_size);
+  reader.buffer_.resize(
+      static_cast<std::size_t>(std::clamp<std::uint64_t>(reader.size_ + 1, 4096, kBufferBytes)));
+  return reader;
+}
+
+bool FileReader::fill() {
+  if (fd_ < 0 || errorNumber_ != 0) return false;
+  begin_ = 0;
+  end_ = 0;
+  for (;;) {
+    const ssize_t got = ::read(fd_, buffer_.data(), buffer_.size());
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      errorNumber_ = errno;
+      return false;
+    }
+    end_ = static_cast<std::size_t>(got);
+    return got > 0;
+  }
+}
+
+int FileReader::get() {
+  if (begin_ == end_ && !fill()) return -1;
+  ++position_;
+  return static_cast<unsigned char>(buffer_[begin_++]);
+}
+
+int FileReader::peek() {
+  if (begin_ == end_ && !fill()) return -1;
+  return static_cast<unsigned char>(buffer_[begin_]);
+}
+
+std::size_t FileReader::read(void* data, std::size_t count) {
+  char* out = static_cast<char*>(data);
+  std::size_t done = std::min(count, end_ - begin_);
+  std::memcpy(out, buffer_.data() + begin_, done);
+  begin_ += done;
+  while (done < count) {
+    const std::size_t wanted = count - done;
+    if (wanted < buffer_.size()) {
+      if (!fill()) break;
+      const std::size_t take = std::min(wanted, end_ - begin_);
+      std::memcpy(out + done, buffer_.data() + begin_, take);
+      begin_ += take;
+      done += take;
+      continue;
+    }
+    if (fd_ < 0 || errorNumber_ != 0) break;
+    const ssize_t got =
+        ::read(fd_, out + done, std::min<std::size_t>(wanted, std::size_t{1} << 30));
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      errorNumber_ = errno;
+      break;
+    }
+    if (got == 0) break;
+    done += static_cast<std::size_t>(got);
+  }
+  position_ += done;
+  return done;
+}
+
+std::uint64_t FileReader::skip(std::uint64_t count) {
+  count = std::min(count, remaining());
+  const std::size_t buffered =
+      static_cast<std::size_t>(std::min<std::uint64_t>(count, end_ - begin_));
+  begin_ += buffered;
+  position_ += buffered;
+  const std::uint64_t rest = count - buffered;
+  if (rest == 0) return count;
+  if (fd_ < 0 || errorNumber_ != 0) return buffered;
+  if (::lseek(fd_, static_cast<off_t>(position_ + rest), SEEK_SET) < 0) {
+    errorNumber_ = errno;
+    return buffered;
+  }
+  position_ += rest;
+  return count;
+}
+
+std::string FileReader::failureReason() const {
+  return errorNumber_ != 0 ? systemError(errorNumber_) : std::string("unexpected end of file");
+}
+
+NumberScan scanNumberConversion(std::string_view pattern) {
+  NumberScan scan;
+  bool found = false;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    NumberConversion c;
+    c.begin = i;
+    std::size_t j = i + 1;
+    if (j + 1 < pattern.size() && pattern[j] == '0' && pattern[j + 1] >= '1' &&
+        pattern[j + 1] <= '9') {
+      c.width = pattern[j + 1] - '0';
+      j += 2;
+    }
+    if (j >= pattern.size() || pattern[j] != 'd') {
+      scan.problem = NumberScan::Problem::NotAConversion;
+      scan.at = i;
+      return scan;
+    }
+    if (found) {
+      scan.problem = NumberScan::Problem::MoreThanOne;
+      return scan;
+    }
+    c.end = j + 1;
+    scan.conversion = c;
+    found = true;
+    i = j;
+  }
+  if (!found) scan.problem = NumberScan::Problem::NoConversion;
+  return scan;
+}
+
+std::string unescapePercent(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+  }
+  return out;
+}
+
+}  // namespace lic3d

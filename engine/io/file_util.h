@@ -1,0 +1,128 @@
+#pragma once
+// Reading and writing files safely: whole-file reads with a size limit, a buffered front-to-back
+// reader for the volume parsers, and writes that never leave a half-written file under the real
+// name; plus the few pieces the file-format parsers share. POSIX only (open/read/fsync/rename),
+// like the rest of the project.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/volume.h"
+
+namespace lic3d {
+
+// Limits on grids read from untrusted files: each axis and the voxel count.
+inline constexpr std::uint64_t kMaxAxisSize = 16384;
+inline constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
+
+// An InvalidInput error about a file, worded "<path>: <problem>".
+Error fileError(const std::filesystem::path& path, std::string_view problem);
+
+// Untrusted text made safe for an error message: quoted, control and non-ASCII bytes escaped,
+// long text cut.
+std::string quoteForMessage(std::string_view text);
+
+// Whole-string numbers in the C locale; false for anything else (empty, trailing characters,
+// out of range). Doubles accept a leading '+', "nan" and "inf".
+bool parseUnsigned(std::string_view text, std::uint64_t& value);
+bool parseDouble(std::string_view text, double& value);
+bool parseFloat(std::string_view text, float& value);
+
+// The shortest text that parseDouble reads back as the same double ("0.1", "1e-07", "nan").
+std::string formatDouble(double value);
+
+// ASCII text helpers for the parsers, independent of the locale.
+bool isAsciiSpace(int c);
+std::string asciiLowerCase(std::string_view text);
+// The words of `text` between ASCII whitespace, as views into `text`.
+std::vector<std::string_view> splitWords(std::string_view text);
+
+// "(i,j,k)" for the voxel at `index` on a grid of `dims`, for error messages.
+std::string voxelText(Dims dims, std::uint64_t index);
+
+// Reverses the bytes of each of the `count` values of `valueBytes` bytes at `data` when `order`
+// is not the host's byte order.
+void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order);
+
+// The whole file, or an error naming it: missing, unreadable, not a regular file, or larger than
+// maxBytes (refused from its size before anything is read).
+Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes);
+
+// Writes to a temporary file in the same folder (`.<name>.tmp-<pid>-<n>`, so the rename cannot
+// cross file systems), flushes it to disk and renames it over `path`. On any failure the
+// temporary file is removed, `path` keeps its old content (or stays absent) and the error names
+// the path and the reason. A path that cannot be written (missing folder, no permission, a folder
+// in the way) is InvalidInput; a failure while writing (disk full, I/O error, a writer returning
+// false) is Runtime.
+Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+// The same, for content streamed by `writer`; a writer that returns false fails the write.
+Result<void> writeFileAtomically(const std::filesystem::path& path,
+                                 const std::function<bool(std::ostream&)>& writer);
+
+// Reads a regular file front to back through a buffer. The volume parsers use it so that a
+// payload's size is checked against the bytes left in the file before anything is allocated,
+// and so that a large volume is never held in memory twice.
+class FileReader {
+ public:
+  static Result<FileReader> open(const std::filesystem::path& path);
+
+  FileReader(FileReader&& other) noexcept;
+  FileReader& operator=(FileReader&& other) noexcept;
+  FileReader(const FileReader&) = delete;
+  FileReader& operator=(const FileReader&) = delete;
+  ~FileReader();
+
+  const std::filesystem::path& path() const { return path_; }
+  std::uint64_t size() const { return size_; }  // when opened
+  std::uint64_t position() const { return position_; }
+  std::uint64_t remaining() const { return position_ < size_ ? size_ - position_ : 0; }
+
+  // The next byte (0..255), or -1 at the end of the file or after a read error.
+  int get();
+  int peek();
+  // Reads up to `count` bytes; fewer only at the end of the file or after a read error.
+  std::size_t read(void* data, std::size_t count);
+  // Skips up to `count` bytes, never past the size the file had when opened.
+  std::uint64_t skip(std::uint64_t count);
+  // Why reading stopped early: the system's error text or "unexpected end of file".
+  std::string failureReason() const;
+
+ private:
+  FileReader(std::filesystem::path path, int fd, std::uint64_t size);
+  bool fill();
+
+  std::filesystem::path path_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+  std::uint64_t position_ = 0;
+  std::vector<char> buffer_;
+  std::size_t begin_ = 0;  // unread bytes are buffer_[begin_, end_)
+  std::size_t end_ = 0;
+  int errorNumber_ = 0;
+};
+
+// A numbered file pattern's one %d or %0Nd (%% is a literal %), as ffmpeg takes them: output
+// frames (`-o frame_%04d.png`) and input time steps (`--field step_%03d.vti`).
+struct NumberConversion {
+  std::size_t begin = 0, end = 0;  // [begin, end) is the conversion in the pattern
+  int width = 0;                   // N of %0Nd, 0 for %d
+};
+struct NumberScan {
+  enum class Problem { None, NotAConversion, MoreThanOne, NoConversion };
+  Problem problem = Problem::None;
+  NumberConversion conversion;  // when problem is None
+  std::size_t at = 0;           // where a NotAConversion % stands
+};
+NumberScan scanNumberConversion(std::string_view pattern);
+// %% becomes %.
+std::string unescapePercent(std::string_view text);
+
+}  // namespace lic3d

@@ -1,0 +1,182 @@
+#include "io/png_writer.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "io/file_util.h"
+
+// libpng is linked statically (like zlib) so the binary needs nothing beyond libvulkan, libstdc++
+// and libc. libpng reports errors by longjmp; the encoder below holds no C++ object across
+// setjmp, so no destructor is ever skipped.
+
+namespace lic3d {
+namespace {
+
+struct EncodeState {
+  std::string* output = nullptr;
+  char error[200] = {};
+};
+
+void onError(png_structp png, png_const_charp message) {
+  auto* state = static_cast<EncodeState*>(png_get_error_ptr(png));
+  std::strncpy(state->error, message ? message : "unknown error", sizeof state->error - 1);
+  png_longjmp(png, 1);
+}
+
+void onWarning(png_structp, png_const_charp) {}
+
+void onWrite(png_structp png, png_bytep data, png_size_t length) {
+  auto* state = static_cast<EncodeState*>(png_get_io_ptr(png));
+  bool failed = false;
+  try {
+    state->output->append(reinterpret_cast<const char*>(data), length);
+  } catch (const std::bad_alloc&) {
+    failed = true;
+  }
+  // Outside the catch block: png_error longjmps, and must not leave a live exception behind.
+  if (failed) png_error(png, "out of memory");
+}
+
+void onFlush(png_structp) {}
+
+struct PngFormat {
+  int width;
+  int height;
+  int bitDepth;
+  int colorType;
+};
+
+// Encodes into *state.output; false with state.error set on failure. Plain C data only between
+// setjmp and the end (see the note at the top).
+bool encode(EncodeState& state, const PngFormat& format, png_bytepp rows, png_textp texts,
+            int textCount) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, onError, onWarning);
+  if (!png) {
+    std::strncpy(state.error, "cannot create the PNG encoder", sizeof state.error - 1);
+    return false;
+  }
+  png_infop info = png_create_info_struct(png);
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    std::strncpy(state.error, "cannot create the PNG header", sizeof state.error - 1);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_set_write_fn(png, &state, onWrite, onFlush);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(format.width),
+               static_cast<png_uint_32>(format.height), format.bitDepth, format.colorType,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (textCount > 0) png_set_text(png, info, texts, textCount);
+  png_write_info(png, info);
+  png_write_image(png, rows);
+  png_write_end(png, info);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+bool isValidUtf8(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const std::size_t length = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3
+                               : (c >> 3) == 30             ? 4
+                                                            : 0;
+    if (length == 0 || i + length > text.size()) return false;
+    for (std::size_t k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 2) return false;
+    i += length;
+  }
+  return true;
+}
+
+// PNG keywords (PNG spec 11.3.4.2): 1-79 Latin-1 characters without leading, trailing or
+// consecutive spaces; lic3d keeps to printable ASCII.
+bool isValidKeyword(const std::string& key) {
+  if (key.empty() || key.size() > 79 || key.front() == ' ' || key.back() == ' ') return false;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    if (key[i] < 0x20 || key[i] > 0x7e) return false;
+    if (key[i] == ' ' && key[i + 1] == ' ') return false;
+  }
+  return true;
+}
+
+Result<std::vector<png_text>> makeTexts(const std::filesystem::path& path, const PngText& text) {
+  std::vector<png_text> texts;
+  for (const auto& [key, value] : text) {
+    if (!isValidKeyword(key))
+      return inputError("cannot write '" + path.string() + "': the text key " +
+                        quoteForMessage(key) +
+                        " is not a PNG keyword (1 to 79 printable ASCII characters, no leading, "
+                        "trailing or double spaces)");
+    if (value.find('\0') != std::string::npos || !isValidUtf8(value))
+      return inputError("cannot write '" + path.string() + "': the text of " +
+                        quoteForMessage(key) + " holds a NUL byte or is not UTF-8");
+    const bool ascii = std::all_of(value.begin(), value.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+    png_text entry{};
+    // tEXt is Latin-1, so anything beyond ASCII goes into an uncompressed iTXt chunk (UTF-8).
+    entry.compression = ascii ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
+    entry.key = const_cast<png_charp>(key.c_str());
+    entry.text = const_cast<png_charp>(value.c_str());
+    entry.text_length = value.size();
+    texts.push_back(entry);
+  }
+  return texts;
+}
+
+Result<void> encodeAndWrite(const std::filesystem::path& path, const PngFormat& format,
+                            const std::uint8_t* pixels, std::size_t rowBytes,
+                            const PngText& text) {
+  LIC3D_TRY_ASSIGN(std::vector<png_text> texts, makeTexts(path, text));
+  std::vector<png_bytep> rows(static_cast<std::size_t>(format.height));
+  for (std::size_t y = 0; y < rows.size(); ++y)
+    rows[y] = const_cast<png_bytep>(pixels + y * rowBytes);
+  std::string encoded;
+  EncodeState state;
+  state.output = &encoded;
+  if (!encode(state, format, rows.data(), texts.data(), static_cast<int>(texts.size())))
+    return runtimeError("cannot encode '" + path.string() + "' as PNG: " + state.error);
+  return writeFileAtomically(path, encoded);
+}
+
+Result<void> checkSize(const std::filesystem::path& path, int width, int height,
+                       std::size_t values, std::size_t valuesPerPixel) {
+  if (width <= 0 || height <= 0 ||
+      values != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * valuesPerPixel)
+    return inputError("cannot write '" + path.string() + "': the " + std::to_string(width) + "x" +
+                      std::to_string(height) + " image is empty or holds " +
+                      std::to_string(values) + " values instead of " +
+                      std::to_string(valuesPerPixel) + " per pixel");
+  return {};
+}
+
+}  // namespace
+
+Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
+                      const PngText& text) {
+  LIC3D_TRY(checkSize(path, image.width, image.height, image.pixels.size(), 4));
+  return encodeAndWrite(path, {image.width, image.height, 8, PNG_COLOR_TYPE_RGBA},
+                        image.pixels.data(), 4 * static_cast<std::size_t>(image.width), text);
+}
+
+Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
+                            const std::vector<std::uint16_t>& values, const PngText& text) {
+  LIC3D_TRY(checkSize(path, width, height, values.size(), 1));
+  std::vector<std::uint8_t> bigEndian(2 * values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    bigEndian[2 * i] = static_cast<std::uint8_t>(values[i] >> 8);
+    bigEndian[2 * i + 1] = static_cast<std::uint8_t>(values[i] & 0xff);
+  }
+  return encodeAndWrite(path, {width, height, 16, PNG_COLOR_TYPE_GRAY}, bigEndian.data(),
+                        2 * static_cast<std::size_t>(width), text);
+}
+
+}  // namespace lic3d

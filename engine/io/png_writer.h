@@ -1,0 +1,31 @@
+#pragma once
+// PNG files: 8-bit RGBA pictures and 16-bit grey LIC slices, with text chunks that carry the
+// parameters that made them.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "core/rgba_image.h"
+
+namespace lic3d {
+
+// Key/value pairs stored in the PNG as text chunks (the parameters that made the picture): tEXt
+// for ASCII values, iTXt (UTF-8) for others. Keys are PNG keywords: 1 to 79 printable ASCII
+// characters, no leading, trailing or double spaces; values hold no NUL byte.
+using PngText = std::vector<std::pair<std::string, std::string>>;
+
+// 8-bit RGBA, encoded by libpng in memory and written through writeFileAtomically, so a failure
+// never leaves a partial PNG. A bad image or text is InvalidInput; an encoder failure is Runtime.
+Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
+                      const PngText& text = {});
+
+// 16-bit grey (the LIC slice at full precision), `values` row by row from the top, stored big
+// endian as PNG requires.
+Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
+                            const std::vector<std::uint16_t>& values, const PngText& text = {});
+
+}  // namespace lic3d

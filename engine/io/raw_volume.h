@@ -1,0 +1,35 @@
+#pragma once
+// Raw vector fields: float32 (or float64) values in a file of their own, described by a small
+// JSON sidecar beside it: `field.raw` with `field.json` (or `field.raw.json`).
+//
+//   {"dims": [nx, ny, nz],          required
+//    "spacing": [sx, sy, sz],       default [1, 1, 1]
+//    "origin": [x, y, z],           default [0, 0, 0]
+//    "components": 3,               the only value allowed
+//    "order": "interleaved",        xyzxyz... per voxel, or "planar": every x, then every y, then z
+//    "type": "float32",             or "float64"
+//    "endian": "little"}            or "big"
+//
+// Voxels are stored x fastest, then y, then z. Unknown keys are errors, so a misspelt key is not
+// silently ignored. Inputs are untrusted: the sidecar is at most 64 KiB, the grid is limited
+// (each axis in [1, 16384], at most 2^31 voxels) and the raw file's size must match the sidecar
+// exactly before anything is allocated. Every error is InvalidInput and names the raw file (and
+// the sidecar when the problem is there).
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/volume.h"
+#include "io/volume_io.h"
+
+namespace lic3d {
+
+// The sidecar of `rawPath`: "<stem>.json" or "<name>.json" beside it; an error when neither or
+// both exist.
+Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPath);
+
+// Vectors with a NaN or infinite component become zero and are counted (finishVectorField).
+Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path,
+                                       FieldReadInfo* info = nullptr);
+
+}  // namespace lic3d

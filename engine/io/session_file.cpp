@@ -1,0 +1,18 @@
+#include "io/session_file.h"
+
+#include <string>
+
+#include "io/file_util.h"
+
+namespace lic3d {
+
+Result<Session> readSession(const std::filesystem::path& path) {
+  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 1 << 20));
+  return sessionFromJson(text, path.string());
+}
+
+Result<void> writeSession(const std::filesystem::path& path, const Session& session) {
+  return writeFileAtomically(path, sessionToJson(session));
+}
+
+}  // namespace lic3d

@@ -1,0 +1,876 @@
+#include "io/vti.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <pugixml.hpp>
+#include <string>
+#include <vector>
+
+#include "io/file_util.h"
+
+namespace lic3d {
+namespace {
+
+// A whole .vti is read into memory (pugixml parses it in place). The largest grid lic3d reads,
+// as base64 doubles, stays below this; a larger file is refused from its size.
+constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
+// Values are converted in chunks of this many.
+constexpr std::size_t kChunkValues = std::size_t{1} << 16;
+
+enum class NumberType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64 };
+
+struct TypeInfo {
+  std::string_view name;
+  NumberType type;
+  std::size_t bytes;
+};
+
+constexpr TypeInfo kTypes[] = {
+    {"Int8", NumberType::Int8, 1},       {"UInt8", NumberType::UInt8, 1},
+    {"Int16", NumberType::Int16, 2},     {"UInt16", NumberType::UInt16, 2},
+    {"Int32", NumberType::Int32, 4},     {"UInt32", NumberType::UInt32, 4},
+    {"Int64", NumberType::Int64, 8},     {"UInt64", NumberType::UInt64, 8},
+    {"Float32", NumberType::Float32, 4}, {"Float64", NumberType::Float64, 8},
+};
+
+const TypeInfo* findType(std::string_view name) {
+  for (const TypeInfo& type : kTypes)
+    if (type.name == name) return &type;
+  return nullptr;
+}
+
+template <class T>
+double load(const unsigned char* data) {
+  T value;
+  std::memcpy(&value, data, sizeof(T));
+  return static_cast<double>(value);
+}
+
+// One value in native byte order, as a double.
+double valueOf(const unsigned char* data, NumberType type) {
+  switch (type) {
+    case NumberType::Int8: return load<std::int8_t>(data);
+    case NumberType::UInt8: return load<std::uint8_t>(data);
+    case NumberType::Int16: return load<std::int16_t>(data);
+    case NumberType::UInt16: return load<std::uint16_t>(data);
+    case NumberType::Int32: return load<std::int32_t>(data);
+    case NumberType::UInt32: return load<std::uint32_t>(data);
+    case NumberType::Int64: return load<std::int64_t>(data);
+    case NumberType::UInt64: return load<std::uint64_t>(data);
+    case NumberType::Float32: return load<float>(data);
+    case NumberType::Float64: return load<double>(data);
+  }
+  return 0.0;
+}
+
+int base64Value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+') return 62;
+  if (c == '/') return 63;
+  return -1;
+}
+
+// Base64 as VTK writes it: whitespace anywhere, and several separately padded streams one after
+// the other (a block's size header and its data are encoded apart, so "...==" may be followed by
+// more). Decoding stops at the first byte that is not base64, '=' or whitespace, such as the '<'
+// of the closing tag.
+class Base64Reader {
+ public:
+  explicit Base64Reader(std::string_view text) : text_(text) {}
+
+  // Up to `count` bytes; fewer at the end of the data or on invalid base64 (see invalid()).
+  std::size_t read(unsigned char* out, std::size_t count) {
+    std::size_t done = 0;
+    while (done < count) {
+      if (pendingBegin_ == pendingEnd_ && !decodeQuantum()) break;
+      const std::size_t take = std::min<std::size_t>(count - done, pendingEnd_ - pendingBegin_);
+      std::memcpy(out + done, pending_.data() + pendingBegin_, take);
+      pendingBegin_ += take;
+      done += take;
+    }
+    return done;
+  }
+
+  // Every 4 characters hold at most 3 bytes.
+  std::uint64_t maxRemaining() const {
+    return (text_.size() - position_) / 4 * 3 + 3 + (pendingEnd_ - pendingBegin_);
+  }
+  bool invalid() const { return invalid_; }
+
+ private:
+  bool decodeQuantum() {
+    pendingBegin_ = 0;
+    pendingEnd_ = 0;
+    unsigned sextets = 0;
+    std::uint32_t bits = 0;
+    bool padded = false;
+    while (sextets < 4 && position_ < text_.size()) {
+      const char c = text_[position_];
+      if (isAsciiSpace(c)) {
+        ++position_;
+        continue;
+      }
+      if (c == '=') {
+        padded = true;
+        break;
+      }
+      const int value = base64Value(c);
+      if (value < 0) break;
+      bits = bits << 6 | static_cast<std::uint32_t>(value);
+      ++sextets;
+      ++position_;
+    }
+    if (padded) {
+      // "xx==" or "xxx=": the quantum ends early; its '=' signs are consumed.
+      if (sextets < 2 || sextets > 3) return fail();
+      while (position_ < text_.size() && (text_[position_] == '=' || isAsciiSpace(text_[position_])))
+        ++position_;
+    }
+    if (sextets == 0) return false;
+    if (sextets == 1) return fail();
+    // A missing final padding is tolerated: 2 or 3 characters still hold 1 or 2 bytes.
+    bits <<= 6 * (4 - sextets);
+    const unsigned bytes = sextets - 1;
+    for (unsigned i = 0; i < bytes; ++i)
+      pending_[i] = static_cast<unsigned char>(bits >> (16 - 8 * i));
+    pendingEnd_ = bytes;
+    return true;
+  }
+
+  bool fail() {
+    invalid_ = true;
+    return false;
+  }
+
+  std::string_view text_;
+  std::size_t position_ = 0;
+  std::array<unsigned char, 3> pending_{};
+  std::size_t pendingBegin_ = 0;
+  std::size_t pendingEnd_ = 0;
+  bool invalid_ = false;
+};
+
+// The bytes of one binary or appended array: raw bytes, or base64 text decoded on the way.
+class ByteSource {
+ public:
+  static ByteSource raw(std::string_view bytes) { return ByteSource(bytes, false); }
+  static ByteSource base64(std::string_view text) { return ByteSource(text, true); }
+
+  std::size_t read(unsigned char* out, std::size_t count) {
+    if (decoder_) return decoder_->read(out, count);
+    const std::size_t take = std::min(count, raw_.size() - position_);
+    std::memcpy(out, raw_.data() + position_, take);
+    position_ += take;
+    return take;
+  }
+  std::uint64_t maxRemaining() const {
+    return decoder_ ? decoder_->maxRemaining() : raw_.size() - position_;
+  }
+  bool invalid() const { return decoder_ && decoder_->invalid(); }
+
+ private:
+  ByteSource(std::string_view data, bool isBase64) {
+    if (isBase64) {
+      decoder_.emplace(data);
+    } else {
+      raw_ = data;
+    }
+  }
+
+  std::string_view raw_;
+  std::size_t position_ = 0;
+  std::optional<Base64Reader> decoder_;
+};
+
+// Receives an array's values in order, in chunks.
+using ValueSink = std::function<void(const double* values, std::size_t count)>;
+
+// Turns bytes, split anywhere, into values: a value cut between two zlib blocks is completed by
+// the next one.
+class ValueDecoder {
+ public:
+  ValueDecoder(const TypeInfo& type, std::endian order, const ValueSink& sink)
+      : type_(type), order_(order), sink_(sink) {
+    values_.reserve(kChunkValues);
+  }
+
+  void add(const unsigned char* data, std::size_t bytes) {
+    while (carried_ > 0 && bytes > 0) {
+      carry_[carried_++] = *data++;
+      --bytes;
+      if (carried_ == type_.bytes) {
+        emit(carry_.data());
+        carried_ = 0;
+      }
+    }
+    const std::size_t whole = bytes / type_.bytes;
+    for (std::size_t i = 0; i < whole; ++i) emit(data + i * type_.bytes);
+    data += whole * type_.bytes;
+    bytes -= whole * type_.bytes;
+    std::memcpy(carry_.data(), data, bytes);
+    carried_ = bytes;
+    flush();
+  }
+
+ private:
+  void emit(const unsigned char* data) {
+    std::array<unsigned char, 8> native{};
+    std::memcpy(native.data(), data, type_.bytes);
+    if (order_ != std::endian::native) std::reverse(native.begin(), native.begin() + type_.bytes);
+    values_.push_back(valueOf(native.data(), type_.type));
+    if (values_.size() == kChunkValues) flush();
+  }
+  void flush() {
+    if (!values_.empty()) sink_(values_.data(), values_.size());
+    values_.clear();
+  }
+
+  const TypeInfo& type_;
+  std::endian order_;
+  const ValueSink& sink_;
+  std::array<unsigned char, 8> carry_{};
+  std::size_t carried_ = 0;
+  std::vector<double> values_;
+};
+
+Result<std::int64_t> parseExtentNumber(std::string_view word) {
+  const bool negative = !word.empty() && word.front() == '-';
+  if (negative) word.remove_prefix(1);
+  std::uint64_t magnitude = 0;
+  // Extents beyond 2^40 cannot describe a grid lic3d reads, and keep the arithmetic exact.
+  if (!parseUnsigned(word, magnitude) || magnitude > (std::uint64_t{1} << 40)) return Error{};
+  return negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
+}
+
+struct Extent {
+  std::array<std::int64_t, 6> bounds{};
+  bool operator==(const Extent&) const = default;
+};
+
+// The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
+// (held by unique_ptr).
+struct VtiFile {
+  std::filesystem::path path;
+  std::string bytes;  // the whole file
+  std::string xml;    // the XML before the appended data, closed; empty when `bytes` is all XML
+  pugi::xml_document document;
+  std::string_view appended;  // the bytes after AppendedData's '_'
+  bool hasAppended = false;
+  bool appendedBase64 = false;
+  std::endian order = std::endian::little;
+  bool header64 = false;
+  bool zlib = false;
+  Dims dims{0};
+  GridGeometry geometry;
+  pugi::xml_node piece;
+
+  Error fail(const std::string& problem) const { return fileError(path, problem); }
+};
+
+// Appended raw data is binary, not XML: pugixml gets only what precedes it, closed by hand.
+Result<void> splitAppendedData(VtiFile& file) {
+  const std::string_view bytes = file.bytes;
+  const std::size_t tag = bytes.find("<AppendedData");
+  if (tag == std::string_view::npos) return {};
+  const std::size_t close = bytes.find('>', tag);
+  if (close == std::string_view::npos) return file.fail("the AppendedData tag is not closed");
+  if (bytes[close - 1] == '/') return {};  // <AppendedData .../>: empty
+  std::size_t underscore = close + 1;
+  while (underscore < bytes.size() && isAsciiSpace(bytes[underscore])) ++underscore;
+  if (underscore == bytes.size() || bytes[underscore] != '_')
+    return file.fail("AppendedData: expected '_' before the data, found " +
+                     quoteForMessage(bytes.substr(underscore, 16)));
+  file.hasAppended = true;
+  file.appended = bytes.substr(underscore + 1);
+  file.xml.assign(bytes.substr(0, close + 1));
+  file.xml += "</AppendedData></VTKFile>";
+  return {};
+}
+
+Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, const char* name,
+                               double fallback, bool positive) {
+  const pugi::xml_attribute attribute = node.attribute(name);
+  if (!attribute) return glm::dvec3(fallback);
+  const std::vector<std::string_view> words = splitWords(attribute.value());
+  glm::dvec3 value{0.0};
+  bool good = words.size() == 3;
+  for (glm::length_t axis = 0; good && axis < 3; ++axis)
+    good = parseDouble(words[static_cast<std::size_t>(axis)], value[axis]) &&
+           std::isfinite(value[axis]) && (!positive || value[axis] > 0.0);
+  if (!good)
+    return file.fail(std::string(node.name()) + " " + name + ": expected 3 " +
+                     (positive ? "positive" : "finite") + " numbers, found " +
+                     quoteForMessage(attribute.value()));
+  return value;
+}
+
+Result<Extent> parseExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
+  const pugi::xml_attribute attribute = node.attribute(name);
+  if (!attribute) return file.fail(std::string(node.name()) + ": missing " + name);
+  const std::vector<std::string_view> words = splitWords(attribute.value());
+  Extent extent;
+  bool good = words.size() == 6;
+  for (std::size_t i = 0; good && i < 6; ++i) {
+    Result<std::int64_t> number = parseExtentNumber(words[i]);
+    good = number.ok();
+    if (good) extent.bounds[i] = *number;
+  }
+  for (std::size_t axis = 0; good && axis < 3; ++axis)
+    good = extent.bounds[2 * axis] <= extent.bounds[2 * axis + 1];
+  if (!good)
+    return file.fail(std::string(node.name()) + " " + name +
+                     ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
+                     quoteForMessage(attribute.value()));
+  return extent;
+}
+
+Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
+  auto file = std::make_unique<VtiFile>();
+  file->path = path;
+  LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
+  const std::size_t first = file->bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || file->bytes[first] != '<')
+    return file->fail(first == std::string::npos
+                          ? "empty file (expected a VTK XML ImageData file)"
+                          : "not an XML file: it starts with " +
+                                quoteForMessage(std::string_view(file->bytes).substr(first, 16)) +
+                                ", expected '<?xml' or '<VTKFile'");
+  LIC3D_TRY(splitAppendedData(*file));
+  std::string& xml = file->hasAppended ? file->xml : file->bytes;
+  const pugi::xml_parse_result parsed = file->document.load_buffer_inplace(
+      xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed)
+    return file->fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
+                      parsed.description());
+
+  const pugi::xml_node root = file->document.child("VTKFile");
+  if (!root) return file->fail("not a VTK XML file: the root element is not VTKFile");
+  const std::string type = root.attribute("type").value();
+  if (type != "ImageData")
+    return file->fail("VTKFile type " + quoteForMessage(type) +
+                      " is not supported (expected ImageData)");
+  const std::string order = root.attribute("byte_order").value();
+  if (order == "BigEndian") {
+    file->order = std::endian::big;
+  } else if (!order.empty() && order != "LittleEndian") {
+    return file->fail("byte_order: expected LittleEndian or BigEndian, found " +
+                      quoteForMessage(order));
+  }
+  const std::string headerType = root.attribute("header_type").value();
+  if (headerType == "UInt64") {
+    file->header64 = true;
+  } else if (!headerType.empty() && headerType != "UInt32") {
+    return file->fail("header_type: expected UInt32 or UInt64, found " +
+                      quoteForMessage(headerType));
+  }
+  const std::string compressor = root.attribute("compressor").value();
+  if (compressor == "vtkZLibDataCompressor") {
+    file->zlib = true;
+  } else if (!compressor.empty()) {
+    return file->fail("compressor " + quoteForMessage(compressor) +
+                      " is not supported (expected vtkZLibDataCompressor or none)");
+  }
+  if (file->hasAppended) {
+    const std::string encoding = root.child("AppendedData").attribute("encoding").value();
+    if (encoding != "raw" && encoding != "base64")
+      return file->fail("AppendedData encoding: expected raw or base64, found " +
+                        quoteForMessage(encoding));
+    file->appendedBase64 = encoding == "base64";
+  }
+
+  const pugi::xml_node image = root.child("ImageData");
+  if (!image) return file->fail("VTKFile holds no ImageData element");
+  LIC3D_TRY_ASSIGN(const Extent whole, parseExtent(*file, image, "WholeExtent"));
+  std::array<std::uint64_t, 3> sizes{};
+  for (std::size_t axis = 0; axis < 3; ++axis)
+    sizes[axis] = static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
+  if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]); !problem.empty())
+    return file->fail("WholeExtent: " + problem);
+  file->dims = Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
+                    static_cast<int>(sizes[2]));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(*file, image, "Origin", 0.0, false));
+  LIC3D_TRY_ASSIGN(file->geometry.spacing, parseTriple(*file, image, "Spacing", 1.0, true));
+  // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
+  // start at 0 moves the first voxel.
+  for (glm::length_t axis = 0; axis < 3; ++axis)
+    file->geometry.origin[axis] =
+        origin[axis] +
+        static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
+            file->geometry.spacing[axis];
+  for (glm::length_t axis = 0; axis < 3; ++axis)
+    if (!std::isfinite(file->geometry.origin[axis]))
+      return file->fail("ImageData: Origin + WholeExtent * Spacing is not finite");
+
+  std::size_t pieces = 0;
+  for (const pugi::xml_node piece : image.children("Piece")) {
+    ++pieces;
+    file->piece = piece;
+  }
+  if (pieces != 1)
+    return file->fail("ImageData holds " + std::to_string(pieces) +
+                      " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
+                      "write them by default)");
+  if (file->piece.attribute("Extent")) {
+    LIC3D_TRY_ASSIGN(const Extent extent, parseExtent(*file, file->piece, "Extent"));
+    if (!(extent == whole))
+      return file->fail("the Piece's Extent " +
+                        quoteForMessage(file->piece.attribute("Extent").value()) +
+                        " differs from WholeExtent " +
+                        quoteForMessage(image.attribute("WholeExtent").value()) +
+                        " (lic3d reads one piece covering the whole grid)");
+  }
+  return file;
+}
+
+// A DataArray of PointData or CellData.
+struct ArrayRef {
+  pugi::xml_node node;
+  std::string name;
+  bool cellData = false;
+  std::uint64_t components = 1;
+  const TypeInfo* type = nullptr;  // null for a type lic3d does not read
+};
+
+std::string describe(const ArrayRef& array) {
+  return "DataArray " + quoteForMessage(array.name) + (array.cellData ? " (cell data)" : "");
+}
+
+Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {
+  std::vector<ArrayRef> arrays;
+  for (const bool cellData : {false, true}) {
+    const pugi::xml_node section = file.piece.child(cellData ? "CellData" : "PointData");
+    for (const pugi::xml_node node : section.children("DataArray")) {
+      ArrayRef array;
+      array.node = node;
+      array.name = node.attribute("Name").value();
+      array.cellData = cellData;
+      array.type = findType(node.attribute("type").value());
+      if (const pugi::xml_attribute components = node.attribute("NumberOfComponents")) {
+        if (!parseUnsigned(components.value(), array.components) || array.components < 1 ||
+            array.components > 64)
+          return file.fail(describe(array) + ": NumberOfComponents: expected 1 to 64, found " +
+                           quoteForMessage(components.value()));
+      }
+      arrays.push_back(std::move(array));
+    }
+  }
+  return arrays;
+}
+
+std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t components) {
+  std::string list;
+  for (const ArrayRef& array : arrays) {
+    if (array.components != components) continue;
+    list += (list.empty() ? "" : ", ") + quoteForMessage(array.name) +
+            (array.cellData ? " (cell data)" : "");
+  }
+  return list.empty() ? "none" : list;
+}
+
+// The array to read: by name, else the section's active attribute (`Vectors`, `Scalars`), else
+// the first with `components` components, else the first with `alternative` components (2D
+// vectors: 2); PointData before CellData.
+Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& arrays,
+                             std::string_view name, std::uint64_t components,
+                             const char* activeAttribute, std::uint64_t alternative = 0) {
+  const std::string kind = std::to_string(components) + "-component";
+  const auto fits = [&](const ArrayRef& array) {
+    return array.components == components || (alternative > 0 && array.components == alternative);
+  };
+  if (!name.empty()) {
+    for (const bool cellData : {false, true}) {
+      for (const ArrayRef& array : arrays) {
+        if (array.cellData != cellData || array.name != name) continue;
+        if (!fits(array))
+          return file.fail(describe(array) + " has " + std::to_string(array.components) +
+                           " components, expected " + std::to_string(components) +
+                           "; " + kind + " arrays: " + listNames(arrays, components));
+        return array;
+      }
+    }
+    return file.fail("no " + kind + " DataArray named " + quoteForMessage(name) +
+                     "; found: " + listNames(arrays, components));
+  }
+  for (const bool cellData : {false, true}) {
+    const std::string active =
+        file.piece.child(cellData ? "CellData" : "PointData").attribute(activeAttribute).value();
+    for (const ArrayRef& array : arrays)
+      if (array.cellData == cellData && !active.empty() && array.name == active && fits(array))
+        return array;
+    for (const ArrayRef& array : arrays)
+      if (array.cellData == cellData && array.components == components) return array;
+    for (const ArrayRef& array : arrays)
+      if (array.cellData == cellData && fits(array)) return array;
+  }
+  return file.fail("no " + kind + " DataArray in PointData or CellData");
+}
+
+// Reads one array of `tuples` tuples into `sink`, calling `allocate` once its size has been
+// checked against the data present and before any value is delivered.
+class ArrayReader {
+ public:
+  ArrayReader(const VtiFile& file, const ArrayRef& array, std::uint64_t tuples)
+      : file_(file), array_(array), what_(describe(array)), tuples_(tuples) {}
+
+  Result<void> read(const std::function<void()>& allocate, const ValueSink& sink) {
+    if (!array_.type)
+      return fail("type " + quoteForMessage(array_.node.attribute("type").value()) +
+                  " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+    values_ = tuples_ * array_.components;
+    bytes_ = values_ * array_.type->bytes;
+    if (const pugi::xml_attribute count = array_.node.attribute("NumberOfTuples")) {
+      std::uint64_t declared = 0;
+      if (!parseUnsigned(count.value(), declared) || declared != tuples_)
+        return fail("NumberOfTuples " + quoteForMessage(count.value()) + " does not match the " +
+                    std::to_string(tuples_) + (array_.cellData ? " cells" : " points") +
+                    " of the grid");
+    }
+    const std::string format = array_.node.attribute("format").value();
+    if (format == "ascii") return readAscii(allocate, sink);
+    if (format == "binary") {
+      ByteSource source = ByteSource::base64(array_.node.child_value());
+      return readBinary(source, allocate, sink);
+    }
+    if (format == "appended") {
+      if (!file_.hasAppended) return fail("format is appended, but the file has no AppendedData");
+      std::uint64_t offset = 0;
+      const pugi::xml_attribute offsetAttribute = array_.node.attribute("offset");
+      if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
+        return fail("an appended array needs a whole-number offset, found " +
+                    quoteForMessage(offsetAttribute.value()));
+      if (offset > file_.appended.size())
+        return fail("offset " + std::to_string(offset) + " is beyond the " +
+                    std::to_string(file_.appended.size()) + " bytes of AppendedData");
+      const std::string_view data = file_.appended.substr(static_cast<std::size_t>(offset));
+      ByteSource source = file_.appendedBase64 ? ByteSource::base64(data) : ByteSource::raw(data);
+      return readBinary(source, allocate, sink);
+    }
+    return fail("format: expected ascii, binary or appended, found " + quoteForMessage(format));
+  }
+
+ private:
+  Error fail(const std::string& problem) const { return file_.fail(what_ + ": " + problem); }
+
+  std::string layoutText() const {
+    return std::to_string(tuples_) + " tuples of " + std::to_string(array_.components) + " " +
+           std::string(array_.type->name);
+  }
+
+  Result<void> readAscii(const std::function<void()>& allocate, const ValueSink& sink) {
+    const std::string_view text = array_.node.child_value();
+    // Each number takes at least one character and a separator.
+    if (values_ > text.size() / 2 + 1)
+      return fail("expected " + std::to_string(values_) + " numbers (" + layoutText() +
+                  "), the text holds at most " + std::to_string(text.size() / 2 + 1));
+    allocate();
+    const bool isFloat = array_.type->type == NumberType::Float32;
+    std::vector<double> chunk;
+    chunk.reserve(std::min<std::uint64_t>(values_, kChunkValues));
+    std::uint64_t count = 0;
+    std::size_t i = 0;
+    for (;;) {
+      while (i < text.size() && isAsciiSpace(text[i])) ++i;
+      if (i == text.size()) break;
+      const std::size_t start = i;
+      while (i < text.size() && !isAsciiSpace(text[i])) ++i;
+      const std::string_view word = text.substr(start, i - start);
+      if (count == values_)
+        return fail("holds more than the " + std::to_string(values_) + " numbers expected (" +
+                    layoutText() + ")");
+      // Float32 text parses as float directly, so it reads exactly as VTK wrote it; beyond the
+      // float range it is still a number, read as a double.
+      double value = 0.0;
+      float single = 0.0f;
+      bool parsed = isFloat && parseFloat(word, single);
+      if (parsed) value = single;
+      if (!parsed) parsed = parseDouble(word, value);
+      if (!parsed)
+        return fail("expected a number, found " + quoteForMessage(word) + " after " +
+                    std::to_string(count) + " values");
+      chunk.push_back(value);
+      ++count;
+      if (chunk.size() == kChunkValues) {
+        sink(chunk.data(), chunk.size());
+        chunk.clear();
+      }
+    }
+    if (count != values_)
+      return fail("holds " + std::to_string(count) + " numbers, expected " +
+                  std::to_string(values_) + " (" + layoutText() + ")");
+    if (!chunk.empty()) sink(chunk.data(), chunk.size());
+    return {};
+  }
+
+  Result<std::uint64_t> readHeaderNumber(ByteSource& source, std::string_view field) {
+    const std::size_t size = file_.header64 ? 8 : 4;
+    std::array<unsigned char, 8> bytes{};
+    if (source.read(bytes.data(), size) != size)
+      return fail(source.invalid() ? "invalid base64 data"
+                                   : "the data ends inside its header (" + std::string(field) + ")");
+    if (file_.order != std::endian::native) std::reverse(bytes.begin(), bytes.begin() + size);
+    if (size == 4) {
+      std::uint32_t value;
+      std::memcpy(&value, bytes.data(), 4);
+      return value;
+    }
+    std::uint64_t value;
+    std::memcpy(&value, bytes.data(), 8);
+    return value;
+  }
+
+  Error truncated(ByteSource& source, std::uint64_t needed) const {
+    if (source.invalid()) return fail("invalid base64 data");
+    return fail("the data is truncated: " + std::to_string(needed) +
+                " bytes expected, at most " + std::to_string(source.maxRemaining()) + " present");
+  }
+
+  Result<void> readBinary(ByteSource& source, const std::function<void()>& allocate,
+                          const ValueSink& sink) {
+    return file_.zlib ? readCompressed(source, allocate, sink)
+                      : readUncompressed(source, allocate, sink);
+  }
+
+  // [byte count][bytes]
+  Result<void> readUncompressed(ByteSource& source, const std::function<void()>& allocate,
+                                const ValueSink& sink) {
+    LIC3D_TRY_ASSIGN(const std::uint64_t size, readHeaderNumber(source, "the byte count"));
+    if (size != bytes_)
+      return fail("the data block holds " + std::to_string(size) + " bytes, expected " +
+                  std::to_string(bytes_) + " (" + layoutText() + ")");
+    if (size > source.maxRemaining()) return truncated(source, size);
+    allocate();
+    ValueDecoder decoder(*array_.type, file_.order, sink);
+    std::vector<unsigned char> chunk(
+        static_cast<std::size_t>(std::min<std::uint64_t>(bytes_, kChunkValues * 8)));
+    for (std::uint64_t left = bytes_; left > 0;) {
+      const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
+      if (source.read(chunk.data(), want) != want) return truncated(source, bytes_);
+      decoder.add(chunk.data(), want);
+      left -= want;
+    }
+    return {};
+  }
+
+  // vtkZLibDataCompressor: [block count][block size][last block size][compressed size per block]
+  // and the blocks, each a zlib stream of `block size` bytes (the last one `last block size`,
+  // 0 meaning a full block).
+  Result<void> readCompressed(ByteSource& source, const std::function<void()>& allocate,
+                              const ValueSink& sink) {
+    LIC3D_TRY_ASSIGN(const std::uint64_t blocks, readHeaderNumber(source, "the block count"));
+    LIC3D_TRY_ASSIGN(const std::uint64_t blockSize, readHeaderNumber(source, "the block size"));
+    LIC3D_TRY_ASSIGN(const std::uint64_t lastSize, readHeaderNumber(source, "the last block size"));
+    const std::uint64_t headerBytes = file_.header64 ? 8 : 4;
+    if (blocks == 0 || blockSize == 0 || lastSize > blockSize)
+      return fail("the compression header (" + std::to_string(blocks) + " blocks of " +
+                  std::to_string(blockSize) + " bytes, the last " + std::to_string(lastSize) +
+                  ") is inconsistent");
+    if (blocks > source.maxRemaining() / headerBytes)
+      return fail("the compression header promises " + std::to_string(blocks) +
+                  " blocks, more than the data can hold");
+    // The blocks must inflate to exactly the array's size.
+    const std::uint64_t lastBlock = lastSize == 0 ? blockSize : lastSize;
+    std::uint64_t total = 0;
+    if (__builtin_mul_overflow(blocks - 1, blockSize, &total) ||
+        __builtin_add_overflow(total, lastBlock, &total) || total != bytes_)
+      return fail("the compressed blocks hold " + std::to_string(blocks) + " x " +
+                  std::to_string(blockSize) + " bytes (the last " + std::to_string(lastBlock) +
+                  "), expected " + std::to_string(bytes_) + " (" + layoutText() + ")");
+    std::vector<std::uint64_t> compressedSizes(static_cast<std::size_t>(blocks));
+    std::uint64_t compressedTotal = 0;
+    std::uint64_t largest = 0;
+    for (std::uint64_t& size : compressedSizes) {
+      LIC3D_TRY_ASSIGN(size, readHeaderNumber(source, "the compressed block sizes"));
+      if (__builtin_add_overflow(compressedTotal, size, &compressedTotal))
+        return fail("the compressed block sizes overflow");
+      largest = std::max(largest, size);
+    }
+    if (compressedTotal > source.maxRemaining()) return truncated(source, compressedTotal);
+    for (std::size_t i = 0; i < compressedSizes.size(); ++i) {
+      const std::uint64_t inflated = i + 1 == compressedSizes.size() ? lastBlock : blockSize;
+      if (inflated > compressedSizes[i] * kMaxDeflateRatio)
+        return fail("block " + std::to_string(i) + ": " + std::to_string(compressedSizes[i]) +
+                    " compressed bytes cannot inflate to " + std::to_string(inflated));
+    }
+    allocate();
+    ValueDecoder decoder(*array_.type, file_.order, sink);
+    std::vector<unsigned char> compressed(static_cast<std::size_t>(largest));
+    std::vector<char> inflated(static_cast<std::size_t>(std::min(blockSize, bytes_)));
+    for (std::size_t i = 0; i < compressedSizes.size(); ++i) {
+      const std::size_t size = static_cast<std::size_t>(compressedSizes[i]);
+      if (source.read(compressed.data(), size) != size) return truncated(source, compressedTotal);
+      const std::size_t inflatedSize =
+          static_cast<std::size_t>(i + 1 == compressedSizes.size() ? lastBlock : blockSize);
+      LIC3D_TRY(inflateExactly(file_.path, what_ + " block " + std::to_string(i),
+                               std::string_view(reinterpret_cast<const char*>(compressed.data()),
+                                                size),
+                               std::span<char>(inflated.data(), inflatedSize)));
+      decoder.add(reinterpret_cast<const unsigned char*>(inflated.data()), inflatedSize);
+    }
+    return {};
+  }
+
+  const VtiFile& file_;
+  const ArrayRef& array_;
+  std::string what_;
+  std::uint64_t tuples_;
+  std::uint64_t values_ = 0;
+  std::uint64_t bytes_ = 0;
+};
+
+// The grid of an array: the points, or the cell centres for cell data.
+CellCentredGrid gridOf(const VtiFile& file, const ArrayRef& array) {
+  if (array.cellData) return cellCentredGrid(file.dims, file.geometry);
+  return {file.dims, file.geometry};
+}
+
+// XML attribute text: names come from the caller and may hold any character.
+Result<std::string> escapeXml(const std::filesystem::path& path, std::string_view text) {
+  if (text.empty()) return inputError("cannot write '" + path.string() + "': the array name is empty");
+  std::string escaped;
+  for (const char c : text) {
+    const unsigned char byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f)
+      return inputError("cannot write '" + path.string() + "': the array name " +
+                        quoteForMessage(text) + " holds a control character");
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string tripleText(const glm::dvec3& v) {
+  return formatDouble(v.x) + " " + formatDouble(v.y) + " " + formatDouble(v.z);
+}
+
+// One point-data array, appended raw after a UInt64 byte count, in the host's byte order.
+Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGeometry& geometry,
+                      std::string_view typeName, int components, std::string_view arrayName,
+                      const void* data, std::size_t bytes) {
+  LIC3D_TRY_ASSIGN(const std::string name, escapeXml(path, arrayName));
+  const std::string extent = "0 " + std::to_string(dims.x - 1) + " 0 " +
+                             std::to_string(dims.y - 1) + " 0 " + std::to_string(dims.z - 1);
+  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+  const std::string header =
+      std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
+      "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
+      "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
+      tripleText(geometry.origin) + "\" Spacing=\"" + tripleText(geometry.spacing) +
+      "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
+      "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
+      std::string(typeName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
+      std::to_string(components) +
+      "\" format=\"appended\" offset=\"0\"/>\n      </PointData>\n      <CellData>\n"
+      "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n   _";
+  const std::uint64_t size = bytes;
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    out.write(reinterpret_cast<const char*>(&size), sizeof size);
+    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+    out << "\n  </AppendedData>\n</VTKFile>\n";
+    return static_cast<bool>(out);
+  });
+}
+
+}  // namespace
+
+Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
+                                       std::string_view arrayName, FieldReadInfo* info) {
+  LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
+  LIC3D_TRY_ASSIGN(const std::vector<ArrayRef> arrays, listArrays(*file));
+  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, arrayName, 3, "Vectors", 2));
+  // Cell data on N cells becomes a field of N voxels at the cell centres (cellCentredGrid).
+  const CellCentredGrid grid = gridOf(*file, array);
+  // 2D vectors (x, y) belong to a 2D grid: one layer along z.
+  const std::uint64_t components = array.components;
+  if (components == 2 && grid.dims.z != 1)
+    return file->fail(describe(array) + " holds 2D vectors (2 components) on a grid of " +
+                      std::to_string(grid.dims.z) + " layers along z; they need a 2D grid");
+  VectorField field;
+  field.dims = grid.dims;
+  field.geometry = grid.geometry;
+  std::uint64_t next = 0;
+  LIC3D_TRY(ArrayReader(*file, array, voxelCount(grid.dims))
+                .read([&] { field.vectors.resize(voxelCount(grid.dims)); },
+                      [&](const double* values, std::size_t count) {
+                        for (std::size_t i = 0; i < count; ++i, ++next)
+                          field.vectors[static_cast<std::size_t>(next / components)]
+                                       [static_cast<glm::length_t>(next % components)] =
+                              vectorComponent(values[i]);
+                      }));
+  if (info) {
+    *info = FieldReadInfo{};
+    info->arrayName = array.name;
+    for (const ArrayRef& each : arrays)
+      if (each.components == 3 || (each.components == 2 && grid.dims.z == 1))
+        info->arrayNames.push_back(each.name);
+  }
+  LIC3D_TRY(finishVectorField(path, field, info));
+  return field;
+}
+
+Result<ScalarVolume> readScalarVti(const std::filesystem::path& path) {
+  LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
+  LIC3D_TRY_ASSIGN(const std::vector<ArrayRef> arrays, listArrays(*file));
+  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, {}, 1, "Scalars"));
+  const CellCentredGrid grid = gridOf(*file, array);
+  ScalarVolume volume;
+  volume.dims = grid.dims;
+  volume.geometry = grid.geometry;
+  LIC3D_TRY(ArrayReader(*file, array, voxelCount(grid.dims))
+                .read([&] { volume.values.reserve(voxelCount(grid.dims)); },
+                      [&](const double* values, std::size_t count) {
+                        for (std::size_t i = 0; i < count; ++i)
+                          volume.values.push_back(vectorComponent(values[i]));
+                      }));
+  return volume;
+}
+
+Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {
+  LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
+  LIC3D_TRY_ASSIGN(std::vector<ArrayRef> arrays, listArrays(*file));
+  // Only UInt8 arrays are colours; others of 4 components are left out of the choice.
+  std::erase_if(arrays, [](const ArrayRef& array) {
+    return array.cellData || !array.type || array.type->type != NumberType::UInt8;
+  });
+  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, {}, 4, "Scalars"));
+  RgbaVolume volume;
+  volume.dims = file->dims;
+  volume.geometry = file->geometry;
+  LIC3D_TRY(ArrayReader(*file, array, voxelCount(file->dims))
+                .read([&] { volume.rgba.reserve(4 * voxelCount(file->dims)); },
+                      [&](const double* values, std::size_t count) {
+                        for (std::size_t i = 0; i < count; ++i)
+                          volume.rgba.push_back(static_cast<std::uint8_t>(values[i]));
+                      }));
+  return volume;
+}
+
+Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
+                            std::string_view arrayName) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
+  return writeVti(path, volume.dims, volume.geometry, "Float32", 1, arrayName,
+                  volume.values.data(), volume.values.size() * sizeof(float));
+}
+
+Result<void> writeRgbaVti(const std::filesystem::path& path, const RgbaVolume& volume) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
+  return writeVti(path, volume.dims, volume.geometry, "UInt8", 4, "rgba", volume.rgba.data(),
+                  volume.rgba.size());
+}
+
+}  // namespace lic3d

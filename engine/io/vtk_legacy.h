@@ -1,0 +1,33 @@
+#pragma once
+// Vector fields from VTK legacy files (the "simple legacy format" of the VTK file formats guide):
+// `DATASET STRUCTURED_POINTS` (DIMENSIONS, SPACING or ASPECT_RATIO, ORIGIN) or
+// `DATASET RECTILINEAR_GRID` with evenly spaced X/Y/Z_COORDINATES, ASCII or BINARY (big endian),
+// VECTORS in POINT_DATA or CELL_DATA.
+//
+// Other attributes (SCALARS with their LOOKUP_TABLE line, LOOKUP_TABLE tables, COLOR_SCALARS,
+// NORMALS, TENSORS, TEXTURE_COORDINATES, FIELD arrays, METADATA blocks) are skipped. Inputs are
+// untrusted: DIMENSIONS are limited (each in [1, 16384], at most 2^31 points) and every data block
+// is checked against the bytes left in the file before it is allocated or skipped. Every error is
+// InvalidInput and its message names the file and the problem.
+
+#include <filesystem>
+#include <string_view>
+
+#include "core/error.h"
+#include "core/volume.h"
+#include "io/volume_io.h"
+
+namespace lic3d {
+
+// The VECTORS array named `arrayName` (names are compared after VTK's %XX decoding), or when
+// `arrayName` is empty the first point-data VECTORS array, else the first cell-data one. Point
+// data wins over cell data of the same name. Cell data on a grid of N cells becomes a field of N
+// voxels at the cell centres, its origin moved by half a spacing (cellCentredGrid). Float and
+// double arrays are read as float; vectors with a NaN or infinite component become zero and are
+// counted (finishVectorField). Spacing and origin default to 1 and 0 like VTK's reader. When the
+// array is missing the error lists the VECTORS arrays found. `info` also gets every VECTORS name.
+Result<VectorField> readVectorFieldVtk(const std::filesystem::path& path,
+                                       std::string_view arrayName = {},
+                                       FieldReadInfo* info = nullptr);
+
+}  // namespace lic3d

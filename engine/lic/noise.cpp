@@ -1,0 +1,56 @@
+#include "lic/noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "lic/sparsity.h"
+
+namespace lic3d {
+
+std::uint64_t noiseHash(std::uint64_t seed, std::uint64_t index) {
+  std::uint64_t z = seed * 0xD1B54A32D192ED03ull + index * 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
+  NoiseVolume noise;
+  noise.dims = dims;
+  noise.type = NoiseType::UInt8;
+  noise.bytes.resize(voxelCount(dims));
+  for (std::size_t i = 0; i < noise.bytes.size(); ++i)
+    noise.bytes[i] = static_cast<std::uint8_t>(noiseHash(seed, i) >> 56);
+  return noise;
+}
+
+NoiseVolume makeWhiteNoisePiece(Dims wholeDims, Dims offset, Dims dims, std::uint64_t seed) {
+  NoiseVolume noise;
+  noise.dims = dims;
+  noise.type = NoiseType::UInt8;
+  noise.bytes.resize(voxelCount(dims));
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i) {
+        const std::size_t whole = voxelIndex(wholeDims, offset.x + i, offset.y + j, offset.z + k);
+        noise.bytes[voxelIndex(dims, i, j, k)] =
+            static_cast<std::uint8_t>(noiseHash(seed, whole) >> 56);
+      }
+  return noise;
+}
+
+NoiseVolume makeSeedNoise(Dims dims, std::size_t spots, std::uint64_t seed) {
+  NoiseVolume noise;
+  noise.dims = dims;
+  noise.type = NoiseType::UInt8;
+  noise.bytes.assign(voxelCount(dims), 0);
+  for (const glm::vec3& p : poissonDiskPointsByCount(dims, spots, seed)) {
+    const glm::ivec3 v = glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), dims - 1);
+    noise.bytes[voxelIndex(dims, v.x, v.y, v.z)] = 255;
+  }
+  return noise;
+}
+
+}  // namespace lic3d

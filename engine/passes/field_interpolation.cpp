@@ -1,0 +1,287 @@
+#include "passes/field_interpolation.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+
+#include "gpu/gpu_submit.h"
+#include "passes/lic_push.h"
+#include "lic/lic_reference.h"
+#include "gpu/shader_library.h"
+#include "shared_layout.h"
+
+namespace lic3d {
+namespace {
+
+// constant_id 0: the phase (see shaders/field_lerp.comp).
+struct LerpSpecialization {
+  std::uint32_t phase = 0;
+};
+static_assert(sizeof(LerpSpecialization) == 4);
+
+// The field texture's format per resolved precision (volume_textures.cpp), and the variant of
+// field_lerp.comp that writes it.
+VkFormat targetFormat(FieldPrecision precision) {
+  switch (precision) {
+    case FieldPrecision::Float: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case FieldPrecision::Byte: return VK_FORMAT_R8G8B8A8_SNORM;
+    default: return VK_FORMAT_R16G16B16A16_SFLOAT;
+  }
+}
+int variantOf(FieldPrecision precision) {
+  switch (precision) {
+    case FieldPrecision::Float: return 0;
+    case FieldPrecision::Byte: return 2;
+    default: return 1;
+  }
+}
+// Steps keep 16 bits at least: they are blended before the texture's own rounding.
+VkFormat stepFormat(FieldPrecision precision) {
+  return precision == FieldPrecision::Float ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                            : VK_FORMAT_R16G16B16A16_SFLOAT;
+}
+
+VkExtent3D extentOf(Dims d) {
+  return {static_cast<std::uint32_t>(d.x), static_cast<std::uint32_t>(d.y),
+          static_cast<std::uint32_t>(d.z)};
+}
+
+// Every precision but Half and Float is resolved by the caller; a Float texture must be filterable.
+Result<FieldPrecision> checkPrecision(const Context& context, FieldPrecision precision) {
+  const FieldPrecision resolved = resolvePrecision(context, precision);
+  if (resolved == FieldPrecision::Float &&
+      !supportsFormat(context, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+    return unsupportedError(context.deviceInfo().name +
+                            " cannot filter RGBA32F textures; use half precision");
+  return resolved;
+}
+
+}  // namespace
+
+Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& field, int index,
+                                  FieldPrecision precision) {
+  LIC3D_TRY(checkVolumeDims(context, field.dims, "time step"));
+  LIC3D_TRY(checkSpacing(field.geometry));
+  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkPrecision(context, precision));
+  FieldStep step;
+  step.index = index;
+  step.dims = field.dims;
+  step.geometry = field.geometry;
+  const double largest = maxMagnitude(field);
+  step.scale = largest > 0.0 ? largest : 1.0;
+
+  ImageDesc desc;
+  desc.format = stepFormat(resolved);
+  desc.extent = extentOf(field.dims);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "time step " + std::to_string(index);
+  LIC3D_TRY_ASSIGN(step.image, Image::create(context, desc));
+  const std::size_t voxels = field.vectors.size();
+  if (resolved != FieldPrecision::Float) {
+    std::vector<std::uint16_t> texels(4 * voxels, 0);
+    for (std::size_t i = 0; i < voxels; ++i)
+      for (int c = 0; c < 3; ++c)
+        texels[4 * i + c] = glm::packHalf1x16(static_cast<float>(field.vectors[i][c] / step.scale));
+    LIC3D_TRY(uploadImage(context, step.image, texels.data(), texels.size() * sizeof(texels[0])));
+  } else {
+    std::vector<float> texels(4 * voxels, 0.0f);
+    for (std::size_t i = 0; i < voxels; ++i)
+      for (int c = 0; c < 3; ++c)
+        texels[4 * i + c] = static_cast<float>(field.vectors[i][c] / step.scale);
+    LIC3D_TRY(uploadImage(context, step.image, texels.data(), texels.size() * sizeof(texels[0])));
+  }
+  return step;
+}
+
+Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
+  FieldInterpolation pass;
+  pass.context_ = &context;
+  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
+      {gpu::kLerpBindingStepA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {gpu::kLerpBindingStepB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {gpu::kLerpBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+       nullptr},
+      {gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+       nullptr},
+  }};
+  LIC3D_TRY_ASSIGN(pass.layout_,
+                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
+                                          sizeof(gpu::LerpPushConstants), "field lerp"));
+  const ShaderId ids[3] = {ShaderId::FieldLerp, ShaderId::FieldLerpHalf, ShaderId::FieldLerpByte};
+  const char* formats[3] = {"rgba32f", "rgba16f", "rgba8 snorm"};
+  for (int variant = 0; variant < 3; ++variant) {
+    LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
+    for (std::uint32_t phase : {0u, 1u}) {
+      const Specialization<LerpSpecialization> constants(LerpSpecialization{phase});
+      const std::string name =
+          std::string("field lerp ") + (phase == 0 ? "measure " : "write ") + formats[variant];
+      LIC3D_TRY_ASSIGN(Pipeline pipeline,
+                       createComputePipeline(context, pass.shaders_[variant], pass.layout_,
+                                             constants.info(), name));
+      (phase == 0 ? pass.measure_ : pass.write_)[variant] = std::move(pipeline);
+    }
+  }
+  LIC3D_TRY_ASSIGN(pass.nearest_,
+                   Sampler::create(context, VK_FILTER_NEAREST, "field lerp sampler"));
+  const VkDeviceSize rangeBytes = gpu::kLerpRangeCount * sizeof(std::uint32_t);
+  LIC3D_TRY_ASSIGN(pass.ranges_, Buffer::create(context, rangeBytes,
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                                MemoryUse::DeviceLocal, "field lerp ranges"));
+  LIC3D_TRY_ASSIGN(pass.readback_,
+                   Buffer::create(context, rangeBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  MemoryUse::Readback, "field lerp ranges readback"));
+  if (context.supportsTimestamps()) {
+    LIC3D_TRY_ASSIGN(pass.timer_, GpuTimer::create(context, 1, "field lerp timestamps"));
+  }
+  return pass;
+}
+
+Result<FieldTexture> FieldInterpolation::createTarget(Dims dims, const GridGeometry& geometry,
+                                                      FieldPrecision precision) const {
+  LIC3D_TRY(checkVolumeDims(*context_, dims, "field"));
+  LIC3D_TRY(checkSpacing(geometry));
+  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkPrecision(*context_, precision));
+  FieldTexture texture;
+  texture.dims = dims;
+  texture.geometry = geometry;
+  texture.precision = resolved;
+  ImageDesc desc;
+  desc.format = targetFormat(resolved);
+  if (!supportsFormat(*context_, desc.format, VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT))
+    return unsupportedError(context_->deviceInfo().name + " cannot write " +
+                            std::string(fieldTextureFormatName(resolved)) +
+                            " storage images, which the time interpolation needs");
+  desc.extent = extentOf(dims);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "interpolated field and noise texture";
+  LIC3D_TRY_ASSIGN(texture.image, Image::create(*context_, desc));
+  return texture;
+}
+
+Result<void> FieldInterpolation::setNoise(const NoiseVolume& noise) {
+  LIC3D_TRY(checkVolumeDims(*context_, noise.dims, "noise"));
+  std::vector<float> values(voxelCount(noise.dims));
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = noise.value(i);
+  noise_ = Image();
+  ImageDesc desc;
+  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.extent = extentOf(noise.dims);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "time series noise";
+  LIC3D_TRY_ASSIGN(noise_, Image::create(*context_, desc));
+  return uploadImage(*context_, noise_, values.data(), values.size() * sizeof(float));
+}
+
+Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep& b, double weight,
+                                             FieldTexture& target) {
+  if (a.dims != target.dims || b.dims != target.dims || !(a.geometry == b.geometry))
+    return inputError("time steps " + std::to_string(a.index) + " and " + std::to_string(b.index) +
+                      " must share the field's grid (" + gridText(target.dims) +
+                      "), spacing and origin");
+  if (!noise_ || noise_.extent().width != extentOf(target.dims).width ||
+      noise_.extent().height != extentOf(target.dims).height ||
+      noise_.extent().depth != extentOf(target.dims).depth)
+    return inputError("the noise must be set on the time steps' grid");
+  const VkFormat steps = stepFormat(target.precision);
+  if (a.image.format() != steps || b.image.format() != steps)
+    return inputError("time steps and the field texture must have the same precision");
+  const int variant = variantOf(target.precision);
+  const VkPipeline measure = measure_[variant].get();
+  const VkPipeline write = write_[variant].get();
+
+  const glm::dvec3 unit = voxelUnitScale(target.geometry);
+  gpu::LerpPushConstants push{};
+  push.dims = glm::ivec4(target.dims, 0);
+  push.unitScale = glm::vec4(glm::vec3(unit), static_cast<float>(std::clamp(weight, 0.0, 1.0)));
+  push.stepScales = glm::vec4(static_cast<float>(a.scale), static_cast<float>(b.scale), 0.0f, 0.0f);
+
+  const VkDescriptorImageInfo aInfo{nearest_.handle(), a.image.view(),
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo bInfo{nearest_.handle(), b.image.view(),
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo noiseInfo{nearest_.handle(), noise_.view(),
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo targetInfo{VK_NULL_HANDLE, target.image.view(),
+                                         VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorBufferInfo rangesInfo{ranges_.handle(), 0, VK_WHOLE_SIZE};
+  const std::array<VkWriteDescriptorSet, 5> writes{
+      descriptorWrite(gpu::kLerpBindingStepA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &aInfo),
+      descriptorWrite(gpu::kLerpBindingStepB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &bInfo),
+      descriptorWrite(gpu::kLerpBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      &noiseInfo),
+      descriptorWrite(gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &targetInfo),
+      descriptorWrite(gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo)};
+  const std::uint32_t groupsX = groupCount(target.dims.x, gpu::kLerpLocalSizeX);
+  const std::uint32_t groupsY = groupCount(target.dims.y, gpu::kLerpLocalSizeY);
+  const std::uint32_t groupsZ = static_cast<std::uint32_t>(target.dims.z);
+
+  // Frames and LIC slabs still in flight may read the texture that is about to be rewritten.
+  vkQueueWaitIdle(context_->queue());
+  constexpr VkPipelineStageFlags2 kReaders =
+      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        // max |u| and max |v| start at 0, min |v| at the largest float.
+        vkCmdFillBuffer(cmd, ranges_.handle(), 0, 2 * sizeof(std::uint32_t), 0u);
+        vkCmdFillBuffer(cmd, ranges_.handle(), 2 * sizeof(std::uint32_t), sizeof(std::uint32_t),
+                        0x7F7FFFFFu);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        // The old contents are replaced whole: earlier readers must be done.
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     kReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
+                                       static_cast<std::uint32_t>(writes.size()), writes.data());
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        if (timer_.valid()) {
+          timer_.reset(cmd, 0);
+          timer_.begin(cmd, 0);
+        }
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
+        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
+        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        if (timer_.valid()) timer_.end(cmd, 0);
+        const VkBufferCopy copy{0, 0, ranges_.size()};
+        vkCmdCopyBuffer(cmd, ranges_.handle(), readback_.handle(), 1, &copy);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     kReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      },
+      "field time interpolation"));
+
+  if (timer_.valid()) {
+    LIC3D_TRY_ASSIGN(lastMs_, timer_.milliseconds(0));
+  }
+  std::array<float, gpu::kLerpRangeCount> ranges{};
+  std::memcpy(ranges.data(), readback_.mapped(), sizeof(ranges));
+  target.maxVoxelSpeed = ranges[gpu::kLerpRangeMaxSpeed];
+  target.maxMagnitude = ranges[gpu::kLerpRangeMaxMagnitude];
+  target.minMagnitude =
+      std::min(ranges[gpu::kLerpRangeMinMagnitude], ranges[gpu::kLerpRangeMaxMagnitude]);
+  // As uploadLicInputs: a texel's xyz times this is the physical vector.
+  const double speed = target.maxVoxelSpeed > 0.0 ? target.maxVoxelSpeed : 1.0;
+  target.texelToPhysical = speed / unit;
+  return {};
+}
+
+}  // namespace lic3d

@@ -1,0 +1,107 @@
+#include "passes/lic_histogram.h"
+
+#include <array>
+#include <cstring>
+#include <algorithm>
+#include <cmath>
+
+#include "gpu/gpu_submit.h"
+#include "gpu/shader_library.h"
+#include "shared_layout.h"
+#include "gpu/vk_check.h"
+
+namespace lic3d {
+
+IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts) {
+  IntensityStatistics stats;
+  double sum = 0.0, sumSquares = 0.0;
+  const double bins = static_cast<double>(counts.size());
+  for (std::size_t b = 0; b < counts.size(); ++b) {
+    const double value = (static_cast<double>(b) + 0.5) / bins;
+    stats.voxels += counts[b];
+    sum += counts[b] * value;
+    sumSquares += counts[b] * value * value;
+  }
+  if (stats.voxels == 0) return stats;
+  const double n = static_cast<double>(stats.voxels);
+  const double mean = sum / n;
+  stats.mean = static_cast<float>(mean);
+  stats.deviation = static_cast<float>(std::sqrt(std::max(sumSquares / n - mean * mean, 0.0)));
+  return stats;
+}
+
+Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
+  LicHistogramPass pass;
+  pass.context_ = &context;
+  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+      {gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+  }};
+  LIC3D_TRY_ASSIGN(pass.layout_,
+                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
+                                          sizeof(gpu::HistogramPushConstants), "histogram"));
+  LIC3D_TRY_ASSIGN(const ShaderModule shader, loadShader(context, ShaderId::LicHistogram));
+  LIC3D_TRY_ASSIGN(pass.pipeline_,
+                   createComputePipeline(context, shader, pass.layout_, nullptr, "lic histogram"));
+
+  LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_NEAREST, "histogram sampler"));
+  const VkDeviceSize bytes = gpu::kHistogramBins * sizeof(std::uint32_t);
+  LIC3D_TRY_ASSIGN(pass.counts_,
+                   Buffer::create(context, bytes,
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  MemoryUse::DeviceLocal, "histogram counts"));
+  LIC3D_TRY_ASSIGN(pass.readback_,
+                   Buffer::create(context, bytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  MemoryUse::Readback, "histogram readback"));
+  return pass;
+}
+
+void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dims,
+                              std::uint32_t slot) {
+  LIC3D_ASSERT(slot < kSlots);
+  // The previous histogram's shader and copy must be done with the buffers before they are reused.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  vkCmdFillBuffer(cmd, counts_.handle(), 0, VK_WHOLE_SIZE, 0);
+  // ALL_TRANSFER: the validation layer of Debian 12 (1.3.239) files vkCmdFillBuffer under COPY,
+  // not CLEAR.
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  const VkDescriptorImageInfo volumeInfo{sampler_.handle(), volume.view(),
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorBufferInfo countsInfo{counts_.handle(), 0, VK_WHOLE_SIZE};
+  const std::array<VkWriteDescriptorSet, 2> writes{
+      descriptorWrite(gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      &volumeInfo),
+      descriptorWrite(gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &countsInfo)};
+  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
+                                 static_cast<std::uint32_t>(writes.size()), writes.data());
+  const gpu::HistogramPushConstants push{glm::ivec4(dims, 0)};
+  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);
+
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy region{0, slot * counts_.size(), counts_.size()};
+  vkCmdCopyBuffer(cmd, counts_.handle(), readback_.handle(), 1, &region);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
+std::vector<std::uint32_t> LicHistogramPass::counts(std::uint32_t slot) const {
+  LIC3D_ASSERT(slot < kSlots);
+  std::vector<std::uint32_t> out(gpu::kHistogramBins);
+  std::memcpy(out.data(), static_cast<const std::byte*>(readback_.mapped()) + slot * counts_.size(),
+              out.size() * sizeof(std::uint32_t));
+  return out;
+}
+
+}  // namespace lic3d

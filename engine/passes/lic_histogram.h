@@ -1,0 +1,52 @@
+#pragma once
+// A histogram of the drawn voxels of the LIC volume on the GPU. LIC values crowd around the
+// noise mean (their spread shrinks like 1/sqrt(samples)), so the renderer stretches them to full
+// grey (ViewParams::contrast); this pass supplies their mean and spread without reading the
+// volume back.
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/error.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/pipelines.h"
+#include "core/volume.h"
+#include "gpu/vulkan_context.h"
+
+namespace lic3d {
+
+struct IntensityStatistics {
+  float mean = 0.5f;
+  float deviation = 0.0f;
+  std::uint64_t voxels = 0;  // drawn voxels counted
+};
+
+// Mean and standard deviation of a histogram over [0,1] (values at bin centres).
+IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts);
+
+class LicHistogramPass {
+ public:
+  // Read-back slots: a histogram stays in its slot until the CPU has read it.
+  static constexpr std::uint32_t kSlots = 4;
+
+  // `context` must outlive the pass.
+  static Result<LicHistogramPass> create(const Context& context);
+
+  // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
+  // visible to compute shaders) and its copy to host-visible memory in `slot`.
+  void record(VkCommandBuffer cmd, const Image& volume, Dims dims, std::uint32_t slot);
+  // The counts recorded into `slot`, once that command buffer completed.
+  std::vector<std::uint32_t> counts(std::uint32_t slot) const;
+
+ private:
+  const Context* context_ = nullptr;
+  PipelineLayout layout_;
+  Pipeline pipeline_;
+  Sampler sampler_;
+  Buffer counts_;
+  Buffer readback_;
+};
+
+}  // namespace lic3d

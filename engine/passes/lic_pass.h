@@ -1,0 +1,76 @@
+#pragma once
+// The LIC compute pass: one invocation per voxel writes the LIC volume (a 3D storage image).
+// Each (integrator, kernel, noise filter, direction, scheme, packing, sparsity) variant is its own pipeline, specialized
+// at creation and cached: the thesis' #ifdef variants without copied shaders.
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/error.h"
+#include "gpu/gpu_resources.h"
+#include "core/lic_params.h"
+#include "gpu/pipelines.h"
+#include "passes/volume_textures.h"
+#include "gpu/vulkan_context.h"
+
+namespace lic3d {
+
+// constant_id i <-> field i (see shaders/lic.comp).
+struct LicSpecialization {
+  std::uint32_t integrator = 1;
+  std::uint32_t kernel = 0;
+  std::uint32_t noiseFilter = 1;
+  std::uint32_t direction = 0;
+  std::uint32_t localSizeX = 8;  // 8x8x1 beats 4x4x4 on lavapipe and ties on discrete GPUs
+  std::uint32_t localSizeY = 8;
+  std::uint32_t localSizeZ = 1;
+  std::uint32_t sparsity = 0;
+  std::uint32_t scheme = 0;
+  std::uint32_t packing = 0;  // 1 for FieldPrecision::Byte
+  std::uint32_t interleave = 1;  // 0 on CPU drivers (see shaders/lic.comp)
+
+  bool operator==(const LicSpecialization&) const = default;
+};
+static_assert(sizeof(LicSpecialization) == 11 * 4);
+
+LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision);
+
+// The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding; the
+// second channel is 1 where the voxel is drawn and 0 where sparsity masks it.
+inline constexpr VkFormat kLicVolumeFormat = VK_FORMAT_R16G16_UNORM;
+// The sparsity mask: one byte per voxel, 1 = black.
+inline constexpr VkFormat kSparsityMaskFormat = VK_FORMAT_R8_UINT;
+
+class LicPass {
+ public:
+  // `context` must outlive the pass. With `separateNoise` (benchmark builds only) the pass runs
+  // the naive reference kernel, which reads the noise from an R8 texture of its own.
+  static Result<LicPass> create(const Context& context, bool separateNoise = false);
+
+  // Records the dispatch for z slices [zBegin, zEnd). `field`, `mask` and `noise` must be in
+  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`
+  // is read only when params.sparsity has a distribution (any image will do otherwise); `noise`
+  // only by a separate-noise pass.
+  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                      const Image& output, const LicParams& params, int zBegin, int zEnd,
+                      const Image* noise = nullptr);
+
+  std::size_t variantCount() const { return pipelines_.size(); }
+  bool separateNoise() const { return separateNoise_; }
+
+ private:
+  Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
+
+  const Context* context_ = nullptr;
+  PipelineLayout layout_;
+  ShaderModule shader_;
+  Sampler sampler_;
+  Sampler maskSampler_;
+  bool separateNoise_ = false;
+  std::vector<std::pair<LicSpecialization, Pipeline>> pipelines_;
+};
+
+}  // namespace lic3d

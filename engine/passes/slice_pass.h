@@ -1,0 +1,115 @@
+#pragma once
+// The graphics pass: alpha-blended slice proxies through the LIC volume, back to front, into
+// whatever colour attachment the caller's dynamic rendering has open. Display variants (colour,
+// opacity, sparsity, region of interest, fog, lighting, filtering, anaglyph eye) are
+// specialization constants; one pipeline per (variant, attachment format), made on first use
+// and cached.
+
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/camera.h"
+#include "core/error.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/pipelines.h"
+#include "shared_layout.h"
+#include "core/slice_geometry.h"
+#include "core/view_params.h"
+#include "passes/volume_textures.h"
+#include "gpu/vulkan_context.h"
+
+namespace lic3d {
+
+// constant_id i <-> field i (see shaders/slice.frag and shared_layout.h).
+struct SliceSpecialization {
+  std::uint32_t opacityMode = 1;
+  std::uint32_t orthographic = 0;
+  std::uint32_t colorMode = 0;
+  std::uint32_t colormap = 0;
+  std::uint32_t magnitudeOpacity = 0;
+  std::uint32_t sparsity = 0;
+  std::uint32_t roiShape = 0;
+  std::uint32_t roiOutside = 0;
+  std::uint32_t fog = 0;
+  std::uint32_t lighting = 0;
+  std::uint32_t filter = 1;
+  std::uint32_t anaglyph = 0;
+  std::uint32_t fieldPacking = 0;  // LicSpecialization::packing
+
+  bool operator==(const SliceSpecialization&) const = default;
+};
+static_assert(sizeof(SliceSpecialization) == 13 * 4);
+
+// What a frame needs to know about the volume besides the view.
+struct VolumeFacts {
+  Dims dims{1};
+  GridGeometry geometry;
+  float minMagnitude = 0.0f;  // physical |v| over the grid's voxels (the automatic colour range)
+  float maxMagnitude = 1.0f;
+  glm::vec3 texelToPhysical{1.0f};  // FieldTexture::texelToPhysical: decodes the field texture
+  float intensityMean = 0.5f;       // of the drawn voxels' LIC values
+  float intensityDeviation = 0.1f;  // their standard deviation
+  bool sparsity = false;            // the LIC volume carries a sparsity mask
+  FieldPrecision fieldPrecision = FieldPrecision::Half;  // how the field texture is packed
+
+  TransferFacts transfer() const {
+    return {intensityMean, intensityDeviation, minMagnitude, maxMagnitude};
+  }
+};
+
+// Which eye a draw is for: stereo offsets the camera by half the eye separation.
+enum class Eye { Mono, Left, Right };
+
+// Everything one draw needs, derived from ViewParams and VolumeFacts.
+struct SliceFrame {
+  SliceSpecialization specialization;
+  gpu::SliceUniforms uniforms{};
+  CameraMatrices camera;
+  SlicePlan plan;
+  glm::vec3 halfExtent{0.5f};
+};
+
+// `aspect` is the eye's viewport width over height.
+SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye eye, float aspect);
+
+// Eye separation and zero-parallax distance after defaults (world units).
+float eyeSeparation(const ViewParams& view, const CameraMatrices& central);
+float zeroParallaxDistance(const ViewParams& view, const CameraMatrices& central);
+
+class SlicePass {
+ public:
+  // Uniform slots: a draw's parameters live in one slot until its command buffer completes.
+  static constexpr std::uint32_t kUniformSlots = 8;
+
+  // `context` must outlive the pass. With `runtimeModes` (benchmark builds only) every display
+  // mode is decided at run time by one shader instead of by specialization.
+  static Result<SlicePass> create(const Context& context, bool runtimeModes = false);
+
+  // Records the draw inside an open dynamic rendering of one `colorFormat` attachment, into
+  // `viewport` of it. `volume` and `field.image` must be in SHADER_READ_ONLY_OPTIMAL with their
+  // writes visible to fragment shaders. `slot` must not be used by a draw still in flight.
+  Result<void> record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
+                      const Image& volume, const FieldTexture& field, const SliceFrame& frame,
+                      std::uint32_t slot);
+
+  std::size_t variantCount() const { return pipelines_.size(); }
+
+ private:
+  Result<VkPipeline> pipelineFor(const SliceSpecialization& specialization, VkFormat format);
+
+  const Context* context_ = nullptr;
+  bool runtimeModes_ = false;
+  PipelineLayout layout_;
+  ShaderModule vertexShader_;
+  ShaderModule fragmentShader_;
+  Sampler linear_;
+  Image colormaps_;
+  Buffer uniforms_;
+  VkDeviceSize slotSize_ = 0;
+  std::vector<std::tuple<SliceSpecialization, VkFormat, Pipeline>> pipelines_;
+};
+
+}  // namespace lic3d

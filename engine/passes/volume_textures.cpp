@@ -1,0 +1,131 @@
+#include "passes/volume_textures.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/packing.hpp>
+
+#include "gpu/gpu_submit.h"
+#include "lic/lic_reference.h"
+#include "core/memory_budget.h"
+
+namespace lic3d {
+namespace {
+
+// Interleaves (v in voxel units / its largest length, noise) as RGBA texels of type T, converted
+// by `convert`. `scale` is voxelUnitScale / maxVoxelSpeed.
+template <class T, class Convert>
+std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
+                          Convert convert) {
+  std::vector<T> texels(4 * field.vectors.size());
+  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
+    const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
+    texels[4 * i + 0] = convert(static_cast<float>(v.x));
+    texels[4 * i + 1] = convert(static_cast<float>(v.y));
+    texels[4 * i + 2] = convert(static_cast<float>(v.z));
+    texels[4 * i + 3] = convert(noise.value(i));
+  }
+  return texels;
+}
+
+// FieldPrecision::Byte: a component in [-1, 1] as SNORM8.
+std::int8_t snorm8(double value) {
+  return static_cast<std::int8_t>(std::lround(std::clamp(value, -1.0, 1.0) * 127.0));
+}
+
+// FieldPrecision::Byte texels (see volume_textures.h): e = u/M / sqrt(|u|/M), noise shifted into
+// the signed range so all 8 bits of it survive.
+std::vector<std::int8_t> packByteTexels(const VectorField& field, const NoiseVolume& noise,
+                                        glm::dvec3 scale) {
+  std::vector<std::int8_t> texels(4 * field.vectors.size());
+  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
+    const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
+    const double speed = glm::length(v);
+    const glm::dvec3 e = speed > 0.0 ? v / std::sqrt(speed) : glm::dvec3(0.0);
+    texels[4 * i + 0] = snorm8(e.x);
+    texels[4 * i + 1] = snorm8(e.y);
+    texels[4 * i + 2] = snorm8(e.z);
+    const double n = std::round(std::clamp(static_cast<double>(noise.value(i)), 0.0, 1.0) * 255.0);
+    texels[4 * i + 3] = static_cast<std::int8_t>(n - 128.0);
+  }
+  return texels;
+}
+
+}  // namespace
+
+Result<void> checkVolumeDims(const Context& context, Dims dims, const char* what) {
+  const std::uint32_t limit = context.properties().limits.maxImageDimension3D;
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 1 || static_cast<std::uint32_t>(dims[a]) > limit)
+      return inputError(std::string(what) + " grid " + gridText(dims) + " exceeds what " +
+                        context.deviceInfo().name + " allows per axis (1.." +
+                        std::to_string(limit) + ")");
+  return {};
+}
+
+FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested) {
+  if (requested != FieldPrecision::Auto) return requested;
+  // A CPU driver gains nothing from half floats (no texture-cache bandwidth to save) and pays
+  // for converting them: lavapipe runs the LIC pass about 1.4x faster on RGBA32F.
+  return context.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? FieldPrecision::Float
+                                                                   : FieldPrecision::Half;
+}
+
+Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
+                                     const NoiseVolume& noise, FieldPrecision precision) {
+  LIC3D_TRY(checkVolumeDims(context, field.dims, "field"));
+  LIC3D_TRY(checkSpacing(field.geometry));
+  const FieldPrecision resolved = resolvePrecision(context, precision);
+  // The texture, its staging copy and the LIC volume must fit (a CPU driver would otherwise
+  // accept the allocation and fail when the memory is first touched). Front ends check their
+  // whole request earlier; this guards every other caller.
+  MemoryRequest request;
+  request.dims = field.dims;
+  request.precision = resolved;
+  LIC3D_TRY(checkMemoryBudget(request, queryMemoryBudget(context), "the field"));
+  if (noise.dims != field.dims)
+    return inputError("the noise grid (" + gridText(noise.dims) + ") must match the field grid (" +
+                      gridText(field.dims) + ")");
+  FieldTexture texture;
+  texture.dims = field.dims;
+  texture.geometry = field.geometry;
+  texture.maxMagnitude = maxMagnitude(field);
+  texture.minMagnitude = minMagnitude(field);
+  texture.maxVoxelSpeed = maxVoxelSpeed(field);
+  texture.precision = resolved;
+  // On isotropic grids voxelUnitScale is exactly 1 and maxVoxelSpeed is max|v|: the texels are
+  // v / max|v| bit for bit, as before anisotropic grids were converted.
+  const glm::dvec3 unit = voxelUnitScale(field.geometry);
+  const double speed = texture.maxVoxelSpeed > 0.0 ? texture.maxVoxelSpeed : 1.0;
+  const glm::dvec3 scale = unit / speed;
+  texture.texelToPhysical = speed / unit;
+
+  ImageDesc desc;
+  desc.extent = {static_cast<std::uint32_t>(field.dims.x), static_cast<std::uint32_t>(field.dims.y),
+                 static_cast<std::uint32_t>(field.dims.z)};
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "field and noise texture";
+  if (texture.precision == FieldPrecision::Half) {
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    const std::vector<std::uint16_t> texels =
+        packTexels<std::uint16_t>(field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
+    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+  } else if (texture.precision == FieldPrecision::Byte) {
+    desc.format = VK_FORMAT_R8G8B8A8_SNORM;
+    const std::vector<std::int8_t> texels = packByteTexels(field, noise, scale);
+    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size()));
+  } else {
+    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+      return unsupportedError(context.deviceInfo().name +
+                              " cannot filter RGBA32F textures; use half precision");
+    const std::vector<float> texels = packTexels<float>(field, noise, scale, [](float f) { return f; });
+    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+  }
+  return texture;
+}
+
+}  // namespace lic3d
