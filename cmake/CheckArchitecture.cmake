@@ -1,0 +1,84 @@
+# The architecture checks, run by ctest in script mode:
+#   cmake -DSOURCE_DIR=<repo> -DCHECK=layers|file_size -P cmake/CheckArchitecture.cmake
+#
+# layers: the engine's folders are layers, lowest first (engine/CMakeLists.txt). A file of the
+# engine includes only files of its own layer and of layers below it, always by their layer path
+# ("core/volume.h"); the shaders' shared headers (plain data, compiled by both GLSL and C++) and
+# the generated SPIR-V headers are the only bare includes. The layers below gpu/ include no
+# Vulkan header. Every engine file lies in a layer folder.
+# file_size: no source file (engine, app, shaders, paraview, tests) is longer than 700 lines.
+cmake_minimum_required(VERSION 3.25)
+
+set(layers core io lic gpu passes inputs)
+set(first_vulkan_layer 3)  # gpu
+set(max_lines 700)
+
+function(layer_rank path out)
+  string(REGEX MATCH "^[a-z0-9_]+/" folder "${path}")
+  string(REPLACE "/" "" folder "${folder}")
+  list(FIND layers "${folder}" rank)
+  set(${out} ${rank} PARENT_SCOPE)
+endfunction()
+
+set(problems "")
+if(CHECK STREQUAL "layers")
+  file(GLOB_RECURSE files RELATIVE "${SOURCE_DIR}/engine"
+       "${SOURCE_DIR}/engine/*.h" "${SOURCE_DIR}/engine/*.cpp")
+  file(GLOB shader_headers RELATIVE "${SOURCE_DIR}/shaders" "${SOURCE_DIR}/shaders/*.h")
+  list(LENGTH files count)
+  if(count EQUAL 0)
+    message(FATAL_ERROR "no engine sources under ${SOURCE_DIR}/engine")
+  endif()
+  foreach(file ${files})
+    layer_rank("${file}" own)
+    if(own LESS 0)
+      string(APPEND problems "engine/${file}: not in a layer folder (${layers})\n")
+      continue()
+    endif()
+    file(STRINGS "${SOURCE_DIR}/engine/${file}" lines REGEX "^[ \t]*#[ \t]*include")
+    foreach(line ${lines})
+      if(line MATCHES "#[ \t]*include[ \t]*\"([^\"]+)\"")
+        set(target "${CMAKE_MATCH_1}")
+        layer_rank("${target}" rank)
+        if(rank LESS 0)
+          if(NOT target IN_LIST shader_headers AND NOT target MATCHES "_spv\\.h$")
+            string(APPEND problems "engine/${file}: includes \"${target}\": engine files are "
+                                   "included by their layer path (core/, io/, ...)\n")
+          endif()
+        elseif(NOT EXISTS "${SOURCE_DIR}/engine/${target}")
+          string(APPEND problems "engine/${file}: includes \"${target}\", which does not exist\n")
+        elseif(rank GREATER own)
+          list(GET layers ${own} own_name)
+          string(APPEND problems "engine/${file}: includes \"${target}\" from a higher layer "
+                                 "(${own_name}/ may include only itself and the layers below)\n")
+        endif()
+      elseif(line MATCHES "#[ \t]*include[ \t]*<(vulkan/[^>]+)>" AND own LESS first_vulkan_layer)
+        string(APPEND problems "engine/${file}: includes <${CMAKE_MATCH_1}> below gpu/\n")
+      endif()
+    endforeach()
+  endforeach()
+elseif(CHECK STREQUAL "file_size")
+  set(files "")
+  foreach(folder engine app shaders paraview tests)
+    file(GLOB_RECURSE found RELATIVE "${SOURCE_DIR}"
+         "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.cxx"
+         "${SOURCE_DIR}/${folder}/*.comp" "${SOURCE_DIR}/${folder}/*.frag"
+         "${SOURCE_DIR}/${folder}/*.vert" "${SOURCE_DIR}/${folder}/*.glsl")
+    list(APPEND files ${found})
+  endforeach()
+  foreach(file ${files})
+    file(READ "${SOURCE_DIR}/${file}" text)
+    string(REGEX MATCHALL "\n" newlines "${text}")
+    list(LENGTH newlines n)
+    if(n GREATER max_lines)
+      string(APPEND problems "${file}: ${n} lines (at most ${max_lines}: split it by job)\n")
+    endif()
+  endforeach()
+else()
+  message(FATAL_ERROR "CHECK must be layers or file_size")
+endif()
+
+if(problems)
+  message(FATAL_ERROR "architecture.${CHECK}:\n${problems}")
+endif()
+message(STATUS "architecture.${CHECK}: ok")
