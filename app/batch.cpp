@@ -16,9 +16,9 @@
 #include <system_error>
 
 #include "core/colormap.h"
+#include "core/session.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
-#include "core/session.h"
 #include "io/vti.h"
 
 namespace lic3d::cli {
@@ -64,9 +64,10 @@ Result<Conversion> findConversion(const std::string& pattern) {
   switch (scan.problem) {
     case NumberScan::Problem::None: return scan.conversion;
     case NumberScan::Problem::NotAConversion:
-      return inputError(problem + "; '" +
-                        pattern.substr(scan.at, std::min<std::size_t>(4, pattern.size() - scan.at)) +
-                        "...' is not one (write %% for a literal %)");
+      return inputError(
+          problem + "; '" +
+          pattern.substr(scan.at, std::min<std::size_t>(4, pattern.size() - scan.at)) +
+          "...' is not one (write %% for a literal %)");
     case NumberScan::Problem::MoreThanOne: return inputError(problem + "; it has more than one");
     case NumberScan::Problem::NoConversion: break;
   }

@@ -1,22 +1,21 @@
 // `lic3d bench`: GPU timestamps of the LIC pass and of frames, median of repeats after warm-up.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <cmath>
 #include <functional>
-
 #include <nlohmann/json.hpp>
 
-#include "lic/analytic_fields.h"
 #include "commands.h"
-#include "io/file_util.h"
-#include "gpu/gpu_timer.h"
-#include "passes/lic_renderer.h"
-#include "lic/noise.h"
-#include "gpu/shader_library.h"
-#include "lic/sparsity.h"
 #include "core/volume_compare.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/shader_library.h"
+#include "io/file_util.h"
+#include "lic/analytic_fields.h"
+#include "lic/noise.h"
+#include "lic/sparsity.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d::cli {
 namespace {
@@ -108,11 +107,12 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   std::printf("lic3d bench on %s (%s, %s), %s\n", device.name.c_str(), deviceTypeName(device.type),
               device.driver.c_str(), report["date"].get<std::string>().c_str());
   const LicParams defaults;
-  std::printf("LIC compute: %s field, rk2 (%s scheme), box kernel, h = 0.5, trilinear noise, %s "
-              "field texture; median of %d after %d warm-up (GPU timestamps)\n",
-              options.field.c_str(), std::string(enumName(defaults.scheme)).c_str(),
-              std::string(fieldTextureFormatName(resolvePrecision(context, options.precision))).c_str(),
-              options.repeats, options.warmup);
+  std::printf(
+      "LIC compute: %s field, rk2 (%s scheme), box kernel, h = 0.5, trilinear noise, %s "
+      "field texture; median of %d after %d warm-up (GPU timestamps)\n",
+      options.field.c_str(), std::string(enumName(defaults.scheme)).c_str(),
+      std::string(fieldTextureFormatName(resolvePrecision(context, options.precision))).c_str(),
+      options.repeats, options.warmup);
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
 
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
@@ -131,9 +131,8 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
     for (const int length : lengths) {
       LicParams params;
       params.length = length;
-      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
-                         return renderer.timeLicDispatch(params);
-                       }));
+      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
+                                               [&] { return renderer.timeLicDispatch(params); }));
       nlohmann::json row{{"n", n}, {"length", length}};
       if (t.measured) {
         const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
@@ -167,8 +166,8 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
         ViewParams view;
         view.width = view.height = size;
         view.slices = n;
-        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
-                                                 [&] { return renderer.timeFrame(view); }));
+        LIC3D_TRY_ASSIGN(const Timing t,
+                         measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
         nlohmann::json row{{"image", size}, {"buffer", bufferName}};
         if (t.measured) {
           std::printf("%9d^2 %10s %12.3f %12.3f\n", size, bufferName, t.medianMs, t.minMs);
@@ -196,8 +195,9 @@ struct Variant {
 // the same modes at run time.
 Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& options) {
   if (!hasRuntimeModeShaders())
-    return unsupportedError("bench --variants needs a build configured with "
-                            "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
+    return unsupportedError(
+        "bench --variants needs a build configured with "
+        "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
   const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
@@ -242,8 +242,9 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   const DeviceInfo& device = context.deviceInfo();
   std::printf("lic3d bench --variants on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
               today().c_str());
-  std::printf("Frame %d^2, %d^3 volume, %d slices; median of %d after %d warm-up (GPU timestamps)\n",
-              size, n, n, options.repeats, options.warmup);
+  std::printf(
+      "Frame %d^2, %d^3 volume, %d slices; median of %d after %d warm-up (GPU timestamps)\n", size,
+      n, n, options.repeats, options.warmup);
   std::printf("%-30s %15s %15s %8s\n", "modes", "specialized ms", "runtime ms", "ratio");
 
   nlohmann::json report = newReport(context);
@@ -301,7 +302,9 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
       SparsityParams p;
       p.distribution = d;
       switch (d) {
-        case SparsityDistribution::Checkerboard: p.ratio = static_cast<float>(count / voxels); break;
+        case SparsityDistribution::Checkerboard:
+          p.ratio = static_cast<float>(count / voxels);
+          break;
         case SparsityDistribution::Jitter:
           p.radius = static_cast<float>(std::cbrt(kJitterDensity * voxels / count));
           break;
@@ -323,7 +326,8 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
       const auto start = std::chrono::steady_clock::now();
       LIC3D_TRY_ASSIGN(const SparsityMask mask, makeSparsityMask(p, dims));
       const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       budgetLeft -= ms / 1000.0;
       std::printf("%-16s %12.0f %14zu %12.1f\n", std::string(name).c_str(), count, mask.blackCount,
                   ms);
@@ -334,9 +338,10 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
     }
   }
 
-  std::printf("\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
-              "parameters, L = 20, median of %d\n",
-              device.name.c_str(), options.repeats);
+  std::printf(
+      "\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
+      "parameters, L = 20, median of %d\n",
+      device.name.c_str(), options.repeats);
   std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
   const auto fieldKind = parseEnum<AnalyticField>(options.field);
@@ -353,7 +358,8 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
       const auto start = std::chrono::steady_clock::now();
       LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
       wall.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
       budgetLeft -= wall.back() / 1000.0;
       lic.sparsity.seed = 1;
       LIC3D_TRY_ASSIGN(const double ms, renderer.timeLicDispatch(lic));
@@ -385,8 +391,9 @@ struct KernelVariant {
 // ratios hold on machines whose absolute speed varies from run to run.
 Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& options) {
   if (!hasRuntimeModeShaders())
-    return unsupportedError("bench --kernels needs a build configured with "
-                            "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
+    return unsupportedError(
+        "bench --kernels needs a build configured with "
+        "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
   LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 2048));
   LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
                    parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
@@ -413,9 +420,10 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
   report["rows"] = nlohmann::json::array();
   std::printf("lic3d bench --kernels on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
               today().c_str());
-  std::printf("%s field, RK2, box kernel, h = 0.5, trilinear noise; median of %d after %d "
-              "warm-up (GPU timestamps); r = correlation of the volumes; * = the default here\n",
-              options.field.c_str(), options.repeats, options.warmup);
+  std::printf(
+      "%s field, RK2, box kernel, h = 0.5, trilinear noise; median of %d after %d "
+      "warm-up (GPU timestamps); r = correlation of the volumes; * = the default here\n",
+      options.field.c_str(), options.repeats, options.warmup);
   double budgetLeft = options.budgetSeconds;
   for (const int n : sizes) {
     const Dims dims(n);
@@ -428,7 +436,9 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
       std::optional<ScalarVolume> naiveVolume, exactVolume;
       double naiveMs = 0.0;
       for (const KernelVariant& v : variants) {
-        nlohmann::json row{{"n", n}, {"length", length}, {"kernel", v.name},
+        nlohmann::json row{{"n", n},
+                           {"length", length},
+                           {"kernel", v.name},
                            {"scheme", enumName(v.scheme)},
                            {"precision", fieldTextureFormatName(v.precision)},
                            {"default", isDefault(v)}};
@@ -445,9 +455,8 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
         LicParams params;
         params.length = length;
         params.scheme = v.scheme;
-        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
-                           return renderer.timeLicDispatch(params);
-                         }));
+        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
+                                                 [&] { return renderer.timeLicDispatch(params); }));
         if (!t.measured) {
           std::printf("%-26s (skipped: %s)\n", v.name, t.skipped.c_str());
           row["skipped"] = t.skipped;
@@ -470,8 +479,10 @@ Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& op
         row["r_exact"] = rExact;
         row["gfetches_per_s"] = fetches / (t.medianMs * 1e6);
         report["rows"].push_back(row);
-        if (v.naive) naiveVolume = std::move(volume);
-        else if (!exactVolume && v.scheme == StepScheme::Exact) exactVolume = std::move(volume);
+        if (v.naive)
+          naiveVolume = std::move(volume);
+        else if (!exactVolume && v.scheme == StepScheme::Exact)
+          exactVolume = std::move(volume);
       }
     }
   }
@@ -489,10 +500,11 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
   contextOptions.device = global.device;
   Result<Context> context = Context::create(contextOptions);
   if (!context) return reportError(context.error());
-  const Result<nlohmann::json> report = options.variants        ? runVariants(*context, options)
-                                         : options.distributions ? runDistributions(*context, options)
-                                         : options.kernels       ? runKernels(*context, options)
-                                                                 : runBenchmarks(*context, options);
+  const Result<nlohmann::json> report = options.variants ? runVariants(*context, options)
+                                        : options.distributions
+                                            ? runDistributions(*context, options)
+                                        : options.kernels ? runKernels(*context, options)
+                                                          : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {
     if (auto r = writeFileAtomically(options.json, report->dump(2) + "\n"); !r)

@@ -1,22 +1,22 @@
 #include "cli_options.h"
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <sstream>
 
-#include <unistd.h>
-
-#include "lic/analytic_fields.h"
+#include "core/enum_names.h"
+#include "core/memory_budget.h"
+#include "gpu/gpu_resources.h"
 #include "io/field_io.h"
 #include "io/session_file.h"
-#include "gpu/gpu_resources.h"
-#include "passes/volume_textures.h"
-#include "core/memory_budget.h"
-#include "core/enum_names.h"
+#include "lic/analytic_fields.h"
 #include "lic/noise.h"
 #include "lic/time_series.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d::cli {
 namespace {
@@ -50,7 +50,6 @@ TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
   if (!shownDefault.empty()) option.option->default_str(shownDefault);
   return option;
 }
-
 
 }  // namespace
 
@@ -338,8 +337,8 @@ Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session) {
     return inputError("--slice: expected AXIS or AXIS:INDEX with AXIS x, y or z, got '" +
                       plane.slice.text + "'");
   if (colon != std::string::npos) {
-    LIC3D_TRY_ASSIGN(index, parseNumber<int>(std::string_view(plane.slice.text).substr(colon + 1),
-                                             "--slice"));
+    LIC3D_TRY_ASSIGN(
+        index, parseNumber<int>(std::string_view(plane.slice.text).substr(colon + 1), "--slice"));
     if (index < 0)
       return inputError("--slice: the index of '" + plane.slice.text + "' must be 0 or more");
   }
@@ -352,9 +351,12 @@ Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& o
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     std::string file;
-    if (arg == "--session" && i + 1 < argc) file = argv[i + 1];
-    else if (arg.rfind("--session=", 0) == 0) file = arg.substr(10);
-    else continue;
+    if (arg == "--session" && i + 1 < argc)
+      file = argv[i + 1];
+    else if (arg.rfind("--session=", 0) == 0)
+      file = arg.substr(10);
+    else
+      continue;
     LIC3D_TRY_ASSIGN(options.session, readSession(file));
     options.sessionFile = file;
     return {};
@@ -383,13 +385,14 @@ Result<Dims> parseGrid(const std::string& text, bool planar) {
 
 Result<glm::vec3> parseColor(const std::string& text, const char* flag) {
   const std::vector<std::string_view> parts = splitCommas(text);
-  if (parts.size() != 3) return inputError(std::string(flag) + ": expected R,G,B, got '" + text + "'");
+  if (parts.size() != 3)
+    return inputError(std::string(flag) + ": expected R,G,B, got '" + text + "'");
   glm::vec3 color(0.0f);
   for (int c = 0; c < 3; ++c) {
     LIC3D_TRY_ASSIGN(color[c], parseNumber<float>(parts[c], flag));
     if (!(color[c] >= 0.0f && color[c] <= 255.0f))
-      return inputError(std::string(flag) + ": components must be in 0..1 or 0..255, got '" +
-                        text + "'");
+      return inputError(std::string(flag) + ": components must be in 0..1 or 0..255, got '" + text +
+                        "'");
   }
   if (color.r > 1.0f || color.g > 1.0f || color.b > 1.0f) color /= 255.0f;
   return color;
@@ -494,7 +497,8 @@ Result<TimeDomain> timeDomainOf(const Session& session) {
   if (const auto analytic = parseEnum<AnalyticField>(field)) period = timePeriod(*analytic);
   if (const auto analytic = parseEnum<AnalyticField2D>(field)) period = timePeriod(*analytic);
   if (period > 0.0) return TimeDomain{0.0, period, true, true};
-  if (!parseEnum<AnalyticField>(field) && !parseEnum<AnalyticField2D>(field) && isFieldSeriesPattern(field)) {
+  if (!parseEnum<AnalyticField>(field) && !parseEnum<AnalyticField2D>(field) &&
+      isFieldSeriesPattern(field)) {
     LIC3D_TRY_ASSIGN(const TimeSeries series, fileSeries(field));
     return TimeDomain{0.0, series.endTime(), false, true};
   }
@@ -521,8 +525,8 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
   request.timeSeries = shape.timeSeries;
   if (shape.frame) {
     const bool sideBySide = session.view.stereo == StereoMode::SideBySide;
-    request.frameWidth = shape.frameWidth > 0 ? shape.frameWidth
-                                              : session.view.width * (sideBySide ? 2 : 1);
+    request.frameWidth =
+        shape.frameWidth > 0 ? shape.frameWidth : session.view.width * (sideBySide ? 2 : 1);
     request.frameHeight = shape.frameHeight > 0 ? shape.frameHeight : session.view.height;
   }
   return checkMemoryBudget(request, queryMemoryBudget(context),
@@ -580,8 +584,7 @@ Result<void> checkOutputPath(const std::string& path, const char* extension) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
     return inputError("output " + path + ": folder " + folder.string() + " does not exist");
-  if (std::filesystem::is_directory(p, ec))
-    return inputError("output " + path + " is a folder");
+  if (std::filesystem::is_directory(p, ec)) return inputError("output " + path + " is a folder");
   return {};
 }
 

@@ -2,12 +2,11 @@
 // The flags shared by the subcommands (and the viewer), bound straight to a Session: the engine's
 // parameter structs plus where the field and the noise come from.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "core/enum_names.h"
 #include "core/error.h"

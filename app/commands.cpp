@@ -7,22 +7,22 @@
 #include <map>
 #include <optional>
 
+#include "core/memory_budget.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/vulkan_context.h"
+#include "io/file_util.h"
 #include "io/png_writer.h"
 #include "lic/analytic_fields.h"
-#include "passes/field_interpolation.h"
-#include "lic/field_plane.h"
-#include "io/file_util.h"
 #include "lic/colouring.h"
-#include "passes/lic2d_pass.h"
+#include "lic/field_plane.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
-#include "gpu/gpu_timer.h"
+#include "lic/time_series.h"
+#include "passes/field_interpolation.h"
+#include "passes/lic2d_pass.h"
 #include "passes/lic_renderer.h"
-#include "core/memory_budget.h"
 #include "plane_inputs.h"
 #include "progress.h"
-#include "lic/time_series.h"
-#include "gpu/vulkan_context.h"
 
 namespace lic3d::cli {
 namespace {
@@ -306,15 +306,15 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       blend = std::move(host);
     }
     const VectorField& field = blend ? *blend : inputs.field;
-    const RgbaVolume rgba = colourLicVolume(lic, field, session.view, renderer.volumeFacts().transfer());
+    const RgbaVolume rgba =
+        colourLicVolume(lic, field, session.view, renderer.volumeFacts().transfer());
     LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
     outputs.push_back(batch.rgbaVolume);
   }
   if (!batch.video.empty()) {
     LIC3D_TRY_ASSIGN(const std::filesystem::path ffmpeg, findFfmpeg());
     if (!global.quiet)
-      std::fprintf(stderr, "lic3d: encoding %s with %s\n", batch.video.c_str(),
-                   ffmpeg.c_str());
+      std::fprintf(stderr, "lic3d: encoding %s with %s\n", batch.video.c_str(), ffmpeg.c_str());
     LIC3D_TRY(encodeVideo(ffmpeg, plan, batch.fps, batch.video));
     outputs.push_back(batch.video);
   }
@@ -527,11 +527,11 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     // The index against the grid, before any work.
     const LicSlice slice = *parseSlice(batch.slice.text);
     if (slice.index >= inputs->field.dims[slice.axis])
-      return fail(inputError(
-          "--slice " + batch.slice.text + ": the grid " + gridText(inputs->field.dims) +
-          " has " + std::to_string(inputs->field.dims[slice.axis]) + " slices along " +
-          std::string(1, static_cast<char>('x' + slice.axis)) + " (0.." +
-          std::to_string(inputs->field.dims[slice.axis] - 1) + ")"));
+      return fail(inputError("--slice " + batch.slice.text + ": the grid " +
+                             gridText(inputs->field.dims) + " has " +
+                             std::to_string(inputs->field.dims[slice.axis]) + " slices along " +
+                             std::string(1, static_cast<char>('x' + slice.axis)) + " (0.." +
+                             std::to_string(inputs->field.dims[slice.axis] - 1) + ")"));
   }
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.outputs = {options.output};
@@ -571,9 +571,12 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
     Result<ScalarVolume> volume =
         done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
-    if (volume) done = writeComputeOutput(options, batch, *volume);
-    else done = volume.error();
-    if (!done) status = reportError(done.error());
+    if (volume)
+      done = writeComputeOutput(options, batch, *volume);
+    else
+      done = volume.error();
+    if (!done)
+      status = reportError(done.error());
     else if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%s, on %s)\n", options.output.c_str(),
                    fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str());

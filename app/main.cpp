@@ -1,14 +1,13 @@
 // lic3d: 3D Line Integral Convolution of vector fields with Vulkan, from the command line.
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <new>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "cli_options.h"
 #include "commands.h"
@@ -57,13 +56,15 @@ int findViewCommand(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (const int view = findViewCommand(argc, argv)) return execViewer(argc, argv, view);
 
-  CLI::App app{"lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
-               "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices."};
+  CLI::App app{
+      "lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
+      "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices."};
   app.set_version_flag("--version", kVersionText);
   app.require_subcommand(1);
   app.fallthrough();
-  app.footer("Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
-             "files, 3 not enough memory for the request.");
+  app.footer(
+      "Exit status: 0 success, 1 failure (no device, GPU error), 2 bad arguments or input "
+      "files, 3 not enough memory for the request.");
   const std::string globalNote =
       "Global options (--device, --validation, --quiet) may also follow the command. Exit "
       "status: 0 success, 1 failure, 2 bad arguments or input files, 3 not enough memory for "
@@ -82,8 +83,9 @@ int main(int argc, char** argv) {
   ComputeOptions compute;
   BatchOptions computeBatch;
   CLI::App* computeCommand = app.add_subcommand(
-      "compute", "Compute a LIC volume and write it as float32 NRRD or VTK image data (.vti), "
-                 "or one slice of it as a 16-bit PNG");
+      "compute",
+      "Compute a LIC volume and write it as float32 NRRD or VTK image data (.vti), "
+      "or one slice of it as a 16-bit PNG");
   addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
   addComputeBatchOptions(*computeCommand, computeBatch);
   computeCommand->footer(globalNote + summaryNote);
@@ -130,7 +132,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   benchCommand->add_option("--lengths", bench.lengths, "LIC lengths L of the LIC table")
       ->capture_default_str();
-  benchCommand->add_option("--frame-sizes", bench.frameSizes, "Square image sizes of the frame table")
+  benchCommand
+      ->add_option("--frame-sizes", bench.frameSizes, "Square image sizes of the frame table")
       ->capture_default_str();
   benchCommand->add_option("--frame-volume", bench.frameVolume, "Volume size N of the frame table")
       ->check(CLI::Range(4, 2048))
@@ -141,9 +144,10 @@ int main(int argc, char** argv) {
   benchCommand->add_option("--warmup", bench.warmup, "Untimed runs before the repeats")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  benchCommand->add_option("--budget", bench.budgetSeconds,
-                           "Seconds the whole benchmark may take; rows that would exceed it are "
-                           "skipped")
+  benchCommand
+      ->add_option("--budget", bench.budgetSeconds,
+                   "Seconds the whole benchmark may take; rows that would exceed it are "
+                   "skipped")
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();
   benchCommand->add_option("--json", bench.json, "Also write the results as JSON");
@@ -158,8 +162,9 @@ int main(int argc, char** argv) {
                          "sample) against each shipped kernel (exact and ab2 schemes; half, "
                          "float and byte textures) in one process, for --sizes x --lengths: "
                          "median times, speed-ups, correlations of the volumes");
-  benchCommand->add_option("--distribution-volume", bench.distributionVolume,
-                           "Volume size N (N^3) of --distributions")
+  benchCommand
+      ->add_option("--distribution-volume", bench.distributionVolume,
+                   "Volume size N (N^3) of --distributions")
       ->check(CLI::Range(8, 1024))
       ->capture_default_str();
   benchCommand->footer(globalNote);

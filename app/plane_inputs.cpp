@@ -4,10 +4,10 @@
 #include <cmath>
 #include <string>
 
-#include "lic/analytic_fields.h"
 #include "cli_options.h"
-#include "passes/field_interpolation.h"
+#include "lic/analytic_fields.h"
 #include "lic/field_plane.h"
+#include "passes/field_interpolation.h"
 
 namespace lic3d::cli {
 namespace {

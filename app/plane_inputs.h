@@ -8,9 +8,9 @@
 
 #include "core/error.h"
 #include "core/session.h"
-#include "lic/time_series.h"
 #include "core/volume.h"
 #include "io/volume_io.h"
+#include "lic/time_series.h"
 
 namespace lic3d::cli {
 

@@ -46,14 +46,15 @@ Result<Swapchain> Swapchain::create(const Context& context, VkExtent2D extent, b
   swapchain.device_ = context.device();
   swapchain.format_ = chosen.format;
   swapchain.presentMode_ = mode;
-  swapchain.extent_ = caps.currentExtent.width != UINT32_MAX
-                          ? caps.currentExtent
-                          : VkExtent2D{std::clamp(extent.width, caps.minImageExtent.width,
-                                                  caps.maxImageExtent.width),
-                                       std::clamp(extent.height, caps.minImageExtent.height,
-                                                  caps.maxImageExtent.height)};
+  swapchain.extent_ =
+      caps.currentExtent.width != UINT32_MAX
+          ? caps.currentExtent
+          : VkExtent2D{
+                std::clamp(extent.width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                std::clamp(extent.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
   swapchain.minImageCount_ = caps.minImageCount + 1;
-  if (caps.maxImageCount > 0) swapchain.minImageCount_ = std::min(swapchain.minImageCount_, caps.maxImageCount);
+  if (caps.maxImageCount > 0)
+    swapchain.minImageCount_ = std::min(swapchain.minImageCount_, caps.maxImageCount);
 
   VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   info.surface = surface;

@@ -2,10 +2,10 @@
 // A swapchain for the context's surface: images to present, recreated on resize. Knows nothing
 // of the window system: the surface comes from the front end.
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "gpu/vulkan_context.h"

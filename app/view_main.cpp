@@ -1,11 +1,10 @@
 // lic3d-view: the desktop app. A window shows the LIC volume with blended slices; Dear ImGui
 // panels change every parameter, and the LIC volume is recomputed a slab per frame while the old
 // one stays on screen.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <new>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "cli_options.h"
 #include "viewer.h"
@@ -14,14 +13,16 @@ using namespace lic3d;
 using namespace lic3d::cli;
 
 int main(int argc, char** argv) {
-  CLI::App app{"lic3d-view: the lic3d desktop app. Opens a window with the LIC volume of a vector "
-               "field and panels for every parameter.\nMouse: left drag orbits, shift+left or "
-               "middle drag pans, wheel zooms. Keys: R reset view, Space play the bias "
-               "animation, F12 screenshot, H or Tab hide panels, F1 help, Esc quit."};
+  CLI::App app{
+      "lic3d-view: the lic3d desktop app. Opens a window with the LIC volume of a vector "
+      "field and panels for every parameter.\nMouse: left drag orbits, shift+left or "
+      "middle drag pans, wheel zooms. Keys: R reset view, Space play the bias "
+      "animation, F12 screenshot, H or Tab hide panels, F1 help, Esc quit."};
   app.set_version_flag("--version", "lic3d-view 0.1.0");
-  app.footer("Also started by `lic3d view ...`. Exit status: 0 success, 1 failure (no display, "
-             "no device, GPU or validation error), 2 bad arguments or input files, 3 not enough "
-             "memory for the request.");
+  app.footer(
+      "Also started by `lic3d view ...`. Exit status: 0 success, 1 failure (no display, "
+      "no device, GPU or validation error), 2 bad arguments or input files, 3 not enough "
+      "memory for the request.");
 
   GlobalOptions global;
   addGlobalOptions(app, global);
@@ -58,9 +59,10 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot", options.screenshot,
                  "Scripted run: save the window as this PNG before quitting (needs --frames)");
 
-  app.add_flag("--soak", options.soak,
-               "Scripted endurance run (needs --frames): a LIC or view change every 10 frames, a "
-               "resize for 10 frames every 250; fails if RSS or device memory grows after the warm-up");
+  app.add_flag(
+      "--soak", options.soak,
+      "Scripted endurance run (needs --frames): a LIC or view change every 10 frames, a "
+      "resize for 10 frames every 250; fails if RSS or device memory grows after the warm-up");
   app.add_option("--save-session", options.saveSession,
                  "Save every parameter as a session JSON file on quit (for `lic3d render "
                  "--session`)");
@@ -84,8 +86,10 @@ int main(int argc, char** argv) {
     char rest = 0;
     if (std::sscanf(windowSize.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 64 || h < 64 ||
         w > 16384 || h > 16384) {
-      std::fprintf(stderr, "lic3d-view: error: --window-size: expected WxH between 64 and 16384, "
-                           "got '%s'\n", windowSize.c_str());
+      std::fprintf(stderr,
+                   "lic3d-view: error: --window-size: expected WxH between 64 and 16384, "
+                   "got '%s'\n",
+                   windowSize.c_str());
       return kExitBadInput;
     }
     options.windowWidth = w;

@@ -1,5 +1,7 @@
 #include "viewer.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -9,8 +11,6 @@
 #include <optional>
 #include <vector>
 
-#include <unistd.h>
-
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -19,19 +19,19 @@
 
 #include <glm/trigonometric.hpp>
 
-#include "gpu/gpu_submit.h"
-#include "io/png_writer.h"
-#include "io/session_file.h"
-#include "gpu/gpu_timer.h"
-#include "lic/legend.h"
-#include "passes/lic_renderer.h"
 #include "core/rgba_image.h"
 #include "core/slice_geometry.h"
-#include "swapchain.h"
+#include "gpu/gpu_submit.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/vk_check.h"
+#include "io/png_writer.h"
+#include "io/session_file.h"
+#include "lic/legend.h"
 #include "lic/time_series.h"
+#include "passes/lic_renderer.h"
+#include "swapchain.h"
 #include "viewer_plane.h"
 #include "viewer_ui.h"
-#include "gpu/vk_check.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -68,7 +68,9 @@ struct Input {
        toggleHelp = false, quit = false, resized = false;
 };
 
-Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+Input& inputOf(GLFWwindow* window) {
+  return *static_cast<Input*>(glfwGetWindowUserPointer(window));
+}
 
 void onMouseButton(GLFWwindow* window, int button, int action, int mods) {
   Input& in = inputOf(window);
@@ -201,7 +203,7 @@ class App {
   std::vector<int> stepsLoading_;  // what stepLoading_ reads
   std::vector<int> failedSteps_;   // steps that could not be read: not read again every frame
   double timePhase_ = 0.0;
-  bool loadedOnce_ = false;  // a field load has completed (or the app started in 2D)
+  bool loadedOnce_ = false;   // a field load has completed (or the app started in 2D)
   bool reloadField_ = false;  // the volume's field must be read again (a new device has none)
   int deviceLosses_ = 0;
   // Set when the app has stopped on an error it cannot carry on from: it then only shows the
@@ -228,10 +230,10 @@ class App {
   std::optional<Session> soakBase_;  // the session the soak's changes are set from and undone to
   bool soakSampleDue_ = false;
   struct SoakCounts {
-    std::uint64_t masks = 0;         // sparsity masks asked for
-    std::uint64_t volumes = 0;       // LIC volumes finished and shown
-    std::uint64_t fieldReads = 0;    // fields read on the loading thread
-    std::uint64_t stepReads = 0;     // time steps read on a worker thread
+    std::uint64_t masks = 0;       // sparsity masks asked for
+    std::uint64_t volumes = 0;     // LIC volumes finished and shown
+    std::uint64_t fieldReads = 0;  // fields read on the loading thread
+    std::uint64_t stepReads = 0;   // time steps read on a worker thread
   } soak_;
   int swapchainsCreated_ = 0;
   void soakStep();
@@ -284,13 +286,15 @@ void App::destroySwapchainObjects() {
 }
 
 Result<void> App::init() {
-  glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "lic3d-view: GLFW: %s\n", text); });
+  glfwSetErrorCallback(
+      [](int, const char* text) { std::fprintf(stderr, "lic3d-view: GLFW: %s\n", text); });
   if (!glfwInit())
-    return unsupportedError("cannot open a window (no display? set DISPLAY, or use `lic3d render`)");
-  if (!glfwVulkanSupported())
-    return unsupportedError("GLFW finds no Vulkan loader for windows");
+    return unsupportedError(
+        "cannot open a window (no display? set DISPLAY, or use `lic3d render`)");
+  if (!glfwVulkanSupported()) return unsupportedError("GLFW finds no Vulkan loader for windows");
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-  window_ = glfwCreateWindow(options_.windowWidth, options_.windowHeight, "lic3d", nullptr, nullptr);
+  window_ =
+      glfwCreateWindow(options_.windowWidth, options_.windowHeight, "lic3d", nullptr, nullptr);
   if (!window_) return unsupportedError("cannot create the window");
   glfwSetWindowUserPointer(window_, &input_);
   glfwSetMouseButtonCallback(window_, onMouseButton);
@@ -354,12 +358,14 @@ Result<void> App::createGpu() {
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = context_->queueFamily();
-    LIC3D_TRY(checkVk(vkCreateCommandPool(device, &poolInfo, nullptr, &f.pool), "vkCreateCommandPool"));
+    LIC3D_TRY(
+        checkVk(vkCreateCommandPool(device, &poolInfo, nullptr, &f.pool), "vkCreateCommandPool"));
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = f.pool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     alloc.commandBufferCount = 1;
-    LIC3D_TRY(checkVk(vkAllocateCommandBuffers(device, &alloc, &f.cmd), "vkAllocateCommandBuffers"));
+    LIC3D_TRY(
+        checkVk(vkAllocateCommandBuffers(device, &alloc, &f.cmd), "vkAllocateCommandBuffers"));
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
     LIC3D_TRY(checkVk(vkCreateFence(device, &fenceInfo, nullptr, &f.fence), "vkCreateFence"));
@@ -379,13 +385,15 @@ Result<void> App::createGpu() {
 
   // Dear ImGui 1.86's Vulkan backend draws inside a classic render pass; the volume before it
   // uses dynamic rendering into an offscreen image that is blitted to the swapchain image.
-  const std::array<VkDescriptorPoolSize, 1> sizes{{{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16}}};
+  const std::array<VkDescriptorPoolSize, 1> sizes{
+      {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16}}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
   poolInfo.maxSets = 16;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   poolInfo.pPoolSizes = sizes.data();
-  LIC3D_TRY(checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &uiPool_), "vkCreateDescriptorPool"));
+  LIC3D_TRY(checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &uiPool_),
+                    "vkCreateDescriptorPool"));
   context_->setDebugName(uiPool_, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "imgui descriptors");
 
   ImGui_ImplVulkan_InitInfo info{};
@@ -414,9 +422,8 @@ Result<void> App::createGpu() {
 // says what happened. A device lost again and again is given up on (the error is returned).
 Result<void> App::recoverDevice(const Error& error) {
   saveRecovery();
-  lossStreak_ = deviceLosses_ > 0 && frameNumber_ - lastLossFrame_ < kLossStreakFrames
-                    ? lossStreak_ + 1
-                    : 1;
+  lossStreak_ =
+      deviceLosses_ > 0 && frameNumber_ - lastLossFrame_ < kLossStreakFrames ? lossStreak_ + 1 : 1;
   if (lossStreak_ > kMaxLossStreak) {
     Error fatal = error;
     fatal.message += " (the device was lost " + std::to_string(lossStreak_) + " times within " +
@@ -438,8 +445,10 @@ Result<void> App::recoverDevice(const Error& error) {
   LIC3D_TRY(createGpu());
   reloadField_ = !stats_.loading;
   stats_.alertTitle = "lic3d: the GPU device was lost";
-  stats_.alert = error.message + ". The device was made again and the session restored; a copy of "
-                 "the session is in " + kRecoveryFile + ".";
+  stats_.alert = error.message +
+                 ". The device was made again and the session restored; a copy of "
+                 "the session is in " +
+                 kRecoveryFile + ".";
   return {};
 }
 
@@ -450,10 +459,10 @@ Result<void> App::createSwapchain() {
   glfwGetFramebufferSize(window_, &width, &height);
   vkDeviceWaitIdle(device);
   destroySwapchainObjects();
-  LIC3D_TRY_ASSIGN(Swapchain next,
-                   Swapchain::create(*context_,
-                                     {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height)},
-                                     options_.vsync, swapchain_.handle()));
+  LIC3D_TRY_ASSIGN(Swapchain next, Swapchain::create(*context_,
+                                                     {static_cast<std::uint32_t>(width),
+                                                      static_cast<std::uint32_t>(height)},
+                                                     options_.vsync, swapchain_.handle()));
   swapchain_ = std::move(next);
 
   if (!uiPass_) {
@@ -499,14 +508,18 @@ Result<void> App::createSwapchain() {
     info.height = swapchain_.extent().height;
     info.layers = 1;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
-    LIC3D_TRY(checkVk(vkCreateFramebuffer(device, &info, nullptr, &framebuffer), "vkCreateFramebuffer"));
+    LIC3D_TRY(
+        checkVk(vkCreateFramebuffer(device, &info, nullptr, &framebuffer), "vkCreateFramebuffer"));
     framebuffers_.push_back(framebuffer);
-    context_->setDebugName(framebuffer, VK_OBJECT_TYPE_FRAMEBUFFER, "imgui framebuffer " + std::to_string(i));
+    context_->setDebugName(framebuffer, VK_OBJECT_TYPE_FRAMEBUFFER,
+                           "imgui framebuffer " + std::to_string(i));
     VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore semaphore = VK_NULL_HANDLE;
-    LIC3D_TRY(checkVk(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &semaphore), "vkCreateSemaphore"));
+    LIC3D_TRY(checkVk(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &semaphore),
+                      "vkCreateSemaphore"));
     renderFinished_.push_back(semaphore);
-    context_->setDebugName(semaphore, VK_OBJECT_TYPE_SEMAPHORE, "render finished " + std::to_string(i));
+    context_->setDebugName(semaphore, VK_OBJECT_TYPE_SEMAPHORE,
+                           "render finished " + std::to_string(i));
   }
   if (imguiVulkanReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
 
@@ -571,8 +584,7 @@ Result<void> App::startLoading(const FieldSource& field, const NoiseSource& nois
 }
 
 Result<void> App::finishLoading() {
-  if (!loading_.valid() ||
-      loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+  if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
     return {};
   Result<Loaded> loaded = loading_.get();
   stats_.loading = false;
@@ -638,25 +650,30 @@ Result<void> App::finishLoading() {
 void App::updateCamera(const Input& in) {
   CameraParams& camera = session_.view.camera;
   const VkExtent2D extent = swapchain_.extent();
-  const float aspect = static_cast<float>(extent.width) / static_cast<float>(std::max(extent.height, 1u));
+  const float aspect =
+      static_cast<float>(extent.width) / static_cast<float>(std::max(extent.height, 1u));
   const glm::vec3 half = boxHalfExtent(renderer_->dims(), renderer_->geometry());
   const CameraMatrices m = computeCamera(camera, half, aspect);
   if (in.orbiting) {
     camera.azimuth -= static_cast<float>(in.dx) * 0.3f;
-    camera.elevation = std::clamp(camera.elevation + static_cast<float>(in.dy) * 0.3f, -89.0f, 89.0f);
+    camera.elevation =
+        std::clamp(camera.elevation + static_cast<float>(in.dy) * 0.3f, -89.0f, 89.0f);
   }
   if (in.panning) {
     // One pixel moves the target by the world size of a pixel at the target's depth.
     const float pixel = 2.0f * m.distance * std::tan(glm::radians(camera.fovY) * 0.5f) /
                         static_cast<float>(std::max(extent.height, 1u));
-    camera.target += (-static_cast<float>(in.dx) * m.right + static_cast<float>(in.dy) * m.up) * pixel;
+    camera.target +=
+        (-static_cast<float>(in.dx) * m.right + static_cast<float>(in.dy) * m.up) * pixel;
   }
-  if (in.scroll != 0.0) camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
+  if (in.scroll != 0.0)
+    camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
 }
 
 // The box's edges and axis ranges (--axes) over the volume, in ImGui's background layer.
 void App::drawAxes() const {
-  if (!session_.view.axes || !renderer_->hasVolume() || session_.view.stereo == StereoMode::SideBySide)
+  if (!session_.view.axes || !renderer_->hasVolume() ||
+      session_.view.stereo == StereoMode::SideBySide)
     return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   if (display.x < 1.0f || display.y < 1.0f) return;
@@ -673,8 +690,8 @@ void App::drawAxes() const {
   for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
   for (const AxisLabel& label : axes.labels) {
     const float width = ImGui::CalcTextSize(label.text.c_str()).x;
-    const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f, 2.0f,
-                               std::max(2.0f, display.x - width - 2.0f));
+    const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f,
+                               2.0f, std::max(2.0f, display.x - width - 2.0f));
     draw->AddText(ImVec2(x, label.at.y - 0.5f * ImGui::GetFontSize()), ink, label.text.c_str());
   }
 }
@@ -823,7 +840,8 @@ Result<void> App::handleActions(const Actions& actions) {
     view.width = ui_.imageWidth;
     view.height = ui_.imageHeight;
     Result<RgbaImage> image = renderer_->render(*renderer_->shownParams(), view);
-    const Result<void> written = image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
+    const Result<void> written =
+        image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
     stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
   }
   return {};
@@ -843,8 +861,9 @@ Result<void> App::saveScreenshot(const Frame& f) {
     image.pixels[i + 2] = src[i + (bgra ? 0 : 2)];
     image.pixels[i + 3] = 255;
   }
-  const std::string path = f.scriptedShot ? options_.screenshot
-                                          : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
+  const std::string path = f.scriptedShot
+                               ? options_.screenshot
+                               : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
   LIC3D_TRY(writePng(path, image));
   stats_.message = "wrote " + path;
   if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", path.c_str());
@@ -861,7 +880,8 @@ Result<bool> App::frame() {
 
   Input in = input_;
   input_.dx = input_.dy = input_.scroll = 0.0;
-  input_.resetView = input_.togglePlay = input_.screenshot = input_.toggleUi = input_.toggleHelp = false;
+  input_.resetView = input_.togglePlay = input_.screenshot = input_.toggleUi = input_.toggleHelp =
+      false;
   if (in.quit || glfwWindowShouldClose(window_)) return false;
 
   int width = 0, height = 0;
@@ -966,10 +986,10 @@ Result<bool> App::frame() {
 
   // A scripted run takes its screenshot once the volume for the current parameters is shown
   // (stopped: at once, showing the error).
-  const bool ready = stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
-                                                : !stats_.loading && renderer_->hasVolume() &&
-                                                      !renderer_->licStatus().pending &&
-                                                      !timePending());
+  const bool ready =
+      stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
+                                 : !stats_.loading && renderer_->hasVolume() &&
+                                       !renderer_->licStatus().pending && !timePending());
   const bool scriptedShot = options_.frames > 0 &&
                             frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
                             ready;
@@ -1003,8 +1023,9 @@ Result<bool> App::frame() {
   if (f.timed) f.timer.begin(cmd, 1);
   beginClearedRendering(cmd, offscreen_.view(), extent, session_.view.background);
   const Result<void> drawn =
-      session_.twoD || stopped_ ? Result<void>()
-                    : renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
+      session_.twoD || stopped_
+          ? Result<void>()
+          : renderer_->recordDraw(cmd, kOffscreenFormat, extent, session_.view, 2 * slot);
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);
@@ -1025,7 +1046,8 @@ Result<bool> App::frame() {
                VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkImageBlit blit{};
   blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  blit.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+  blit.srcOffsets[1] = {static_cast<std::int32_t>(extent.width),
+                        static_cast<std::int32_t>(extent.height), 1};
   blit.dstSubresource = blit.srcSubresource;
   blit.dstOffsets[1] = blit.srcOffsets[1];
   vkCmdBlitImage(cmd, offscreen_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
@@ -1041,13 +1063,14 @@ Result<bool> App::frame() {
 
   if (f.screenshot) {
     imageBarrier(cmd, target, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f.readback.handle(), 1,
-                           &region);
+    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f.readback.handle(),
+                           1, &region);
     imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_NONE,
                  VK_ACCESS_2_NONE);
@@ -1117,7 +1140,8 @@ void App::soakStep() {
     if ((n / kSoakChangeEvery) % 2 == 1) {
       switch ((n / (2 * kSoakChangeEvery)) % 4) {
         case 0:
-          session_.lic.length = session_.lic.length == base.lic.length ? base.lic.length + 1 : base.lic.length;
+          session_.lic.length =
+              session_.lic.length == base.lic.length ? base.lic.length + 1 : base.lic.length;
           break;
         case 1:
           if (session_.lic.sparsity == base.lic.sparsity) {
@@ -1130,7 +1154,8 @@ void App::soakStep() {
           }
           break;
         case 2:
-          session_.noise.seed = session_.noise.seed == base.noise.seed ? base.noise.seed + 1 : base.noise.seed;
+          session_.noise.seed =
+              session_.noise.seed == base.noise.seed ? base.noise.seed + 1 : base.noise.seed;
           break;
         default:
           // Two and a half steps on: neither step of the bracket is resident.
@@ -1183,22 +1208,25 @@ int App::soakVerdict() const {
   const std::uint64_t dev1 = maxOf(0, half, &MemorySample::deviceBytes);
   const std::uint64_t dev2 = maxOf(half, s.size(), &MemorySample::deviceBytes);
   const double mib = 1.0 / (1 << 20);
-  std::printf("lic3d-view soak: %llu frames, samples every %d after %d warm-up frames; RSS max "
-              "%.1f MiB (first half) -> %.1f MiB (second half); device memory max %.1f -> %.1f MiB; "
-              "%d swapchains; %llu LIC volumes, %llu of %llu sparsity masks, %llu field reads, "
-              "%llu time steps read\n",
-              static_cast<unsigned long long>(frameNumber_), static_cast<int>(kSoakSampleEvery),
-              static_cast<int>(kSoakWarmupFrames), static_cast<double>(rss1) * mib,
-              static_cast<double>(rss2) * mib, static_cast<double>(dev1) * mib,
-              static_cast<double>(dev2) * mib, swapchainsCreated_,
-              static_cast<unsigned long long>(soak_.volumes),
-              static_cast<unsigned long long>(renderer_->maskBuildCount()),
-              static_cast<unsigned long long>(soak_.masks),
-              static_cast<unsigned long long>(soak_.fieldReads),
-              static_cast<unsigned long long>(soak_.stepReads));
+  std::printf(
+      "lic3d-view soak: %llu frames, samples every %d after %d warm-up frames; RSS max "
+      "%.1f MiB (first half) -> %.1f MiB (second half); device memory max %.1f -> %.1f MiB; "
+      "%d swapchains; %llu LIC volumes, %llu of %llu sparsity masks, %llu field reads, "
+      "%llu time steps read\n",
+      static_cast<unsigned long long>(frameNumber_), static_cast<int>(kSoakSampleEvery),
+      static_cast<int>(kSoakWarmupFrames), static_cast<double>(rss1) * mib,
+      static_cast<double>(rss2) * mib, static_cast<double>(dev1) * mib,
+      static_cast<double>(dev2) * mib, swapchainsCreated_,
+      static_cast<unsigned long long>(soak_.volumes),
+      static_cast<unsigned long long>(renderer_->maskBuildCount()),
+      static_cast<unsigned long long>(soak_.masks),
+      static_cast<unsigned long long>(soak_.fieldReads),
+      static_cast<unsigned long long>(soak_.stepReads));
   if (rss2 > rss1 + kSoakRssSlack || dev2 > dev1) {
-    std::fprintf(stderr, "lic3d-view: error: memory grew during the soak (tolerance: %.0f MiB of "
-                         "RSS, no device memory)\n", static_cast<double>(kSoakRssSlack) * mib);
+    std::fprintf(stderr,
+                 "lic3d-view: error: memory grew during the soak (tolerance: %.0f MiB of "
+                 "RSS, no device memory)\n",
+                 static_cast<double>(kSoakRssSlack) * mib);
     return cli::kExitFailure;
   }
   return cli::kExitOk;

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/session.h"
 #include "gpu/gpu_resources.h"
+#include "gpu/vulkan_context.h"
 #include "lic/colouring.h"
 #include "passes/lic2d_pass.h"
 #include "plane_inputs.h"
-#include "core/session.h"
-#include "gpu/vulkan_context.h"
 
 namespace lic3d::viewer {
 
@@ -52,7 +52,7 @@ class PlaneView {
   NoiseVolume noise_;
   std::optional<Lic2DInputs> inputs_;
   ScalarVolume lic_;
-  Image picture_;                // RGBA8, kept in TRANSFER_SRC_OPTIMAL
+  Image picture_;                  // RGBA8, kept in TRANSFER_SRC_OPTIMAL
   std::optional<Session> made_;    // what picture_ shows
   std::optional<Session> failed_;  // the last session whose picture could not be made
   float minMagnitude_ = 0.0f, maxMagnitude_ = 1.0f;

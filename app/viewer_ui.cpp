@@ -1,15 +1,15 @@
 #include "viewer_ui.h"
 
+#include <imgui.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstring>
 
-#include <imgui.h>
-
-#include "lic/analytic_fields.h"
 #include "core/colormap.h"
 #include "core/enum_names.h"
+#include "lic/analytic_fields.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -90,7 +90,8 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   n.seedSpots = std::max(n.seedSpots, 0);
   tip("Sparse seed noise: this many bright spots on black instead of white noise (0: white "
       "noise)");
-  text("noise file", n.file, "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
+  text("noise file", n.file,
+       "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
   if (ImGui::Button("Load")) actions.reloadField = true;
   tip("Load the field and noise above (the LIC volume is recomputed)");
   if (!session.twoD) return;
@@ -296,8 +297,9 @@ void statsOverlay(const Stats& stats) {
                                       ImVec2(10000.0f, 10000.0f));
   ImGui::SetNextWindowBgAlpha(0.5f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+                                 ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                                 ImGuiWindowFlags_NoMove;
   if (ImGui::Begin("stats", nullptr, flags)) {
     ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
                 stats.licMs, stats.frameMs);

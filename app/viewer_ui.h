@@ -35,10 +35,10 @@ struct Stats {
 struct Actions {
   bool saveSession = false;
   bool loadSession = false;
-  bool screenshot = false;       // at window size, with the UI
-  bool renderImage = false;      // offscreen at the chosen size, without the UI
+  bool screenshot = false;   // at window size, with the UI
+  bool renderImage = false;  // offscreen at the chosen size, without the UI
   bool resetView = false;
-  bool reloadField = false;      // the field or noise source changed
+  bool reloadField = false;  // the field or noise source changed
   bool dismissAlert = false;
 };
 
@@ -51,7 +51,7 @@ struct UiState {
   std::string imagePath = "lic3d-render.png";
   int imageWidth = 1920;
   int imageHeight = 1080;
-  FieldSource pendingField;      // edited until "Load" is pressed
+  FieldSource pendingField;  // edited until "Load" is pressed
   NoiseSource pendingNoise;
   int pendingTimeSteps = 0;   // steps of a time-dependent analytic field (0: the default)
   bool playingTime = false;   // time animation

@@ -10,7 +10,7 @@ packages="
   libglm-dev libglfw3-dev libimgui-dev libstb-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libpugixml-dev libgtest-dev
   xvfb xauth
-  clang-14 libclang-rt-14-dev
+  clang-14 libclang-rt-14-dev clang-format-14
   paraview paraview-dev python3-paraview openmpi-bin libopenmpi-dev libdouble-conversion-dev
 "
 

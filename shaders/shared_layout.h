@@ -34,9 +34,10 @@ LIC3D_CONST kLicConstLocalSizeX = 4;
 LIC3D_CONST kLicConstLocalSizeY = 5;
 LIC3D_CONST kLicConstLocalSizeZ = 6;
 LIC3D_CONST kLicConstSparsity = 7;
-LIC3D_CONST kLicConstScheme = 8;    // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
-LIC3D_CONST kLicConstPacking = 9;   // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
-LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop (GPUs), 0: one after the other
+LIC3D_CONST kLicConstScheme = 8;   // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
+LIC3D_CONST kLicConstPacking = 9;  // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
+LIC3D_CONST kLicConstInterleave =
+    10;  // 1: both directions in one loop (GPUs), 0: one after the other
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch
@@ -62,10 +63,10 @@ struct HistogramPushConstants {
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
-LIC3D_CONST kSliceBindingVolume = 0;    // sampler3D: the LIC volume (r = LIC, g = drawn)
-LIC3D_CONST kSliceBindingField = 1;     // sampler3D: the field texture (volume_textures.h)
-LIC3D_CONST kSliceBindingColormap = 2;  // sampler2D: one row per colour map
-LIC3D_CONST kSliceBindingUniforms = 3;  // uniform SliceUniforms
+LIC3D_CONST kSliceBindingVolume = 0;      // sampler3D: the LIC volume (r = LIC, g = drawn)
+LIC3D_CONST kSliceBindingField = 1;       // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kSliceBindingColormap = 2;    // sampler2D: one row per colour map
+LIC3D_CONST kSliceBindingUniforms = 3;    // uniform SliceUniforms
 LIC3D_CONST kSliceVerticesPerSlice = 12;  // a convex polygon of up to 6 corners as 4 triangles
 
 // Specialization constant ids of the slice pipeline (see SliceSpecialization in slice_pass.h).
@@ -85,29 +86,29 @@ LIC3D_CONST kSliceConstFieldPacking = 12;     // the field texture's packing (kL
 
 // One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
 struct SliceUniforms {
-  mat4 viewProjection;   // world -> clip
-  mat4 roiFromTexture;   // texture coordinates -> region-of-interest frame (unit size)
-  vec4 halfExtent;       // xyz: half the box size in world units (box centred at the origin);
-                         // w: alpha per reference distance (one voxel)
-  vec4 clipMin;          // xyz: corner of the clip box in world units; w: unused
-  vec4 clipMax;          // xyz: opposite corner
-  vec4 planeNormal;      // xyz: unit normal of the slice planes, pointing towards the viewer;
-                         // w: plane offset of slice 0 (the farthest)
-  vec4 eyePosition;      // xyz: the camera (this eye); w: distance between slices
-  vec4 toViewer;         // xyz: unit direction from the volume to the camera; w: unused
-  vec4 transfer;         // grey = clamp(x * intensity + y); z: reference distance; w: unused
-  vec4 magnitude;        // x: low end of the colour range (physical |v|), y: 1 / (high - low),
-                         // zw: unused
-  vec4 magnitudeOpacity; // x: exponent, y: threshold (normalised magnitude), zw: unused
-  vec4 fog;              // x: distance where fog starts, y: 1 / (end - start), zw: unused
-  vec4 fogColor;         // rgb
-  vec4 light;            // xyz: unit direction towards the light; w: specular exponent
-  vec4 lightTerms;       // x: ambient, y: diffuse, z: specular, w: unused
-  vec4 voxelSize;        // xyz: one voxel in world units (texel xyz, in voxel units, times this
-                         // points along the flow in world space); w: unused
-  vec4 texelToPhysical;  // xyz: a field texel's xyz times this is the physical vector; w: unused
-  uvec4 modes[3];        // the 12 display-mode specialization constants in order, read only by the
-                         // benchmark's runtime-mode build of slice.frag
+  mat4 viewProjection;    // world -> clip
+  mat4 roiFromTexture;    // texture coordinates -> region-of-interest frame (unit size)
+  vec4 halfExtent;        // xyz: half the box size in world units (box centred at the origin);
+                          // w: alpha per reference distance (one voxel)
+  vec4 clipMin;           // xyz: corner of the clip box in world units; w: unused
+  vec4 clipMax;           // xyz: opposite corner
+  vec4 planeNormal;       // xyz: unit normal of the slice planes, pointing towards the viewer;
+                          // w: plane offset of slice 0 (the farthest)
+  vec4 eyePosition;       // xyz: the camera (this eye); w: distance between slices
+  vec4 toViewer;          // xyz: unit direction from the volume to the camera; w: unused
+  vec4 transfer;          // grey = clamp(x * intensity + y); z: reference distance; w: unused
+  vec4 magnitude;         // x: low end of the colour range (physical |v|), y: 1 / (high - low),
+                          // zw: unused
+  vec4 magnitudeOpacity;  // x: exponent, y: threshold (normalised magnitude), zw: unused
+  vec4 fog;               // x: distance where fog starts, y: 1 / (end - start), zw: unused
+  vec4 fogColor;          // rgb
+  vec4 light;             // xyz: unit direction towards the light; w: specular exponent
+  vec4 lightTerms;        // x: ambient, y: diffuse, z: specular, w: unused
+  vec4 voxelSize;         // xyz: one voxel in world units (texel xyz, in voxel units, times this
+                          // points along the flow in world space); w: unused
+  vec4 texelToPhysical;   // xyz: a field texel's xyz times this is the physical vector; w: unused
+  uvec4 modes[3];         // the 12 display-mode specialization constants in order, read only by the
+                          // benchmark's runtime-mode build of slice.frag
 };
 
 // ---- 2D LIC pass (lic2d.comp) -------------------------------------------------------------------
@@ -138,9 +139,9 @@ struct Lic2DPushConstants {
 };
 
 // ---- Time interpolation of the field texture (field_lerp.comp) ----------------------------------
-LIC3D_CONST kLerpBindingStepA = 0;  // sampler3D: time step A, xyz = v / max|v| of that step
-LIC3D_CONST kLerpBindingStepB = 1;  // sampler3D: time step B, likewise
-LIC3D_CONST kLerpBindingNoise = 2;  // sampler3D r32f: the noise
+LIC3D_CONST kLerpBindingStepA = 0;   // sampler3D: time step A, xyz = v / max|v| of that step
+LIC3D_CONST kLerpBindingStepB = 1;   // sampler3D: time step B, likewise
+LIC3D_CONST kLerpBindingNoise = 2;   // sampler3D r32f: the noise
 LIC3D_CONST kLerpBindingTarget = 3;  // image3D: the field texture (RGBA16F or RGBA32F) written
 LIC3D_CONST kLerpBindingRanges = 4;  // buffer of kLerpRangeCount uints, float bits (see below)
 LIC3D_CONST kLerpConstPhase = 0;     // 0: measure the interpolated field, 1: write the texture

@@ -2,21 +2,20 @@
 // A fixture for tests that use the GPU: a Vulkan context with validation and synchronization
 // validation on; any validation message fails the test.
 
-#include <functional>
-#include <optional>
-#include <vector>
+#include <gtest/gtest.h>
 
+#include <functional>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <optional>
+#include <vector>
 
-#include <gtest/gtest.h>
-
-#include "passes/lic_renderer.h"
 #include "core/rgba_image.h"
 #include "core/view_params.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d::test {
 

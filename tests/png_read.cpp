@@ -28,9 +28,8 @@ void readBytes(png_structp png, png_bytep out, png_size_t length) {
   png_textp texts = nullptr;
   const int count = png_get_text(png, info, &texts, nullptr);
   for (int i = 0; i < count; ++i) {
-    out.text[texts[i].key] = std::string(texts[i].text, texts[i].itxt_length > 0
-                                                            ? texts[i].itxt_length
-                                                            : texts[i].text_length);
+    out.text[texts[i].key] = std::string(
+        texts[i].text, texts[i].itxt_length > 0 ? texts[i].itxt_length : texts[i].text_length);
     out.compression[texts[i].key] = texts[i].compression;
   }
 }

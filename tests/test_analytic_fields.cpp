@@ -1,9 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/glm.hpp>
+#include <numbers>
 
 #include "lic/analytic_fields.h"
 
@@ -54,9 +53,8 @@ TEST(AnalyticFields, SolenoidalAndAbcAreDivergenceFree) {
     for (int k = 1; k < 32; ++k)
       for (int j = 1; j < 32; ++j)
         for (int i = 1; i < 32; ++i) {
-          const double div = (f.at(i + 1, j, k).x - f.at(i - 1, j, k).x +
-                              f.at(i, j + 1, k).y - f.at(i, j - 1, k).y +
-                              f.at(i, j, k + 1).z - f.at(i, j, k - 1).z) /
+          const double div = (f.at(i + 1, j, k).x - f.at(i - 1, j, k).x + f.at(i, j + 1, k).y -
+                              f.at(i, j - 1, k).y + f.at(i, j, k + 1).z - f.at(i, j, k - 1).z) /
                              (2 * h);
           worst = std::max(worst, std::abs(div));
           scale = std::max(scale, static_cast<double>(glm::length(f.at(i, j, k))) / h);
@@ -85,7 +83,8 @@ TEST(AnalyticFields, TornadoSwirlsAroundAVerticalFunnel) {
   // Crawfis: magnitudes from 0 to about 0.4 near the funnel, rotation about z (clockwise seen
   // from +z: v ~ scale * (y - yc, -(x - xc))), with an upward component inside the funnel.
   double largest = 0.0;
-  for (const glm::vec3& v : t.vectors) largest = std::max(largest, static_cast<double>(glm::length(v)));
+  for (const glm::vec3& v : t.vectors)
+    largest = std::max(largest, static_cast<double>(glm::length(v)));
   EXPECT_GT(largest, 0.2);
   EXPECT_LT(largest, 2.0);
   // At the bottom slice, the centre is (0.5, 0.6): a point at +x of it moves towards -y.

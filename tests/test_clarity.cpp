@@ -4,15 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
-#include "lic/analytic_fields.h"
-#include "gpu_test_support.h"
-#include "lic/lic_reference.h"
-#include "passes/lic_renderer.h"
-#include "lic/noise.h"
 #include "gpu/shader_library.h"
+#include "gpu_test_support.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -132,7 +131,8 @@ ViewParams frontView(int size) {
 TEST_F(GpuTest, ColourByMagnitudeFollowsTheThesisRampWithALegend) {
   const Dims dims{16, 16, 16};
   const VectorField field = speedRamp(dims);
-  LicRenderer renderer = rendererWithVolume(context(), dims, [](int, int, int) { return 1.0f; }, &field);
+  LicRenderer renderer = rendererWithVolume(
+      context(), dims, [](int, int, int) { return 1.0f; }, &field);
   ViewParams view = frontView(128);
   view.width = 256;  // room for the legend beside the volume
   view.color = ColorMode::Magnitude;
@@ -164,7 +164,8 @@ TEST_F(GpuTest, ColourByMagnitudeFollowsTheThesisRampWithALegend) {
 TEST_F(GpuTest, MagnitudeOpacityFadesSlowRegions) {
   const Dims dims{16, 16, 16};
   const VectorField field = speedRamp(dims);
-  LicRenderer renderer = rendererWithVolume(context(), dims, [](int, int, int) { return 1.0f; }, &field);
+  LicRenderer renderer = rendererWithVolume(
+      context(), dims, [](int, int, int) { return 1.0f; }, &field);
   ViewParams view = frontView(128);
   view.alpha = 0.2f;
   view.magnitudeOpacity = 1.0f;
@@ -174,8 +175,9 @@ TEST_F(GpuTest, MagnitudeOpacityFadesSlowRegions) {
   EXPECT_TRUE(isBackground(image.at(35, 64)));
   EXPECT_FALSE(isBackground(image.at(90, 64)));
   // Opacity grows with speed between the two.
-  EXPECT_LT(std::abs(luminance(image.at(60, 64)) - luminance(glm::u8vec4(kBackground * 255.0f, 255))),
-            std::abs(luminance(image.at(90, 64)) - luminance(glm::u8vec4(kBackground * 255.0f, 255))));
+  EXPECT_LT(
+      std::abs(luminance(image.at(60, 64)) - luminance(glm::u8vec4(kBackground * 255.0f, 255))),
+      std::abs(luminance(image.at(90, 64)) - luminance(glm::u8vec4(kBackground * 255.0f, 255))));
 }
 
 // ---- Anisotropic grids --------------------------------------------------------------------------
@@ -296,7 +298,8 @@ TEST_F(GpuTest, ClipPlanesLeaveTheClippedRegionAtBackground) {
   int inside = 0, insideDrawn = 0, outside = 0, outsideBackground = 0;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
-      const double d = kept.signedDistance({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
+      const double d =
+          kept.signedDistance({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
       if (d > 2.0) {
         ++inside;
         insideDrawn += !isBackground(image.at(x, y));
@@ -331,9 +334,9 @@ Coverage coverage(const RgbaImage& image) {
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x)
       if (!isBackground(image.at(x, y)))
-        c.maxRadius = std::max(
-            c.maxRadius, glm::distance(c.centre, glm::vec2(static_cast<float>(x) + 0.5f,
-                                                           static_cast<float>(y) + 0.5f)));
+        c.maxRadius =
+            std::max(c.maxRadius, glm::distance(c.centre, glm::vec2(static_cast<float>(x) + 0.5f,
+                                                                    static_cast<float>(y) + 0.5f)));
   return c;
 }
 
@@ -475,9 +478,8 @@ TEST_F(GpuTest, LightingChangesTheShadingAndTheTwoModelsDiffer) {
 
 TEST_F(GpuTest, NearestFilteringKeepsVoxelValues) {
   const Dims dims{8, 8, 8};
-  LicRenderer renderer = rendererWithVolume(context(), dims, [](int i, int j, int k) {
-    return (i + j + k) % 2 ? 1.0f : 0.0f;
-  });
+  LicRenderer renderer = rendererWithVolume(
+      context(), dims, [](int i, int j, int k) { return (i + j + k) % 2 ? 1.0f : 0.0f; });
   ViewParams view = frontView(128);
   view.filter = VolumeFilter::Nearest;
   const RgbaImage nearest = *renderer.render(LicParams{}, view);

@@ -1,6 +1,5 @@
 // The command line as a user meets it: flags, help, exit status, files.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,21 +10,20 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "lic/analytic_fields.h"
 #include "core/colormap.h"
-#include "lic/lic_reference.h"
+#include "core/session.h"
 #include "io/nrrd.h"
+#include "io/vti.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
 #include "lic/noise.h"
 #include "png_read.h"
-#include "core/session.h"
 #include "test_support.h"
-#include "io/vti.h"
 
 namespace lic3d {
 namespace {
@@ -80,20 +78,69 @@ TEST_F(CliTest, HelpListsEveryOption) {
   for (const char* command : {"devices", "compute", "render", "bench", "--device", "--validation"})
     EXPECT_NE(top.output.find(command), std::string::npos) << command;
 
-  const char* shared[] = {"--field", "--grid", "--noise", "--seed", "--seed-noise", "--length",
-                          "--step", "--bias", "--integrator", "--kernel", "--noise-filter",
-                          "--direction", "--field-precision", "--sparsity", "--sparsity-points",
-                          "--sparsity-radius", "--sparsity-ratio", "--sparsity-seed", "--cpu",
-                          "--output", "--array"};
-  const char* view[] = {"--width", "--height", "--slices", "--slicing", "--azimuth",
-                        "--elevation", "--distance", "--fov", "--ortho", "--alpha", "--opacity",
-                        "--filter", "--background", "--contrast", "--window", "--gain",
-                        "--brightness", "--color", "--colormap", "--color-range", "--legend",
-                        "--magnitude-opacity", "--magnitude-threshold", "--clip", "--roi", "--axes",
-                        "--roi-center", "--roi-size", "--roi-rotate", "--roi-outside", "--fog",
-                        "--fog-color", "--stereo", "--eye-separation", "--zero-parallax",
-                        "--lighting", "--turntable", "--animate-bias", "--frames", "--video",
-                        "--fps", "--rgba-volume"};
+  const char* shared[] = {"--field",
+                          "--grid",
+                          "--noise",
+                          "--seed",
+                          "--seed-noise",
+                          "--length",
+                          "--step",
+                          "--bias",
+                          "--integrator",
+                          "--kernel",
+                          "--noise-filter",
+                          "--direction",
+                          "--field-precision",
+                          "--sparsity",
+                          "--sparsity-points",
+                          "--sparsity-radius",
+                          "--sparsity-ratio",
+                          "--sparsity-seed",
+                          "--cpu",
+                          "--output",
+                          "--array"};
+  const char* view[] = {"--width",
+                        "--height",
+                        "--slices",
+                        "--slicing",
+                        "--azimuth",
+                        "--elevation",
+                        "--distance",
+                        "--fov",
+                        "--ortho",
+                        "--alpha",
+                        "--opacity",
+                        "--filter",
+                        "--background",
+                        "--contrast",
+                        "--window",
+                        "--gain",
+                        "--brightness",
+                        "--color",
+                        "--colormap",
+                        "--color-range",
+                        "--legend",
+                        "--magnitude-opacity",
+                        "--magnitude-threshold",
+                        "--clip",
+                        "--roi",
+                        "--axes",
+                        "--roi-center",
+                        "--roi-size",
+                        "--roi-rotate",
+                        "--roi-outside",
+                        "--fog",
+                        "--fog-color",
+                        "--stereo",
+                        "--eye-separation",
+                        "--zero-parallax",
+                        "--lighting",
+                        "--turntable",
+                        "--animate-bias",
+                        "--frames",
+                        "--video",
+                        "--fps",
+                        "--rgba-volume"};
   const CommandRun compute = run("compute --help");
   EXPECT_EQ(compute.status, 0);
   for (const char* flag : shared) EXPECT_NE(compute.output.find(flag), std::string::npos) << flag;
@@ -110,35 +157,36 @@ TEST_F(CliTest, HelpListsEveryOption) {
 }
 
 TEST_F(CliTest, EveryRenderFlagParses) {
-  const CommandRun r = run(
-      "render --field abc --grid 10,12,14 --seed 3 --length 6 --step 0.75 --bias -2 "
-      "--integrator rk4 --kernel hann --noise-filter nearest --direction magnitude "
-      "--width 64 --height 48 --slices 20 --slicing axis --azimuth 10 --elevation -30 "
-      "--distance 3 --fov 40 --ortho --alpha 0.5 --opacity constant --filter nearest "
-      "--background 255,128,0 --window 0.2,0.8 --gain 1.2 --brightness 0.1 -o out.png");
+  const CommandRun r =
+      run("render --field abc --grid 10,12,14 --seed 3 --length 6 --step 0.75 --bias -2 "
+          "--integrator rk4 --kernel hann --noise-filter nearest --direction magnitude "
+          "--width 64 --height 48 --slices 20 --slicing axis --azimuth 10 --elevation -30 "
+          "--distance 3 --fov 40 --ortho --alpha 0.5 --opacity constant --filter nearest "
+          "--background 255,128,0 --window 0.2,0.8 --gain 1.2 --brightness 0.1 -o out.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("out.png")), std::make_pair(64, 48));
-  const CommandRun clarity = run(
-      "render --grid 12 --width 64 --height 48 --sparsity poisson --sparsity-radius 2 "
-      "--sparsity-seed 4 --contrast off --color magnitude --colormap viridis "
-      "--color-range 0.1,0.4 --legend --magnitude-opacity 1.5 --magnitude-threshold 0.1 "
-      "--clip 0,1,0.2,0.9,0,0.7 --roi cylinder --roi-center 0.5,0.4,0.5 --roi-size 0.7 "
-      "--roi-rotate 10,20,30 --roi-outside --fog 0.1,0.9 --fog-color 20,20,40 "
-      "--stereo side-by-side --eye-separation 0.05 --zero-parallax 2.5 --lighting phong "
-      "-o clarity.png");
+  const CommandRun clarity =
+      run("render --grid 12 --width 64 --height 48 --sparsity poisson --sparsity-radius 2 "
+          "--sparsity-seed 4 --contrast off --color magnitude --colormap viridis "
+          "--color-range 0.1,0.4 --legend --magnitude-opacity 1.5 --magnitude-threshold 0.1 "
+          "--clip 0,1,0.2,0.9,0,0.7 --roi cylinder --roi-center 0.5,0.4,0.5 --roi-size 0.7 "
+          "--roi-rotate 10,20,30 --roi-outside --fog 0.1,0.9 --fog-color 20,20,40 "
+          "--stereo side-by-side --eye-separation 0.05 --zero-parallax 2.5 --lighting phong "
+          "-o clarity.png");
   ASSERT_EQ(clarity.status, 0) << clarity.output;
   EXPECT_EQ(pngSize(path("clarity.png")), std::make_pair(128, 48)) << "side by side: two eyes";
   for (const char* variant :
-       {"--sparsity checkerboard --sparsity-ratio 0.1", "--sparsity poisson-approx --sparsity-points 50",
-        "--sparsity jitter --sparsity-radius 2", "--sparsity halton --sparsity-points 100",
-        "--sparsity hammersley --sparsity-points 100", "--seed-noise 40", "--stereo anaglyph",
-        "--lighting lines", "--roi sphere", "--roi cube", "--colormap coolwarm --color magnitude",
-        "--window 0.3,0.7", "--contrast on"}) {
+       {"--sparsity checkerboard --sparsity-ratio 0.1",
+        "--sparsity poisson-approx --sparsity-points 50", "--sparsity jitter --sparsity-radius 2",
+        "--sparsity halton --sparsity-points 100", "--sparsity hammersley --sparsity-points 100",
+        "--seed-noise 40", "--stereo anaglyph", "--lighting lines", "--roi sphere", "--roi cube",
+        "--colormap coolwarm --color magnitude", "--window 0.3,0.7", "--contrast on"}) {
     const CommandRun v = run(std::string("render --grid 10 --width 32 --height 32 -q ") + variant +
                              " -o variant.png");
     EXPECT_EQ(v.status, 0) << variant << "\n" << v.output;
   }
-  const CommandRun sparse = run("compute --grid 12 --sparsity hammersley --sparsity-points 40 -o s.nrrd");
+  const CommandRun sparse =
+      run("compute --grid 12 --sparsity hammersley --sparsity-points 40 -o s.nrrd");
   ASSERT_EQ(sparse.status, 0) << sparse.output;
   const CommandRun cpu =
       run("--device 0 --validation render --cpu --grid 8 --width 32 --height 32 -q -o cpu.png");
@@ -148,9 +196,9 @@ TEST_F(CliTest, EveryRenderFlagParses) {
 }
 
 TEST_F(CliTest, BenchRunsAndWritesJson) {
-  const CommandRun r = run(
-      "bench --field vortex --sizes 8,12 --lengths 2 --frame-sizes 32 --frame-volume 8 "
-      "--repeats 5 --warmup 1 --budget 60 --field-precision half --json bench.json");
+  const CommandRun r =
+      run("bench --field vortex --sizes 8,12 --lengths 2 --frame-sizes 32 --frame-volume 8 "
+          "--repeats 5 --warmup 1 --budget 60 --field-precision half --json bench.json");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("llvmpipe"), std::string::npos) << "names the device";
   EXPECT_NE(r.output.find("12^3"), std::string::npos) << r.output;
@@ -224,8 +272,8 @@ TEST_F(CliTest, ComputeWritesTheLicVolumeOnTheFieldGrid) {
 
 TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
   const char* cases[] = {
-      "",                                         // no subcommand
-      "paint",                                    // unknown subcommand
+      "",       // no subcommand
+      "paint",  // unknown subcommand
       "render --no-such-flag",
       "render --integrator rk3",
       "render --kernel triangle",
@@ -261,7 +309,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --colormap jet",
       "render --color-range 1",
       "render --color-range 0.5,0.2",
-      "render --legend",                          // a legend needs --color magnitude
+      "render --legend",  // a legend needs --color magnitude
       "render --magnitude-opacity -1",
       "render --magnitude-threshold 2",
       "render --clip 0,1,0,1",
@@ -283,7 +331,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "bench --repeats 2",
       "--device no-such-device render --grid 8",
       // --array, compute outputs, --slice
-      "render --grid 8 --array B",                // an analytic field has no arrays
+      "render --grid 8 --array B",  // an analytic field has no arrays
       "compute --grid 8 -o volume.raw",
       "compute --grid 8 --slice z -o volume.nrrd",  // a slice is a PNG
       "compute --grid 8 --slice z:8 -o slice.png",  // 8 slices: 0..7
@@ -300,13 +348,13 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --grid 8 --turntable 0",
       "render --grid 8 --turntable 3 --animate-bias 3",
       "render --grid 8 --length 0 --animate-bias 4",
-      "render --grid 8 --frames 0:2",              // no animation
+      "render --grid 8 --frames 0:2",  // no animation
       "render --grid 8 --turntable 4 --frames 3:3",
       "render --grid 8 --turntable 4 --frames 2:5",
       "render --grid 8 --turntable 4 --frames -1:2",
       "render --grid 8 --turntable 4 --frames a:b",
       "render --grid 8 --turntable 4 --frames 2",
-      "render --grid 8 --video movie.mp4",         // no animation
+      "render --grid 8 --video movie.mp4",  // no animation
       "render --grid 8 --turntable 3 --video movie.avi",
       "render --grid 8 --turntable 3 --frames 0:2 --video movie.mp4",
       "render --grid 8 --turntable 3 --fps 0 --video movie.mp4",
@@ -352,8 +400,9 @@ TEST_F(CliTest, BadFilesExitWithStatusTwoNamingTheFile) {
 }
 
 TEST_F(CliTest, RealFieldFromFile) {
-  const CommandRun r = run("render --field '" + (test::dataFolder() / "example-femm-3d.vtk").string() +
-                           "' --width 64 --height 64 -o femm.png");
+  const CommandRun r =
+      run("render --field '" + (test::dataFolder() / "example-femm-3d.vtk").string() +
+          "' --width 64 --height 64 -o femm.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(pngSize(path("femm.png")), std::make_pair(64, 64));
 }
@@ -419,7 +468,6 @@ TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
-
 // ---- Real data in, results out ----------------------------------------------------------------
 
 // An 8x8x8 VTK legacy file with two vector arrays: "along" (+x everywhere, with `nanVectors` NaN
@@ -469,7 +517,8 @@ TEST_F(CliTest, ArrayPicksTheVectorArrayOfAFileAndNamesTheOthers) {
   const CommandRun first = run("compute --field two.vtk -o default.nrrd", "", Streams::StderrOnly);
   ASSERT_EQ(first.status, 0) << first.output;
   EXPECT_NE(first.output.find("read 'along'"), std::string::npos) << first.output;
-  EXPECT_NE(first.output.find("'swirl'"), std::string::npos) << "lists the others: " << first.output;
+  EXPECT_NE(first.output.find("'swirl'"), std::string::npos)
+      << "lists the others: " << first.output;
   EXPECT_NE(first.output.find("--array"), std::string::npos) << first.output;
   // The summary names the file's grid, spacing and origin.
   EXPECT_NE(first.output.find("8x8x8, spacing 0.5,0.25,2, origin 1,2,3"), std::string::npos)
@@ -530,9 +579,9 @@ TEST_F(CliTest, ComputeWritesVtiOrNrrdByExtensionWithTheFieldGeometry) {
   EXPECT_EQ(vti->values, nrrd->values) << "the same volume in both formats";
 
   // Voxels that sparsity hides are NaN in both.
-  ASSERT_EQ(run("compute -q --grid 12 --sparsity hammersley --sparsity-points 40 -o sparse.vti")
-                .status,
-            0);
+  ASSERT_EQ(
+      run("compute -q --grid 12 --sparsity hammersley --sparsity-points 40 -o sparse.vti").status,
+      0);
   const Result<ScalarVolume> sparse = readScalarVti(path("sparse.vti"));
   ASSERT_TRUE(sparse.ok()) << sparse.error().message;
   const auto nans = std::count_if(sparse->values.begin(), sparse->values.end(),
@@ -589,10 +638,10 @@ TEST_F(CliTest, ComputeSliceWritesASixteenBitGreyPngWithTheParameters) {
 }
 
 TEST_F(CliTest, EveryPngCarriesTheSessionThatMadeIt) {
-  const CommandRun r = run(
-      "render -q --field abc --grid 12,10,8 --seed 5 --length 6 --kernel hann --width 40 "
-      "--height 32 --azimuth 70 --elevation -10 --color magnitude --colormap viridis "
-      "--background 0.2,0.1,0 -o picture.png");
+  const CommandRun r =
+      run("render -q --field abc --grid 12,10,8 --seed 5 --length 6 --kernel hann --width 40 "
+          "--height 32 --azimuth 70 --elevation -10 --color magnitude --colormap viridis "
+          "--background 0.2,0.1,0 -o picture.png");
   ASSERT_EQ(r.status, 0) << r.output;
   Session expected;
   expected.field.field = "abc";
@@ -643,8 +692,8 @@ TEST_F(CliTest, RgbaVolumeHoldsTheColourAndOpacityOfEachVoxel) {
   int worst = 0;
   for (std::size_t i = 0; i < lic.values.size(); ++i) {
     const float grey = std::clamp(lic.values[i], 0.0f, 1.0f);
-    const float t = static_cast<float>((glm::length(glm::dvec3(field.vectors[i])) - low) /
-                                       (high - low));
+    const float t =
+        static_cast<float>((glm::length(glm::dvec3(field.vectors[i])) - low) / (high - low));
     const glm::vec3 rgb = sampleColormap(Colormap::Thesis, t) * grey;
     const float expected[4] = {rgb.r, rgb.g, rgb.b, 0.5f * grey};
     for (int c = 0; c < 4; ++c)
@@ -681,8 +730,8 @@ TEST_F(CliTest, TurntableWritesNumberedFramesTurningTheCamera) {
   const std::string flags = "render --grid 8 --width 24 --height 24 --azimuth 10 ";
   const CommandRun r = run(flags + "--turntable 4 -o 'turn_%02d.png'", "", Streams::StderrOnly);
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_EQ(listFolder(), (std::vector<std::string>{"turn_00.png", "turn_01.png", "turn_02.png",
-                                                     "turn_03.png"}));
+  EXPECT_EQ(listFolder(),
+            (std::vector<std::string>{"turn_00.png", "turn_01.png", "turn_02.png", "turn_03.png"}));
   // Progress: one line per frame in a log, with frames done, elapsed time and ETA.
   EXPECT_EQ(countOf(r.output, "/4 done"), 4u) << r.output;
   EXPECT_EQ(countOf(r.output, "ETA"), 4u) << r.output;
@@ -758,10 +807,10 @@ TEST_F(CliTest, VideoRunsFfmpegOnTheFramesAndRenamesItsOutput) {
              "printf video > \"$last\"\n");
   fs::permissions(path("bin/ffmpeg"), fs::perms::owner_all);
   const std::string withFake = "PATH='" + path("bin").string() + "':\"$PATH\"";
-  const CommandRun r = run(
-      "render --grid 8 --width 20 --height 20 --turntable 3 --fps 12 -o 'f_%03d.png' "
-      "--video movie.mp4",
-      withFake, Streams::StdoutOnly);
+  const CommandRun r =
+      run("render --grid 8 --width 20 --height 20 --turntable 3 --fps 12 -o 'f_%03d.png' "
+          "--video movie.mp4",
+          withFake, Streams::StdoutOnly);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(test::readWhole(path("movie.mp4")), "video");
   const std::string args = test::readWhole(path("ffmpeg-args.txt"));
@@ -769,7 +818,7 @@ TEST_F(CliTest, VideoRunsFfmpegOnTheFramesAndRenamesItsOutput) {
                                "-frames:v\n3\n", "libx264", "yuv420p"})
     EXPECT_NE(args.find(expected), std::string::npos) << expected << " in\n" << args;
   EXPECT_EQ(listFolder(), (std::vector<std::string>{"bin", "f_000.png", "f_001.png", "f_002.png",
-                                                     "ffmpeg-args.txt", "movie.mp4"}))
+                                                    "ffmpeg-args.txt", "movie.mp4"}))
       << "no temporary file is left";
   EXPECT_EQ(summaryOf(r.output)["outputs"].back(), "movie.mp4") << r.output;
 
@@ -799,8 +848,8 @@ TEST_F(CliTest, VideoWithRealFfmpeg) {
 }
 
 TEST_F(CliTest, SummaryIsOneJsonLineOnStdout) {
-  const CommandRun render = run("render --grid 8 --width 16 --height 16 -o s.png", "",
-                                Streams::StdoutOnly);
+  const CommandRun render =
+      run("render --grid 8 --width 16 --height 16 -o s.png", "", Streams::StdoutOnly);
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_EQ(render.output.rfind("lic3d-summary {", 0), 0u) << render.output;
   EXPECT_EQ(countOf(render.output, "\n"), 1u) << "the only line on stdout: " << render.output;
@@ -840,8 +889,8 @@ Coverage measureCoverage(const test::RgbaPixels& image) {
   std::size_t lit = 0;
   const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
   for (std::size_t i = 0; i < pixels; ++i) {
-    const double y = 0.299 * image.rgba[4 * i] + 0.587 * image.rgba[4 * i + 1] +
-                     0.114 * image.rgba[4 * i + 2];
+    const double y =
+        0.299 * image.rgba[4 * i] + 0.587 * image.rgba[4 * i + 1] + 0.114 * image.rgba[4 * i + 2];
     if (y < 8.0) continue;
     ++lit;
     sum += y;
@@ -874,8 +923,8 @@ TEST_F(CliTest, RealDataSetsRenderAsPictures) {
   };
   for (const Case& c : cases) {
     const std::string file = (test::dataFolder() / c.file).string();
-    const CommandRun r = run("render --field '" + file + "' --width 96 --height 96 " + c.flags +
-                             " -o real.png");
+    const CommandRun r =
+        run("render --field '" + file + "' --width 96 --height 96 " + c.flags + " -o real.png");
     ASSERT_EQ(r.status, 0) << c.file << "\n" << r.output;
     EXPECT_NE(r.output.find(c.geometry), std::string::npos) << r.output;
     const test::RgbaPixels image = test::readRgbaPng(path("real.png"));
@@ -900,8 +949,8 @@ TEST_F(CliTest, RequestsThatCannotFitAreRefusedBeforeAllocating) {
     EXPECT_FALSE(fs::exists(path("big.png")) || fs::exists(path("big.nrrd")));
   }
   // The same limit leaves room for a grid that fits.
-  const CommandRun small = run("render --grid 16 --width 32 --height 32 -q -o small.png",
-                               "ulimit -v 4000000;");
+  const CommandRun small =
+      run("render --grid 16 --width 32 --height 32 -q -o small.png", "ulimit -v 4000000;");
   EXPECT_EQ(small.status, 0) << small.output;
 }
 
@@ -936,8 +985,8 @@ TEST_F(CliTest, ALostDeviceIsReportedAndLeavesNothing) {
     int lost = 0;
     for (int n = 1; n <= 40; ++n) {
       for (const fs::directory_entry& e : fs::directory_iterator(folder())) fs::remove(e.path());
-      const CommandRun r = run(std::string("--validation ") + command,
-                               "LIC3D_LOSE_DEVICE=" + std::to_string(n));
+      const CommandRun r =
+          run(std::string("--validation ") + command, "LIC3D_LOSE_DEVICE=" + std::to_string(n));
       if (r.status == 0) break;  // past the last submission
       ++lost;
       EXPECT_EQ(r.status, 1) << command << ", submission " << n << ": " << r.output;

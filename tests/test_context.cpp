@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "gpu_test_support.h"
 #include "gpu/vulkan_context.h"
+#include "gpu_test_support.h"
 
 namespace lic3d {
 namespace {
@@ -68,7 +68,8 @@ TEST(Devices, NoDriverGivesAClearError) {
   const Result<Context> context = Context::create({});
   ASSERT_FALSE(context.ok());
   EXPECT_EQ(context.error().kind, ErrorKind::Unsupported);
-  EXPECT_NE(context.error().message.find("no Vulkan"), std::string::npos) << context.error().message;
+  EXPECT_NE(context.error().message.find("no Vulkan"), std::string::npos)
+      << context.error().message;
   const Result<std::vector<DeviceInfo>> devices = listDevices();
   EXPECT_TRUE(!devices.ok() || devices->empty());
 }

@@ -8,8 +8,8 @@
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "piece_support.h"
 #include "lic/sparsity.h"
+#include "piece_support.h"
 
 namespace lic3d {
 namespace {

@@ -2,9 +2,9 @@
 // ParaView plugin does under MPI, against the GPU's LIC of the whole field.
 #include <gtest/gtest.h>
 
+#include "gpu_test_support.h"
 #include "lic/analytic_fields.h"
 #include "lic/field_piece.h"
-#include "gpu_test_support.h"
 #include "passes/lic_renderer.h"
 #include "piece_support.h"
 

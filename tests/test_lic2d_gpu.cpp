@@ -8,16 +8,16 @@
 #include <glm/gtc/packing.hpp>
 #include <tuple>
 
-#include "lic/analytic_fields.h"
-#include "passes/field_interpolation.h"
 #include "gpu/gpu_submit.h"
 #include "gpu_test_support.h"
-#include "passes/lic2d_pass.h"
+#include "lic/analytic_fields.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
-#include "passes/lic_renderer.h"
 #include "lic/noise.h"
 #include "lic/time_series.h"
+#include "passes/field_interpolation.h"
+#include "passes/lic2d_pass.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d {
 namespace {

@@ -4,17 +4,16 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/packing.hpp>
 #include <tuple>
 
-#include <glm/gtc/packing.hpp>
-
-#include "lic/analytic_fields.h"
-#include "io/field_io.h"
-#include "gpu_test_support.h"
-#include "lic/lic_reference.h"
 #include "gpu/gpu_submit.h"
-#include "passes/lic_renderer.h"
+#include "gpu_test_support.h"
+#include "io/field_io.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
 #include "lic/noise.h"
+#include "passes/lic_renderer.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -153,9 +152,8 @@ TEST_F(GpuTest, GpuMatchesCpuReferenceOnAbcWithBiasAndMagnitudeSteps) {
   const Comparison half = compareWithReference(context(), field, params, FieldPrecision::Half);
   EXPECT_LE(half.difference.mean, 1e-3);
   EXPECT_LE(half.difference.quantile999, 2e-2);
-  const ScalarVolume rounded =
-      *computeLicReference(roundedToHalfPrecision(field),
-                           roundedToHalfPrecision(makeWhiteNoise(field.dims, 7)), params);
+  const ScalarVolume rounded = *computeLicReference(
+      roundedToHalfPrecision(field), roundedToHalfPrecision(makeWhiteNoise(field.dims, 7)), params);
   expectWithin(compareVolumes(half.gpu, rounded), toleranceFor(params), "abc, half-rounded inputs");
 }
 
@@ -300,8 +298,9 @@ TEST_F(GpuTest, RecomputesOnlyWhenLicInputsChange) {
   ASSERT_TRUE(renderer->render(lic, view).ok());
   EXPECT_EQ(renderer->licDispatchCount(), 3u) << "the noise changed";
 
-  ASSERT_TRUE(renderer->setInputs(makeAnalyticField(AnalyticField::Vortex, {16, 16, 16}),
-                                  makeWhiteNoise(field.dims, 2))
+  ASSERT_TRUE(renderer
+                  ->setInputs(makeAnalyticField(AnalyticField::Vortex, {16, 16, 16}),
+                              makeWhiteNoise(field.dims, 2))
                   .ok());
   ASSERT_TRUE(renderer->render(lic, view).ok());
   ASSERT_TRUE(renderer->render(lic, view).ok());
@@ -401,7 +400,8 @@ TEST_F(GpuTest, FramePacedRecomputeShowsOnlyFinishedVolumes) {
     EXPECT_TRUE(submitAndWait(
                     context(),
                     [&](VkCommandBuffer cmd) {
-                      work = renderer->recordLicWork(cmd, slices, static_cast<std::uint32_t>(frames % 2));
+                      work = renderer->recordLicWork(cmd, slices,
+                                                     static_cast<std::uint32_t>(frames % 2));
                     },
                     "test frame")
                     .ok());

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 #include "lic/analytic_fields.h"

@@ -5,17 +5,16 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-
 #include <glm/glm.hpp>
 
-#include "lic/analytic_fields.h"
-#include "io/field_io.h"
-#include "gpu_test_support.h"
-#include "lic/lic_reference.h"
-#include "passes/lic_renderer.h"
-#include "lic/noise.h"
-#include "test_support.h"
 #include "core/volume_compare.h"
+#include "gpu_test_support.h"
+#include "io/field_io.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
+#include "passes/lic_renderer.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -90,8 +89,7 @@ TEST(LicSchemes, Ab2CorrelatesWithExactScheme) {
         std::tuple{"solenoidal", AnalyticField::Solenoidal, 0.985}})
     cases.push_back({name, makeAnalyticField(kind, Dims(32)), bound});
   cases.push_back({"carotid", *readVectorField(test::dataFolder() / "carotid.vtk"), 0.85});
-  cases.push_back(
-      {"femm", *readVectorField(test::dataFolder() / "example-femm-3d.vtk"), 0.999});
+  cases.push_back({"femm", *readVectorField(test::dataFolder() / "example-femm-3d.vtk"), 0.999});
   for (const Case& c : cases) {
     const NoiseVolume noise = makeWhiteNoise(c.field.dims, 7);
     LicParams exact;
@@ -110,9 +108,10 @@ TEST(LicSchemes, Ab2CorrelatesWithExactScheme) {
     const double rFlow = correlation(fast, reference, [&](std::size_t i) {
       return glm::length(c.field.vectors[i]) >= 0.03 * top;
     });
-    std::printf("%-10s %3dx%3dx%3d  r(ab2, exact) = %.5f (where |v| >= 3 %% of max: %.5f)  "
-                "r(rk4, exact) = %.5f\n",
-                c.name, c.field.dims.x, c.field.dims.y, c.field.dims.z, r, rFlow, rRk4);
+    std::printf(
+        "%-10s %3dx%3dx%3d  r(ab2, exact) = %.5f (where |v| >= 3 %% of max: %.5f)  "
+        "r(rk4, exact) = %.5f\n",
+        c.name, c.field.dims.x, c.field.dims.y, c.field.dims.z, r, rFlow, rRk4);
     EXPECT_GE(r, c.bound) << c.name;
   }
 }
@@ -148,7 +147,8 @@ TEST_F(GpuTest, BytePackedFieldGivesTheSameVolumeAndColours) {
   }
   double difference = 0.0;
   for (std::size_t p = 0; p < images[0].pixels.size(); ++p)
-    difference += std::abs(static_cast<int>(images[0].pixels[p]) - static_cast<int>(images[1].pixels[p]));
+    difference +=
+        std::abs(static_cast<int>(images[0].pixels[p]) - static_cast<int>(images[1].pixels[p]));
   difference /= static_cast<double>(images[0].pixels.size());
   std::printf("colour by magnitude, byte against float: mean |difference| %.2f of 255\n",
               difference);

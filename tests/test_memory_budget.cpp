@@ -49,7 +49,8 @@ TEST(MemoryBudget, TooLargeIsAResourceLimitNamingTheRequestAndTheLargestGridThat
   EXPECT_NE(m.find("100 MiB"), std::string::npos) << m;
 
   const int n = largestCubicGrid(r, budget);
-  EXPECT_NE(m.find("largest cubic grid that fits is " + std::to_string(n) + "^3"), std::string::npos)
+  EXPECT_NE(m.find("largest cubic grid that fits is " + std::to_string(n) + "^3"),
+            std::string::npos)
       << m;
   // 12 bytes per voxel on the device: 100 MiB holds 205^3 but not 206^3.
   EXPECT_EQ(n, 205);

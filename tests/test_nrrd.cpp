@@ -623,10 +623,12 @@ TEST_F(NrrdTest, ReadsDetachedHeaderWithRelativeDataFile) {
   const Result<VectorField> dispatched = readVectorField(header);
   ASSERT_TRUE(dispatched.ok()) << dispatched.error().message;
   expectSameField(*dispatched, field);
-  const fs::path absolute = writeBytes(
-      "absolute.nhdr", "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 4 3 2\nendian: big\n"
-                       "encoding: raw\nspacings: nan 0.5 0.25 2\nspace origin: (1,-2,3)\n"
-                       "data file: " + path("data/field.raw").string() + "\n\n");
+  const fs::path absolute =
+      writeBytes("absolute.nhdr",
+                 "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 4 3 2\nendian: big\n"
+                 "encoding: raw\nspacings: nan 0.5 0.25 2\nspace origin: (1,-2,3)\n"
+                 "data file: " +
+                     path("data/field.raw").string() + "\n\n");
   const Result<VectorField> fromAbsolute = readVectorFieldNrrd(absolute);
   ASSERT_TRUE(fromAbsolute.ok()) << fromAbsolute.error().message;
   expectSameField(*fromAbsolute, field);
@@ -635,8 +637,9 @@ TEST_F(NrrdTest, ReadsDetachedHeaderWithRelativeDataFile) {
 TEST_F(NrrdTest, ReadsDetachedGzipDataAndSkips) {
   const VectorField field = makeField({3, 3, 3}, {});
   const std::string payload = bytesOf(componentsOf(field), std::endian::little);
-  const std::string fields = "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 3 3\n"
-                             "endian: little\n";
+  const std::string fields =
+      "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 3 3\n"
+      "endian: little\n";
   struct Case {
     const char* label;
     std::string headerFields;
@@ -649,8 +652,7 @@ TEST_F(NrrdTest, ReadsDetachedGzipDataAndSkips) {
       {"line skip", "encoding: raw\nline skip: 2\n", "a text header\nsecond line\n" + payload},
       {"byte skip", "encoding: raw\nbyte skip: 7\n", "skipped" + payload},
       {"byte skip -1", "encoding: raw\nbyte skip: -1\n", std::string(100, 'x') + payload},
-      {"line and byte skip", "encoding: raw\nline skip: 1\nbyte skip: 3\n",
-       "line\nabc" + payload},
+      {"line and byte skip", "encoding: raw\nline skip: 1\nbyte skip: 3\n", "line\nabc" + payload},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.label);
@@ -662,16 +664,17 @@ TEST_F(NrrdTest, ReadsDetachedGzipDataAndSkips) {
     expectSameField(*read, field);
   }
   // Skips work in attached files too.
-  const fs::path attached =
-      writeBytes("attached.nrrd", fields + "encoding: raw\nline skip: 1\n\nskipped line\n" + payload);
+  const fs::path attached = writeBytes(
+      "attached.nrrd", fields + "encoding: raw\nline skip: 1\n\nskipped line\n" + payload);
   const Result<VectorField> read = readVectorFieldNrrd(attached);
   ASSERT_TRUE(read.ok()) << read.error().message;
   expectSameField(*read, field);
 }
 
 TEST_F(NrrdTest, DetachedDataErrorsNameHeaderAndDataFile) {
-  const std::string fields = "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\n"
-                             "endian: little\n";
+  const std::string fields =
+      "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\n"
+      "endian: little\n";
   fs::path header = writeBytes("field.nhdr", fields + "encoding: raw\ndata file: missing.raw\n");
   expectInputError(readVectorFieldNrrd(header), header, "missing.raw: cannot open");
   writeBytes("short.raw", std::string(47, '\1'));
@@ -695,15 +698,17 @@ TEST_F(NrrdTest, ReadsDetachedNoise) {
   noise.dims = {3, 2, 2};
   noise.bytes = {0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110};
   writeBytes("noise.bin", std::string(noise.bytes.begin(), noise.bytes.end()));
-  const fs::path header = writeBytes(
-      "noise.nhdr", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 2 2\nencoding: raw\n"
-                    "data file: noise.bin\n");
+  const fs::path header =
+      writeBytes("noise.nhdr",
+                 "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 2 2\nencoding: raw\n"
+                 "data file: noise.bin\n");
   const Result<NoiseVolume> read = readNoise(header);
   ASSERT_TRUE(read.ok()) << read.error().message;
   EXPECT_EQ(read->bytes, noise.bytes);
 }
 
-// --- NaN and Inf, all-zero fields ------------------------------------------------------------------
+// --- NaN and Inf, all-zero fields
+// ------------------------------------------------------------------
 
 TEST_F(NrrdTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
   VectorField field = makeField({3, 2, 1}, {});
@@ -712,10 +717,10 @@ TEST_F(NrrdTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
   values[3 * 2 + 2] = std::numeric_limits<float>::infinity();   // voxel 2
   values[3 * 4 + 0] = -std::numeric_limits<float>::infinity();  // voxel 4
   values[3 * 4 + 1] = std::numeric_limits<float>::quiet_NaN();  // voxel 4 again: one vector
-  const fs::path file =
-      writeBytes("nan.nrrd", "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 2 1\n"
-                             "endian: little\nencoding: raw\n\n" +
-                                 bytesOf(values, std::endian::little));
+  const fs::path file = writeBytes("nan.nrrd",
+                                   "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 3 2 1\n"
+                                   "endian: little\nencoding: raw\n\n" +
+                                       bytesOf(values, std::endian::little));
   FieldReadInfo info;
   info.arrayName = "stale";
   const Result<VectorField> read = readVectorField(file, {}, &info);
@@ -724,15 +729,16 @@ TEST_F(NrrdTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
   EXPECT_TRUE(info.arrayName.empty());
   EXPECT_TRUE(info.arrayNames.empty());
   for (const std::size_t voxel : {0u, 2u, 4u}) EXPECT_EQ(read->vectors[voxel], glm::vec3(0.0f));
-  for (const std::size_t voxel : {1u, 3u, 5u}) EXPECT_EQ(read->vectors[voxel], field.vectors[voxel]);
+  for (const std::size_t voxel : {1u, 3u, 5u})
+    EXPECT_EQ(read->vectors[voxel], field.vectors[voxel]);
 
   // Doubles beyond the float range count the same way; the call without info gives the same field.
   std::vector<double> doubles(values.begin(), values.end());
   doubles[3 * 5] = 1e300;
-  const fs::path doubleFile =
-      writeBytes("big.nrrd", "NRRD0004\ntype: double\ndimension: 4\nsizes: 3 3 2 1\n"
-                             "endian: little\nencoding: raw\n\n" +
-                                 bytesOf(doubles, std::endian::little));
+  const fs::path doubleFile = writeBytes("big.nrrd",
+                                         "NRRD0004\ntype: double\ndimension: 4\nsizes: 3 3 2 1\n"
+                                         "endian: little\nencoding: raw\n\n" +
+                                             bytesOf(doubles, std::endian::little));
   ASSERT_TRUE(readVectorFieldNrrd(doubleFile, &info).ok());
   EXPECT_EQ(info.nonFiniteVectors, 4u);
   const Result<VectorField> again = readVectorFieldNrrd(doubleFile);
@@ -763,10 +769,11 @@ TEST_F(NrrdTest, ScalarVolumeRoundTripKeepsNaN) {
     }
   }
   // Double volumes are read too; vector fields are not scalar volumes.
-  const fs::path doubles = writeBytes(
-      "d.nrrd", "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 1 1\nendian: big\n"
-                "encoding: raw\n\n" +
-                    bytesOf(std::vector<double>{0.25, -8.5}, std::endian::big));
+  const fs::path doubles =
+      writeBytes("d.nrrd",
+                 "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 1 1\nendian: big\n"
+                 "encoding: raw\n\n" +
+                     bytesOf(std::vector<double>{0.25, -8.5}, std::endian::big));
   const Result<ScalarVolume> doubleRead = readScalarNrrd(doubles);
   ASSERT_TRUE(doubleRead.ok()) << doubleRead.error().message;
   EXPECT_EQ(doubleRead->values, (std::vector<float>{0.25f, -8.5f}));
@@ -782,10 +789,10 @@ TEST_F(NrrdTest, RgbaVolumeRoundTripAndHeader) {
   const fs::path file = path("colour.nrrd");
   ASSERT_TRUE(writeRgbaNrrd(file, volume).ok());
   const std::string bytes = readWhole(file);
-  for (const char* line : {"type: uchar\n", "dimension: 4\n", "sizes: 4 3 2 2\n",
-                           "kinds: RGBA-color domain domain domain\n",
-                           "space directions: none (0.5,0,0) (0,1.5,0) (0,0,2.5)\n",
-                           "space origin: (1,2,-3)\n"})
+  for (const char* line :
+       {"type: uchar\n", "dimension: 4\n", "sizes: 4 3 2 2\n",
+        "kinds: RGBA-color domain domain domain\n",
+        "space directions: none (0.5,0,0) (0,1.5,0) (0,0,2.5)\n", "space origin: (1,2,-3)\n"})
     EXPECT_NE(bytes.find(line), std::string::npos) << line;
   const Result<RgbaVolume> read = readRgbaNrrd(file);
   ASSERT_TRUE(read.ok()) << read.error().message;

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "png_read.h"
 #include "core/rgba_image.h"
 #include "io/png_writer.h"
+#include "png_read.h"
 #include "test_support.h"
 
 namespace lic3d {

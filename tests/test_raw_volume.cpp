@@ -92,7 +92,8 @@ TEST_F(RawVolumeTest, ReadsEveryLayoutTypeAndByteOrder) {
       {"defaults", std::string(R"({"dims": [4, 3, 2], )") + kGeometry + "}",
        bytesOf(interleaved<float>(field), std::endian::little)},
       {"interleaved float32 little",
-       std::string(R"({"dims": [4,3,2], "components": 3, "order": "interleaved", "type": "float32", "endian": "little", )") +
+       std::string(
+           R"({"dims": [4,3,2], "components": 3, "order": "interleaved", "type": "float32", "endian": "little", )") +
            kGeometry + "}",
        bytesOf(interleaved<float>(field), std::endian::little)},
       {"planar", std::string(R"({"dims": [4,3,2], "order": "planar", )") + kGeometry + "}",
@@ -121,7 +122,8 @@ TEST_F(RawVolumeTest, ReadsEveryLayoutTypeAndByteOrder) {
 TEST_F(RawVolumeTest, DefaultGeometryAndTheOtherSidecarName) {
   VectorField field = makeField({2, 2, 2});
   field.geometry = {};
-  const fs::path file = writeBytes("flow.RAW", bytesOf(interleaved<float>(field), std::endian::little));
+  const fs::path file =
+      writeBytes("flow.RAW", bytesOf(interleaved<float>(field), std::endian::little));
   writeBytes("flow.RAW.json", R"({"dims": [2, 2, 2]})");
   const Result<VectorField> read = readVectorField(file);
   ASSERT_TRUE(read.ok()) << read.error().message;
@@ -163,8 +165,7 @@ TEST_F(RawVolumeTest, SizeMismatchAndMissingSidecarAreErrors) {
                    "describes needs 96");
   writeBytes("field.json", R"({"dims": [2, 2, 2], "type": "float64"})");
   expectInputError(readVectorField(file), file, "needs 192");
-  expectInputError(readVectorField(file, "velocity"), file,
-                   "a raw file holds one unnamed array");
+  expectInputError(readVectorField(file, "velocity"), file, "a raw file holds one unnamed array");
 }
 
 TEST_F(RawVolumeTest, MalformedSidecarsAreInputErrorsNamingBothFiles) {
@@ -178,7 +179,8 @@ TEST_F(RawVolumeTest, MalformedSidecarsAreInputErrorsNamingBothFiles) {
       {"not json", "dims = 2 2 2", "invalid JSON"},
       {"array", "[2, 2, 2]", "expected a JSON object"},
       {"missing dims", R"({"spacing": [1, 1, 1]})", "missing \"dims\""},
-      {"two dims", R"({"dims": [2, 2]})", "dims: expected 3 whole numbers [nx, ny, nz], found '[2,2]'"},
+      {"two dims", R"({"dims": [2, 2]})",
+       "dims: expected 3 whole numbers [nx, ny, nz], found '[2,2]'"},
       {"negative dims", R"({"dims": [2, -2, 2]})", "dims: expected 3 whole numbers"},
       {"fractional dims", R"({"dims": [2, 2.5, 2]})", "dims: expected 3 whole numbers"},
       {"text dims", R"({"dims": "2 2 2"})", "dims: expected 3 whole numbers"},
@@ -206,9 +208,8 @@ TEST_F(RawVolumeTest, MalformedSidecarsAreInputErrorsNamingBothFiles) {
     SCOPED_TRACE(c.label);
     const fs::path file = writeBytes("bad field.raw", std::string(96, '\1'));
     writeBytes("bad field.json", c.sidecar);
-    expectInputError(readVectorFieldRaw(file), c.label == std::string("too large")
-                                                   ? path("bad field.json")
-                                                   : file,
+    expectInputError(readVectorFieldRaw(file),
+                     c.label == std::string("too large") ? path("bad field.json") : file,
                      c.fragment);
   }
 }

@@ -4,13 +4,12 @@
 #include <array>
 #include <cmath>
 #include <functional>
-
 #include <glm/glm.hpp>
 
-#include "lic/analytic_fields.h"
 #include "gpu_test_support.h"
-#include "passes/lic_renderer.h"
+#include "lic/analytic_fields.h"
 #include "lic/noise.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -20,8 +19,8 @@ using test::GpuTest;
 using test::isBackground;
 using test::kBackground;
 using test::opaqueView;
-using test::ProjectedBox;
 using test::projectBox;
+using test::ProjectedBox;
 using test::rendererWithVolume;
 
 TEST_F(GpuTest, OpaqueVolumeCoversExactlyItsProjectedBox) {
@@ -38,7 +37,8 @@ TEST_F(GpuTest, OpaqueVolumeCoversExactlyItsProjectedBox) {
     int inside = 0, insideCovered = 0, outside = 0, outsideBackground = 0;
     for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x) {
-        const double d = box.signedDistance({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
+        const double d =
+            box.signedDistance({static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
         // The outermost slices sit half a spacing inside the box: allow a 2-pixel band.
         if (d > 2.0) {
           ++inside;
@@ -55,14 +55,16 @@ TEST_F(GpuTest, OpaqueVolumeCoversExactlyItsProjectedBox) {
 }
 
 TEST_F(GpuTest, FullyTransparentGivesTheBackground) {
-  LicRenderer renderer = rendererWithVolume(context(), {16, 16, 16}, [](int, int, int) { return 1.0f; });
+  LicRenderer renderer =
+      rendererWithVolume(context(), {16, 16, 16}, [](int, int, int) { return 1.0f; });
   ViewParams view = opaqueView(64);
   view.alpha = 0.0f;
   for (const OpacityMode mode : {OpacityMode::Constant, OpacityMode::Intensity}) {
     view.opacityMode = mode;
     const RgbaImage image = *renderer.render(LicParams{}, view);
     for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) ASSERT_TRUE(isBackground(image.at(x, y))) << x << "," << y;
+      for (int x = 0; x < image.width; ++x)
+        ASSERT_TRUE(isBackground(image.at(x, y))) << x << "," << y;
   }
 }
 
@@ -81,8 +83,7 @@ TEST_F(GpuTest, SlicesCompositeBackToFrontFromEitherSide) {
       const RgbaImage image = *renderer.render(LicParams{}, view);
       const int expected = azimuth == 0.0f ? 204 : 51;  // 0.8 or 0.2 in 8 bits
       EXPECT_NEAR(image.at(32, 32).r, expected, 2)
-          << (slicing == Slicing::ViewAligned ? "view" : "axis") << " slicing, azimuth "
-          << azimuth;
+          << (slicing == Slicing::ViewAligned ? "view" : "axis") << " slicing, azimuth " << azimuth;
     }
   }
 }

@@ -109,8 +109,7 @@ TEST(Session, BadFilesAreRefusedWithTheFileAndKeyNamed) {
                         Case{R"({"lic": {"kernel": "triangle"}})", "kernel"},
                         Case{R"({"view": {"clip_min": [0, 1]}})", "clip_min"},
                         Case{R"({"lic": {"length": -3}})", "length"},
-                        Case{R"([1, 2, 3])", "object"},
-                        Case{R"({"lic": )", "bad.json"}}) {
+                        Case{R"([1, 2, 3])", "object"}, Case{R"({"lic": )", "bad.json"}}) {
     Result<Session> s = sessionFromJson(c.json, "bad.json");
     ASSERT_FALSE(s) << c.json;
     EXPECT_EQ(s.error().kind, ErrorKind::InvalidInput) << c.json;

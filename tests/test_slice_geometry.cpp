@@ -1,12 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
-#include "lic/legend.h"
 #include "core/slice_geometry.h"
+#include "lic/legend.h"
 
 namespace lic3d {
 namespace {
@@ -26,21 +25,22 @@ TEST(SliceGeometry, ViewAlignedSlicesCoverTheBoxBackToFront) {
   const float reach = glm::dot(glm::abs(toViewer), half);
   EXPECT_NEAR(glm::length(plan.normal - toViewer), 0.0f, 1e-6f);
   EXPECT_NEAR(plan.firstOffset, -reach + 0.5f * plan.spacing, 1e-6f);  // farthest first
-  EXPECT_NEAR(plan.firstOffset + static_cast<float>(plan.count - 1) * plan.spacing, reach - 0.5f * plan.spacing, 1e-5f);
+  EXPECT_NEAR(plan.firstOffset + static_cast<float>(plan.count - 1) * plan.spacing,
+              reach - 0.5f * plan.spacing, 1e-5f);
   EXPECT_LE(plan.spacing, plan.voxelSize * 1.0001f) << "at least one slice per voxel";
   EXPECT_FLOAT_EQ(plan.voxelSize, 1.0f / 64.0f);
 }
 
 TEST(SliceGeometry, AxisAlignedPicksTheAxisClosestToTheViewer) {
   const glm::vec3 half{0.5f, 0.5f, 0.5f};
-  const SlicePlan fromMinusY =
-      planSlices(Slicing::AxisAligned, {10, 20, 30}, half, glm::normalize(glm::vec3(0.3f, -0.9f, 0.2f)), 0);
+  const SlicePlan fromMinusY = planSlices(Slicing::AxisAligned, {10, 20, 30}, half,
+                                          glm::normalize(glm::vec3(0.3f, -0.9f, 0.2f)), 0);
   EXPECT_EQ(fromMinusY.axis, 1);
   EXPECT_EQ(fromMinusY.normal, glm::vec3(0.0f, -1.0f, 0.0f)) << "normal points to the viewer";
   EXPECT_EQ(fromMinusY.count, 20) << "one slice per voxel layer";
   EXPECT_NEAR(fromMinusY.firstOffset, -0.5f + 0.5f / 20.0f, 1e-6f);
-  const SlicePlan fromAbove =
-      planSlices(Slicing::AxisAligned, {10, 20, 30}, half, glm::normalize(glm::vec3(0.1f, 0.2f, 0.9f)), 7);
+  const SlicePlan fromAbove = planSlices(Slicing::AxisAligned, {10, 20, 30}, half,
+                                         glm::normalize(glm::vec3(0.1f, 0.2f, 0.9f)), 7);
   EXPECT_EQ(fromAbove.axis, 2);
   EXPECT_EQ(fromAbove.count, 7);
 }

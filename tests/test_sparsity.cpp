@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <limits>
 #include <set>
 #include <string>
 #include <thread>
 #include <tuple>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lic/noise.h"
 #include "lic/sparsity.h"
@@ -287,8 +286,7 @@ TEST(Sparsity, PoissonBandsLeaveNoMoreRoomThanTheRestOfTheVolume) {
   const glm::vec2 lo(2.0f * r), hi(64.0f - 2.0f * r);
   const auto room = [&](float z0, float z1, std::size_t count, std::uint64_t seed) {
     std::size_t free = 0;
-    for (const glm::vec3& q :
-         uniformPointsIn(glm::vec3(lo, z0), glm::vec3(hi, z1), count, seed)) {
+    for (const glm::vec3& q : uniformPointsIn(glm::vec3(lo, z0), glm::vec3(hi, z1), count, seed)) {
       const double d = grid.nearest(q);
       EXPECT_LT(d, 2.0 * r) << q.x << " " << q.y << " " << q.z;
       free += d >= r;
@@ -301,9 +299,11 @@ TEST(Sparsity, PoissonBandsLeaveNoMoreRoomThanTheRestOfTheVolume) {
   for (std::size_t b = 0; b < bands.size(); ++b) {
     const auto [z0, z1] = bands[b];
     inBands += room(z0, z1, 20000, 10 + b) / 3.0;
-    nextToBands += (room(z0 - 2.0f * r, z0, 10000, 20 + b) + room(z1, z1 + 2.0f * r, 10000, 30 + b)) / 6.0;
+    nextToBands +=
+        (room(z0 - 2.0f * r, z0, 10000, 20 + b) + room(z1, z1 + 2.0f * r, 10000, 30 + b)) / 6.0;
   }
-  const double inSlabs = room(20.0f, 60.0f, 30000, 40) / 2.0 + room(260.0f, 300.0f, 30000, 41) / 2.0;
+  const double inSlabs =
+      room(20.0f, 60.0f, 30000, 40) / 2.0 + room(260.0f, 300.0f, 30000, 41) / 2.0;
   EXPECT_GT(inSlabs, 0.003);
   EXPECT_LT(inSlabs, 0.02);
   // Without the band sampling pressing in from both sides (see sampleRegion), the bands had twice
@@ -512,9 +512,8 @@ TEST(Sparsity, AutomaticParametersAimAtTheDefaultFraction) {
     // Best candidate is capped: its cost grows with the square of the points.
     const double target =
         distribution == SparsityDistribution::PoissonApprox
-            ? std::min(kDefaultBlackFraction,
-                       static_cast<double>(kAutomaticBestCandidatePoints) /
-                           static_cast<double>(voxelCount(dims)))
+            ? std::min(kDefaultBlackFraction, static_cast<double>(kAutomaticBestCandidatePoints) /
+                                                  static_cast<double>(voxelCount(dims)))
             : kDefaultBlackFraction;
     EXPECT_GT(fraction, 0.5 * target) << enumName(distribution);
     EXPECT_LT(fraction, 2.0 * target) << enumName(distribution);

@@ -1,11 +1,11 @@
 #pragma once
 // Shared by the test suites: the real-data folder and a fixture with a private scratch folder.
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace lic3d::test {
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "lic/analytic_fields.h"
-#include "passes/field_interpolation.h"
 #include "core/memory_budget.h"
-#include "io/nrrd.h"
 #include "core/session.h"
-#include "test_support.h"
+#include "io/nrrd.h"
+#include "lic/analytic_fields.h"
 #include "lic/time_series.h"
+#include "passes/field_interpolation.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {

@@ -1,7 +1,6 @@
 // The desktop app under a virtual X server (xvfb-run) on lavapipe: it starts, runs a scripted
 // number of frames with validation on, and its screenshot shows the volume and the panels.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <array>
@@ -11,9 +10,9 @@
 #include <regex>
 #include <string>
 
-#include "png_read.h"
 #include "core/session.h"
 #include "io/session_file.h"
+#include "png_read.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -55,8 +54,8 @@ class ViewerTest : public test::TempFolderTest {
   CommandRun view(const std::string& args, const std::string& size = "",
                   const std::string& environment = "") const {
     return runShell("cd '" + folder().string() + "' && " + environment +
-                    " xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                    std::string(LIC3D_VIEWER) + "' --validation --window-size " +
+                    " xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(LIC3D_VIEWER) +
+                    "' --validation --window-size " +
                     (size.empty() ? std::to_string(kWidth) + "x" + std::to_string(kHeight) : size) +
                     " " + args);
   }
@@ -112,8 +111,9 @@ TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
   EXPECT_LT(fraction(shot, kVolume, [](int r_, int g, int b) { return r_ + g + b > 735; }), 0.2);
 
   EXPECT_GT(fraction(shot, kPanel, imguiBlue), 0.02) << "the parameter panels are missing";
-  EXPECT_GT(fraction(shot, kStats, [](int r_, int g, int b) { return r_ > 200 && g > 200 && b > 200; }),
-            0.02)
+  EXPECT_GT(
+      fraction(shot, kStats, [](int r_, int g, int b) { return r_ > 200 && g > 200 && b > 200; }),
+      0.02)
       << "the stats overlay's text is missing";
 }
 
@@ -147,9 +147,9 @@ TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
   ASSERT_TRUE(saved) << saved.error().message;
   EXPECT_EQ(*saved, original) << sessionToJson(*saved);
 
-  const CommandRun render = runShell("cd '" + folder().string() + "' && '" +
-                                     std::string(LIC3D_EXECUTABLE) +
-                                     "' render -q --session out.json -o out.png");
+  const CommandRun render =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render -q --session out.json -o out.png");
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_EQ(test::readRgbaPng(path("out.png")).width, 64);
 }
@@ -234,7 +234,8 @@ TEST_F(ViewerTest, SoakNeedsFrames) {
 // the call named, and the session is saved to lic3d-recovery.json first. The window then shows
 // the error in a dialog (a scripted run for one frame, in its screenshot) and exits with status 1.
 TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
-  writeBytes("in.json", R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 9}})");
+  writeBytes("in.json",
+             R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 9}})");
   bool sawRecovery = false, sawDialog = false;
   for (int n : {12, 14, 16}) {
     std::filesystem::remove(path("lic3d-recovery.json"));
@@ -242,18 +243,19 @@ TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
     // clean up its temporary folder, which happens under load and says nothing about the app.
     std::filesystem::remove(path("status.txt"));
     std::filesystem::remove(path("shot.png"));
-    const CommandRun failed = runShell("cd '" + folder().string() + "' && LIC3D_FAIL_ALLOCATION=" +
-                                       std::to_string(n) +
-                                       " xvfb-run -a -s '-screen 0 1280x800x24' sh -c '\"$0\" \"$@\"; "
-                                       "echo $? > status.txt' '" +
-                                       std::string(LIC3D_VIEWER) +
-                                       "' --window-size 640x480 --session in.json --frames 3 "
-                                       "--screenshot shot.png");
+    const CommandRun failed =
+        runShell("cd '" + folder().string() + "' && LIC3D_FAIL_ALLOCATION=" + std::to_string(n) +
+                 " xvfb-run -a -s '-screen 0 1280x800x24' sh -c '\"$0\" \"$@\"; "
+                 "echo $? > status.txt' '" +
+                 std::string(LIC3D_VIEWER) +
+                 "' --window-size 640x480 --session in.json --frames 3 "
+                 "--screenshot shot.png");
     const std::string status = test::readWhole(path("status.txt"));
     ASSERT_FALSE(status.empty()) << failed.output;
     if (std::stoi(status) == 0) continue;
     EXPECT_EQ(std::stoi(status), 1) << failed.output;
-    EXPECT_NE(failed.output.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << failed.output;
+    EXPECT_NE(failed.output.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos)
+        << failed.output;
     Result<Session> saved = readSession(path("lic3d-recovery.json"));
     ASSERT_TRUE(saved) << failed.output;
     EXPECT_EQ(saved->field.field, "abc");
@@ -291,8 +293,8 @@ TEST_F(ViewerTest, ALostDeviceIsMadeAgainAndTheSessionRestored) {
   for (const int n : {4, 14}) {
     SCOPED_TRACE("lost at submission " + std::to_string(n));
     fs::remove(path("lic3d-recovery.json"));
-    const CommandRun r = view("--save-session after.json " + args, size,
-                              "LIC3D_LOSE_DEVICE=" + std::to_string(n));
+    const CommandRun r =
+        view("--save-session after.json " + args, size, "LIC3D_LOSE_DEVICE=" + std::to_string(n));
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("vkQueueSubmit2 failed: VK_ERROR_DEVICE_LOST: making the device again"),
               std::string::npos)
@@ -326,8 +328,10 @@ TEST_F(ViewerTest, ALostDeviceIsMadeAgainAndTheSessionRestored) {
 // A device lost again and again (every 6th submission) is given up on: exit status 1 with the
 // error, the session in the recovery file.
 TEST_F(ViewerTest, ADeviceLostAgainAndAgainIsGivenUpOn) {
-  writeBytes("in.json", R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 7}})");
-  const CommandRun r = view("--session in.json --frames 200", "320x240", "LIC3D_LOSE_DEVICE=every:6");
+  writeBytes("in.json",
+             R"({"field": {"source": "abc", "grid": [16, 16, 16]}, "lic": {"length": 7}})");
+  const CommandRun r =
+      view("--session in.json --frames 200", "320x240", "LIC3D_LOSE_DEVICE=every:6");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("giving up"), std::string::npos) << r.output;
   Result<Session> saved = readSession(path("lic3d-recovery.json"));
@@ -336,10 +340,10 @@ TEST_F(ViewerTest, ADeviceLostAgainAndAgainIsGivenUpOn) {
 }
 
 TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
-  for (const char* args : {"--window-size 10x10", "--screenshot shot.png", "--frames 2 --screenshot shot.jpg",
-                           "--session missing.json"}) {
-    const CommandRun r = runShell("cd '" + folder().string() + "' && '" +
-                                  std::string(LIC3D_VIEWER) + "' " + args);
+  for (const char* args : {"--window-size 10x10", "--screenshot shot.png",
+                           "--frames 2 --screenshot shot.jpg", "--session missing.json"}) {
+    const CommandRun r =
+        runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_VIEWER) + "' " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find("error"), std::string::npos) << args;
   }

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "io/field_io.h"
-#include "test_support.h"
 #include "io/vti.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -42,7 +42,8 @@ std::string base64(const std::string& bytes) {
   std::string text;
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     std::uint32_t bits = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
-    if (i + 1 < bytes.size()) bits |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 1 < bytes.size())
+      bits |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
     if (i + 2 < bytes.size()) bits |= static_cast<unsigned char>(bytes[i + 2]);
     text += kAlphabet[bits >> 18 & 63];
     text += kAlphabet[bits >> 12 & 63];
@@ -55,10 +56,10 @@ std::string base64(const std::string& bytes) {
 std::string zlibCompress(const std::string& data) {
   uLongf size = compressBound(static_cast<uLong>(data.size()));
   std::string out(size, '\0');
-  EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(out.data()), &size,
-                      reinterpret_cast<const Bytef*>(data.data()), static_cast<uLong>(data.size()),
-                      6),
-            Z_OK);
+  EXPECT_EQ(
+      compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                reinterpret_cast<const Bytef*>(data.data()), static_cast<uLong>(data.size()), 6),
+      Z_OK);
   out.resize(size);
   return out;
 }
@@ -129,7 +130,8 @@ std::string headerNumbers(const std::vector<std::uint64_t>& numbers, const Encod
       std::uint32_t small = static_cast<std::uint32_t>(n);
       char raw[4];
       std::memcpy(raw, &small, 4);
-      if (encoding.bigEndian == (std::endian::native == std::endian::little)) std::reverse(raw, raw + 4);
+      if (encoding.bigEndian == (std::endian::native == std::endian::little))
+        std::reverse(raw, raw + 4);
       bytes.append(raw, 4);
     }
   }
@@ -178,9 +180,11 @@ std::string makeVti(const Image& image, const Encoding& encoding) {
     std::string xml = "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name +
                       "\" NumberOfComponents=\"" + std::to_string(array.components) +
                       "\" format=\"" + encoding.format + "\"";
-    if (encoding.format == "ascii") return xml + ">\n" + asciiValues(array) + "        </DataArray>\n";
+    if (encoding.format == "ascii")
+      return xml + ">\n" + asciiValues(array) + "        </DataArray>\n";
     if (encoding.format == "binary")
-      return xml + ">\n          " + encodedBlock(array, encoding, true) + "\n        </DataArray>\n";
+      return xml + ">\n          " + encodedBlock(array, encoding, true) +
+             "\n        </DataArray>\n";
     xml += " offset=\"" + std::to_string(appended.size()) + "\"/>\n";
     appended += encodedBlock(array, encoding, encoding.appendedBase64);
     return xml;
@@ -188,14 +192,16 @@ std::string makeVti(const Image& image, const Encoding& encoding) {
   std::string pointXml;
   std::string cellXml;
   for (const Array& array : image.arrays) (array.cellData ? cellXml : pointXml) += arrayXml(array);
-  std::string file = "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"";
+  std::string file =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"";
   file += encoding.bigEndian ? "BigEndian" : "LittleEndian";
   file += std::string("\" header_type=\"") + (encoding.header64 ? "UInt64" : "UInt32") + "\"";
   if (encoding.zlib) file += " compressor=\"vtkZLibDataCompressor\"";
   file += ">\n  <ImageData WholeExtent=\"" + image.wholeExtent + "\" Origin=\"" + image.origin +
           "\" Spacing=\"" + image.spacing + "\">\n    <Piece Extent=\"" + image.wholeExtent +
           "\">\n      <PointData " + image.pointAttributes + ">\n" + pointXml +
-          "      </PointData>\n      <CellData>\n" + cellXml + "      </CellData>\n    </Piece>\n"
+          "      </PointData>\n      <CellData>\n" + cellXml +
+          "      </CellData>\n    </Piece>\n"
           "  </ImageData>\n";
   if (encoding.format == "appended")
     file += std::string("  <AppendedData encoding=\"") +
@@ -440,8 +446,8 @@ TEST_F(VtiTest, MalformedFilesAreInputErrorsNamingFileAndProblem) {
     std::memcpy(file.data() + rawZlibData, numbers.data(), 4 * numbers.size());
     return file;
   };
-  const std::string velocityBase64 = base64(headerNumbers({144}, binary)) +
-                                     base64(valueBytes(testImage().arrays[1], false));
+  const std::string velocityBase64 =
+      base64(headerNumbers({144}, binary)) + base64(valueBytes(testImage().arrays[1], false));
 
   const MalformedCase cases[] = {
       {"empty", "", "empty file"},
@@ -573,7 +579,8 @@ TEST_F(VtiTest, CorruptedFilesNeverCrashTheReader) {
       }
       if (trial % 5 == 0) mutated.resize(random() % mutated.size());
       const fs::path file = writeBytes("mutated.vti", mutated);
-      for (const Result<VectorField>& read : {readVectorFieldVti(file), readVectorFieldVti(file, "x")}) {
+      for (const Result<VectorField>& read :
+           {readVectorFieldVti(file), readVectorFieldVti(file, "x")}) {
         if (!read.ok()) {
           EXPECT_EQ(read.error().kind, ErrorKind::InvalidInput) << read.error().message;
         } else {

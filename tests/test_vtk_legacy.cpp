@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "io/field_io.h"
-#include "test_support.h"
 #include "io/vtk_legacy.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -462,16 +462,19 @@ TEST_F(VtkLegacyTest, ReadVectorFieldDispatchesVtkWithArrayName) {
   expectInputError(readVectorField(file, "nothing"), file, "found: 'first', 'second velocity'");
 }
 
-// --- Cell data, rectilinear grids, NaN ------------------------------------------------------------
+// --- Cell data, rectilinear grids, NaN
+// ------------------------------------------------------------
 
 TEST_F(VtkLegacyTest, CellDataBecomesAFieldAtTheCellCentres) {
   // 4x3x2 points are 3x2x1 cells; their centres start half a spacing after the origin.
   const std::string head =
       "# vtk DataFile Version 3.0\ncells\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2\n"
       "SPACING 2 0.5 1\nORIGIN 10 20 30\n";
-  const fs::path file = writeBytes(
-      "cells.vtk", head + "CELL_DATA 6\nSCALARS id int\nLOOKUP_TABLE default\n0 1 2 3 4 5\n"
-                          "VECTORS flow float\n" + asciiNumbers(18, 1, 1));
+  const fs::path file =
+      writeBytes("cells.vtk", head +
+                                  "CELL_DATA 6\nSCALARS id int\nLOOKUP_TABLE default\n0 1 2 3 4 5\n"
+                                  "VECTORS flow float\n" +
+                                  asciiNumbers(18, 1, 1));
   FieldReadInfo info;
   const Result<VectorField> field = readVectorFieldVtk(file, {}, &info);
   ASSERT_TRUE(field.ok()) << field.error().message;
@@ -483,10 +486,11 @@ TEST_F(VtkLegacyTest, CellDataBecomesAFieldAtTheCellCentres) {
   EXPECT_EQ(info.arrayNames, std::vector<std::string>{"flow"});
 
   // An axis of one point has one flat cell at that point: no shift there.
-  const fs::path flat = writeBytes(
-      "flat.vtk", "# vtk DataFile Version 3.0\nflat\nBINARY\nDATASET STRUCTURED_POINTS\n"
-                  "DIMENSIONS 3 1 2\nORIGIN 1 2 3\nCELL_DATA 2\nVECTORS v double\n" +
-                      bigEndian(std::vector<double>{1, 2, 3, 4, 5, 6}) + "\n");
+  const fs::path flat =
+      writeBytes("flat.vtk",
+                 "# vtk DataFile Version 3.0\nflat\nBINARY\nDATASET STRUCTURED_POINTS\n"
+                 "DIMENSIONS 3 1 2\nORIGIN 1 2 3\nCELL_DATA 2\nVECTORS v double\n" +
+                     bigEndian(std::vector<double>{1, 2, 3, 4, 5, 6}) + "\n");
   const Result<VectorField> flatField = readVectorFieldVtk(flat);
   ASSERT_TRUE(flatField.ok()) << flatField.error().message;
   EXPECT_EQ(flatField->dims, Dims(2, 1, 1));
@@ -498,8 +502,8 @@ TEST_F(VtkLegacyTest, PointDataIsPreferredAndNamesAreListed) {
   const std::string file =
       "# vtk DataFile Version 3.0\nboth\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
       "CELL_DATA 1\nVECTORS shared float\n9 9 9\nVECTORS onlycell float\n7 7 7\n"
-      "POINT_DATA 8\nVECTORS shared float\n" + asciiNumbers(24, 1, 0) +
-      "VECTORS other float\n" + asciiNumbers(24, 2, 0);
+      "POINT_DATA 8\nVECTORS shared float\n" +
+      asciiNumbers(24, 1, 0) + "VECTORS other float\n" + asciiNumbers(24, 2, 0);
   const fs::path path = writeBytes("both.vtk", file);
   FieldReadInfo info;
   Result<VectorField> field = readVectorFieldVtk(path, {}, &info);
@@ -507,8 +511,7 @@ TEST_F(VtkLegacyTest, PointDataIsPreferredAndNamesAreListed) {
   EXPECT_EQ(field->dims, Dims(2, 2, 2));
   EXPECT_EQ(field->vectors[0], glm::vec3(1.0f));
   EXPECT_EQ(info.arrayName, "shared");
-  EXPECT_EQ(info.arrayNames,
-            (std::vector<std::string>{"shared", "onlycell", "shared", "other"}));
+  EXPECT_EQ(info.arrayNames, (std::vector<std::string>{"shared", "onlycell", "shared", "other"}));
   // The same name in both: point data wins. A cell-only name reads the cell data.
   field = readVectorFieldVtk(path, "shared");
   ASSERT_TRUE(field.ok());
@@ -530,7 +533,8 @@ TEST_F(VtkLegacyTest, ReadsUniformRectilinearGrids) {
   const std::string ascii =
       "# vtk DataFile Version 3.0\nrect\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 3 2 1\n"
       "X_COORDINATES 3 float\n1000.1 1000.2 1000.3\nY_COORDINATES 2 double\n-1 1\n"
-      "Z_COORDINATES 1 int\n7\nPOINT_DATA 6\nVECTORS v float\n" + asciiNumbers(18, 1, 1);
+      "Z_COORDINATES 1 int\n7\nPOINT_DATA 6\nVECTORS v float\n" +
+      asciiNumbers(18, 1, 1);
   fs::path file = writeBytes("rect.vtk", ascii);
   Result<VectorField> field = readVectorFieldVtk(file);
   ASSERT_TRUE(field.ok()) << field.error().message;
@@ -544,10 +548,11 @@ TEST_F(VtkLegacyTest, ReadsUniformRectilinearGrids) {
 
   const std::string binary =
       "# vtk DataFile Version 3.0\nrect\nBINARY\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 3\n"
-      "Z_COORDINATES 3 double\n" + bigEndian(std::vector<double>{0.0, 0.1, 0.2}) +
-      "\nX_COORDINATES 2 short\n" + bigEndian(std::vector<std::int16_t>{-4, 4}) +
-      "\nY_COORDINATES 2 float\n" + bigEndian(std::vector<float>{0.5f, 0.75f}) +
-      "\nPOINT_DATA 12\nVECTORS v float\n" + bigEndian(std::vector<float>(36, 0.5f)) + "\n";
+      "Z_COORDINATES 3 double\n" +
+      bigEndian(std::vector<double>{0.0, 0.1, 0.2}) + "\nX_COORDINATES 2 short\n" +
+      bigEndian(std::vector<std::int16_t>{-4, 4}) + "\nY_COORDINATES 2 float\n" +
+      bigEndian(std::vector<float>{0.5f, 0.75f}) + "\nPOINT_DATA 12\nVECTORS v float\n" +
+      bigEndian(std::vector<float>(36, 0.5f)) + "\n";
   file = writeBytes("rect binary.vtk", binary);
   field = readVectorFieldVtk(file);
   ASSERT_TRUE(field.ok()) << field.error().message;
@@ -572,10 +577,10 @@ TEST_F(VtkLegacyTest, NonUniformRectilinearGridsAreErrorsNamingTheAxis) {
        "X_COORDINATES 1 double\n0\nY_COORDINATES 1 double\n0\nZ_COORDINATES 3 double\n"
        "0 1.00001 2\nPOINT_DATA 3\n",
        "Z_COORDINATES: the coordinates are not uniform"},
-      {"decreasing y",
-       head + "X_COORDINATES 3 double\n0 1 2\nY_COORDINATES 2 double\n1 0\n",
+      {"decreasing y", head + "X_COORDINATES 3 double\n0 1 2\nY_COORDINATES 2 double\n1 0\n",
        "Y_COORDINATES: the coordinates must increase"},
-      {"nan x", head + "X_COORDINATES 3 double\n0 nan 2\n", "X_COORDINATES: the coordinates are not uniform"},
+      {"nan x", head + "X_COORDINATES 3 double\n0 nan 2\n",
+       "X_COORDINATES: the coordinates are not uniform"},
       {"wrong count", head + "X_COORDINATES 2 double\n0 1\n",
        "X_COORDINATES 2 does not match DIMENSIONS, which gives 3 points"},
       {"missing z",
@@ -589,7 +594,8 @@ TEST_F(VtkLegacyTest, NonUniformRectilinearGridsAreErrorsNamingTheAxis) {
        "missing DIMENSIONS before X_COORDINATES"},
       {"truncated binary",
        "# vtk DataFile Version 3.0\nrect\nBINARY\nDATASET RECTILINEAR_GRID\nDIMENSIONS 3 2 1\n"
-       "X_COORDINATES 3 double\n" + std::string(20, '\0'),
+       "X_COORDINATES 3 double\n" +
+           std::string(20, '\0'),
        "X_COORDINATES: the data is truncated"},
   };
   for (const MalformedCase& c : cases) {

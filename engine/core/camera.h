@@ -12,7 +12,7 @@ struct CameraParams {
   float distance = 0.0f;    // from the box centre in world units (longest box side = 1); 0: fit
   float fovY = 30.0f;       // vertical field of view in degrees (perspective)
   bool orthographic = false;
-  glm::vec3 target{0.0f};   // the point orbited, in world units (pan moves it)
+  glm::vec3 target{0.0f};  // the point orbited, in world units (pan moves it)
 
   bool operator==(const CameraParams&) const = default;
 };

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-
 #include <glm/common.hpp>
 
 namespace lic3d {
@@ -57,8 +56,8 @@ std::vector<std::uint8_t> colormapTable() {
   std::vector<std::uint8_t> texels(4 * kColormapWidth * kColormapCount);
   for (int row = 0; row < kColormapCount; ++row)
     for (int x = 0; x < kColormapWidth; ++x) {
-      const glm::vec3 c = sampleColormap(static_cast<Colormap>(row),
-                                         static_cast<float>(x) / (kColormapWidth - 1));
+      const glm::vec3 c =
+          sampleColormap(static_cast<Colormap>(row), static_cast<float>(x) / (kColormapWidth - 1));
       std::uint8_t* texel = &texels[4 * (row * kColormapWidth + x)];
       for (int k = 0; k < 3; ++k) texel[k] = static_cast<std::uint8_t>(std::lround(c[k] * 255.0f));
       texel[3] = 255;

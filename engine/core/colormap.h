@@ -2,10 +2,9 @@
 // Colour maps for magnitude: the thesis' blue-yellow-red ramp (5.1.2) and two perceptual maps.
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/enum_names.h"
 

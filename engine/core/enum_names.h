@@ -21,11 +21,11 @@ struct EnumName {
 template <class E>
 std::span<const EnumName<E>> enumNames();
 
-#define LIC3D_ENUM_NAMES(Type, ...)                          \
-  template <>                                                \
-  inline std::span<const EnumName<Type>> enumNames<Type>() { \
+#define LIC3D_ENUM_NAMES(Type, ...)                           \
+  template <>                                                 \
+  inline std::span<const EnumName<Type>> enumNames<Type>() {  \
     static constexpr EnumName<Type> kNames[] = {__VA_ARGS__}; \
-    return kNames;                                           \
+    return kNames;                                            \
   }
 
 template <class E>

@@ -11,9 +11,9 @@
 namespace lic3d {
 
 enum class ErrorKind {
-  InvalidInput,  // a bad flag, value or file: the user can fix it (CLI exit status 2)
-  Unsupported,   // no usable device, missing layer or feature (CLI exit status 1)
-  Runtime,       // a Vulkan call failed at run time: out of memory, device lost (exit status 1)
+  InvalidInput,   // a bad flag, value or file: the user can fix it (CLI exit status 2)
+  Unsupported,    // no usable device, missing layer or feature (CLI exit status 1)
+  Runtime,        // a Vulkan call failed at run time: out of memory, device lost (exit status 1)
   ResourceLimit,  // the request needs more memory than the device or host has (exit status 3)
 };
 
@@ -25,8 +25,12 @@ struct Error {
   bool deviceLost = false;
 };
 
-inline Error inputError(std::string message) { return {ErrorKind::InvalidInput, std::move(message)}; }
-inline Error unsupportedError(std::string message) { return {ErrorKind::Unsupported, std::move(message)}; }
+inline Error inputError(std::string message) {
+  return {ErrorKind::InvalidInput, std::move(message)};
+}
+inline Error unsupportedError(std::string message) {
+  return {ErrorKind::Unsupported, std::move(message)};
+}
 inline Error runtimeError(std::string message) { return {ErrorKind::Runtime, std::move(message)}; }
 inline Error resourceLimitError(std::string message) {
   return {ErrorKind::ResourceLimit, std::move(message)};
@@ -78,14 +82,15 @@ class [[nodiscard]] Result<void> {
 // Propagates an error from an expression returning Result<T>; on success binds the value to `var`.
 #define LIC3D_CONCAT_INNER(a, b) a##b
 #define LIC3D_CONCAT(a, b) LIC3D_CONCAT_INNER(a, b)
-#define LIC3D_TRY_ASSIGN_IMPL(tmp, var, expr) \
-  auto tmp = (expr);                          \
+#define LIC3D_TRY_ASSIGN_IMPL(tmp, var, expr)   \
+  auto tmp = (expr);                            \
   if (!tmp.ok()) return std::move(tmp).error(); \
   var = std::move(tmp).value()
-#define LIC3D_TRY_ASSIGN(var, expr) LIC3D_TRY_ASSIGN_IMPL(LIC3D_CONCAT(lic3dTry_, __LINE__), var, expr)
+#define LIC3D_TRY_ASSIGN(var, expr) \
+  LIC3D_TRY_ASSIGN_IMPL(LIC3D_CONCAT(lic3dTry_, __LINE__), var, expr)
 // Propagates an error from an expression returning Result<void>.
-#define LIC3D_TRY(expr)                                         \
-  do {                                                          \
-    auto lic3dTryResult = (expr);                               \
+#define LIC3D_TRY(expr)                                                 \
+  do {                                                                  \
+    auto lic3dTryResult = (expr);                                       \
     if (!lic3dTryResult.ok()) return std::move(lic3dTryResult).error(); \
   } while (false)

@@ -58,9 +58,9 @@ struct SparsityParams {
 };
 
 struct LicParams {
-  int length = 20;      // L: steps each way (before bias); with h = 0.5, 10 voxels
-  float step = 0.5f;    // h: step length in voxels
-  int bias = 0;         // Lb = L - bias steps backward, Lf = L + bias forward; |bias| <= L
+  int length = 20;    // L: steps each way (before bias); with h = 0.5, 10 voxels
+  float step = 0.5f;  // h: step length in voxels
+  int bias = 0;       // Lb = L - bias steps backward, Lf = L + bias forward; |bias| <= L
   Integrator integrator = Integrator::Rk2;
   Kernel kernel = Kernel::Box;
   NoiseFilter noiseFilter = NoiseFilter::Linear;

@@ -1,10 +1,9 @@
 #include "core/memory_budget.h"
 
-#include <algorithm>
-#include <cstdio>
-
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 
 namespace lic3d {
 namespace {
@@ -49,7 +48,9 @@ std::uint64_t hostAvailableBytes() {
     if (found) return static_cast<std::uint64_t>(kib) * 1024u;
   }
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+  return pages > 0 && page > 0
+             ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page)
+             : 0;
 }
 
 MemoryEstimate estimateMemory(const MemoryRequest& r) {
@@ -121,17 +122,17 @@ Result<void> checkMemoryBudget(const MemoryRequest& request, const MemoryBudget&
     problem = "needs " + mib(deviceNeeded) + " of device memory; the device has " +
               mib(budget.deviceBytes) + (budget.fromBudgetExtension ? " free" : "");
   else if (budget.hostBytes > 0 && hostNeeded > budget.hostBytes)
-    problem = "needs " + mib(hostNeeded) + " of host memory; " + mib(budget.hostBytes) +
-              " are available";
+    problem =
+        "needs " + mib(hostNeeded) + " of host memory; " + mib(budget.hostBytes) + " are available";
   else if (singleAllocationLimited(budget) && e.largestImage > budget.maxAllocation)
     problem = "needs a single allocation of " + mib(e.largestImage) + "; the device allows " +
               mib(budget.maxAllocation);
   if (problem.empty()) return {};
   const int largest = largestCubicGrid(request, budget);
-  return resourceLimitError(what + " (" + gridText(request.dims) + ") " + problem +
-                            (largest > 0 ? "; the largest cubic grid that fits is " +
-                                               std::to_string(largest) + "^3"
-                                         : ""));
+  return resourceLimitError(
+      what + " (" + gridText(request.dims) + ") " + problem +
+      (largest > 0 ? "; the largest cubic grid that fits is " + std::to_string(largest) + "^3"
+                   : ""));
 }
 
 int largestCubicGrid(MemoryRequest request, const MemoryBudget& budget) {

@@ -16,13 +16,13 @@ namespace lic3d {
 struct MemoryRequest {
   Dims dims{0};
   FieldPrecision precision = FieldPrecision::Half;  // resolved: not Auto
-  bool sparsity = false;        // a mask volume (R8) besides the field
+  bool sparsity = false;                            // a mask volume (R8) besides the field
   bool doubleBuffered = false;  // two LIC volumes (the desktop app recomputes into the second)
   bool volumeReadback = false;  // the LIC volume is read back to the host (`lic3d compute`)
   // An unsteady field (docs/TIME.md): two resident time steps and the noise as R32F, from which
   // the GPU writes the field texture; steps are uploaded one at a time instead of the texture.
   bool timeSeries = false;
-  int frameWidth = 0;           // 0: no frame (`compute`)
+  int frameWidth = 0;  // 0: no frame (`compute`)
   int frameHeight = 0;
 };
 

@@ -2,9 +2,8 @@
 // An 8-bit RGBA picture in memory, rows top to bottom (io/png_writer.h writes it).
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec4.hpp>
+#include <vector>
 
 namespace lic3d {
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <functional>
 #include <map>
-
 #include <nlohmann/json.hpp>
 
 #include "core/enum_names.h"
@@ -85,7 +84,8 @@ class Reader {
   }
   std::string join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   void fail(const std::string& where, const std::string& expected) {
-    if (error_->empty()) *error_ = (where.empty() ? "the top level" : where) + " must be " + expected;
+    if (error_->empty())
+      *error_ = (where.empty() ? "the top level" : where) + " must be " + expected;
   }
 
   const Json& object_;
@@ -131,55 +131,54 @@ std::string sessionToJson(const Session& s) {
                 {"ratio", l.sparsity.ratio},
                 {"seed", l.sparsity.seed}}}};
   const CameraParams& c = v.camera;
-  j["view"] = {
-      {"width", v.width},
-      {"height", v.height},
-      {"slicing", enumName(v.slicing)},
-      {"slices", v.slices},
-      {"camera",
-       {{"azimuth", c.azimuth},
-        {"elevation", c.elevation},
-        {"distance", c.distance},
-        {"fov", c.fovY},
-        {"orthographic", c.orthographic},
-        {"target", toArray(c.target)}}},
-      {"background", toArray(v.background)},
-      {"alpha", v.alpha},
-      {"opacity", enumName(v.opacityMode)},
-      {"filter", enumName(v.filter)},
-      {"contrast", v.contrast},
-      {"manual_window", v.manualWindow},
-      {"window", toArray(glm::vec2(v.windowLow, v.windowHigh))},
-      {"gain", v.gain},
-      {"brightness", v.brightness},
-      {"color", enumName(v.color)},
-      {"colormap", enumName(v.colormap)},
-      {"auto_color_range", v.autoColorRange},
-      {"color_range", toArray(glm::vec2(v.colorLow, v.colorHigh))},
-      {"legend", v.legend},
-      {"axes", v.axes},
-      {"magnitude_opacity", v.magnitudeOpacity},
-      {"magnitude_threshold", v.magnitudeThreshold},
-      {"clip_min", toArray(v.clipMin)},
-      {"clip_max", toArray(v.clipMax)},
-      {"roi", enumName(v.roi)},
-      {"roi_center", toArray(v.roiCenter)},
-      {"roi_size", v.roiSize},
-      {"roi_rotation", toArray(v.roiRotation)},
-      {"roi_outside", v.roiOutside},
-      {"fog", v.fog},
-      {"fog_range", toArray(glm::vec2(v.fogStart, v.fogEnd))},
-      {"fog_color_from_background", v.fogColorFromBackground},
-      {"fog_color", toArray(v.fogColor)},
-      {"stereo", enumName(v.stereo)},
-      {"eye_separation", v.eyeSeparation},
-      {"zero_parallax", v.zeroParallax},
-      {"lighting", enumName(v.lighting)},
-      {"light",
-       {{"ambient", v.light.ambient},
-        {"diffuse", v.light.diffuse},
-        {"specular", v.light.specular},
-        {"shininess", v.light.shininess}}}};
+  j["view"] = {{"width", v.width},
+               {"height", v.height},
+               {"slicing", enumName(v.slicing)},
+               {"slices", v.slices},
+               {"camera",
+                {{"azimuth", c.azimuth},
+                 {"elevation", c.elevation},
+                 {"distance", c.distance},
+                 {"fov", c.fovY},
+                 {"orthographic", c.orthographic},
+                 {"target", toArray(c.target)}}},
+               {"background", toArray(v.background)},
+               {"alpha", v.alpha},
+               {"opacity", enumName(v.opacityMode)},
+               {"filter", enumName(v.filter)},
+               {"contrast", v.contrast},
+               {"manual_window", v.manualWindow},
+               {"window", toArray(glm::vec2(v.windowLow, v.windowHigh))},
+               {"gain", v.gain},
+               {"brightness", v.brightness},
+               {"color", enumName(v.color)},
+               {"colormap", enumName(v.colormap)},
+               {"auto_color_range", v.autoColorRange},
+               {"color_range", toArray(glm::vec2(v.colorLow, v.colorHigh))},
+               {"legend", v.legend},
+               {"axes", v.axes},
+               {"magnitude_opacity", v.magnitudeOpacity},
+               {"magnitude_threshold", v.magnitudeThreshold},
+               {"clip_min", toArray(v.clipMin)},
+               {"clip_max", toArray(v.clipMax)},
+               {"roi", enumName(v.roi)},
+               {"roi_center", toArray(v.roiCenter)},
+               {"roi_size", v.roiSize},
+               {"roi_rotation", toArray(v.roiRotation)},
+               {"roi_outside", v.roiOutside},
+               {"fog", v.fog},
+               {"fog_range", toArray(glm::vec2(v.fogStart, v.fogEnd))},
+               {"fog_color_from_background", v.fogColorFromBackground},
+               {"fog_color", toArray(v.fogColor)},
+               {"stereo", enumName(v.stereo)},
+               {"eye_separation", v.eyeSeparation},
+               {"zero_parallax", v.zeroParallax},
+               {"lighting", enumName(v.lighting)},
+               {"light",
+                {{"ambient", v.light.ambient},
+                 {"diffuse", v.light.diffuse},
+                 {"specular", v.light.specular},
+                 {"shininess", v.light.shininess}}}};
   return j.dump(2) + "\n";
 }
 
@@ -317,8 +316,9 @@ Result<Session> sessionFromJson(const std::string& text, const std::string& sour
     return inputError(source + ": time_steps must be 0 or 2..100000");
   if (s.plane.index < -1 || s.plane.width < 0 || s.plane.width > 16384 || s.plane.height < 0 ||
       s.plane.height > 16384)
-    return inputError(source + ": plane.index must be -1 or more, plane.width and plane.height "
-                               "0..16384");
+    return inputError(source +
+                      ": plane.index must be -1 or more, plane.width and plane.height "
+                      "0..16384");
   if (auto r = validate(s.lic); !r) return inputError(source + ": " + r.error().message);
   if (auto r = validate(s.view); !r) return inputError(source + ": " + r.error().message);
   return s;

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/field_precision.h"
 #include "core/lic_params.h"
 #include "core/view_params.h"
-#include "core/field_precision.h"
 #include "core/volume.h"
 
 namespace lic3d {

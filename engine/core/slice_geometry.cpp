@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 namespace lic3d {
@@ -30,8 +29,9 @@ SlicePlan planSlices(Slicing slicing, Dims dims, glm::vec3 halfExtent, glm::vec3
   } else {
     plan.normal = glm::normalize(toViewer);
     reach = glm::dot(glm::abs(plan.normal), halfExtent);
-    plan.count = requested > 0 ? requested
-                               : std::max(1, static_cast<int>(std::ceil(2.0f * reach / plan.voxelSize)));
+    plan.count = requested > 0
+                     ? requested
+                     : std::max(1, static_cast<int>(std::ceil(2.0f * reach / plan.voxelSize)));
   }
   plan.spacing = 2.0f * reach / static_cast<float>(plan.count);
   plan.firstOffset = -reach + 0.5f * plan.spacing;

@@ -17,8 +17,8 @@ struct SlicePlan {
   float firstOffset = 0.0f;            // plane of slice 0 (farthest): dot(normal, x) = offset
   float spacing = 0.0f;                // offset of slice k = firstOffset + k * spacing
   int count = 0;
-  int axis = -1;                       // the grid axis for axis-aligned slicing, -1 otherwise
-  float voxelSize = 0.0f;              // smallest voxel side in world units (opacity reference)
+  int axis = -1;           // the grid axis for axis-aligned slicing, -1 otherwise
+  float voxelSize = 0.0f;  // smallest voxel side in world units (opacity reference)
 };
 
 // `toViewer` is the unit direction from the volume towards the camera. `requested` slices, or

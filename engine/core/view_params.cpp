@@ -46,7 +46,8 @@ Result<void> validate(const ViewParams& view) {
   if (view.magnitudeOpacity < 0.0f || !inUnit(view.magnitudeThreshold))
     return inputError("--magnitude-opacity must be >= 0 and --magnitude-threshold in [0,1]");
   for (int a = 0; a < 3; ++a)
-    if (!inUnit(view.clipMin[a]) || !inUnit(view.clipMax[a]) || !(view.clipMin[a] < view.clipMax[a]))
+    if (!inUnit(view.clipMin[a]) || !inUnit(view.clipMax[a]) ||
+        !(view.clipMin[a] < view.clipMax[a]))
       return inputError("--clip: each axis needs 0 <= min < max <= 1");
   if (view.roi != RoiShape::None && !(view.roiSize > 0.0f))
     return inputError("--roi-size must be positive");

@@ -13,7 +13,8 @@ namespace lic3d {
 
 enum class Slicing {
   ViewAligned,  // planes perpendicular to the view direction (default)
-  AxisAligned,  // planes perpendicular to the grid axis closest to the view direction (thesis 4.1.2)
+  AxisAligned,  // planes perpendicular to the grid axis closest to the view direction
+                // (thesis 4.1.2)
 };
 
 enum class OpacityMode {

@@ -4,11 +4,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace lic3d {
 
@@ -22,7 +21,8 @@ inline std::size_t voxelCount(Dims dims) {
 inline std::size_t voxelIndex(Dims dims, int i, int j, int k) {
   return static_cast<std::size_t>(i) +
          static_cast<std::size_t>(dims.x) *
-             (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(k));
+             (static_cast<std::size_t>(j) +
+              static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(k));
 }
 
 // Where the grid sits in physical space: voxel (i,j,k) is at origin + (i,j,k) * spacing.

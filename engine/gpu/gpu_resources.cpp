@@ -23,12 +23,13 @@ bool injectedAllocationFailure() {
   return failAt > 0 && ++count == failAt;
 }
 
-
 bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
   std::uint32_t count = 0;
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS)
+    return false;
   std::vector<VkExtensionProperties> extensions(count);
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) != VK_SUCCESS)
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) !=
+      VK_SUCCESS)
     return false;
   for (const VkExtensionProperties& e : extensions)
     if (std::strcmp(e.extensionName, name) == 0) return true;
@@ -60,16 +61,16 @@ MemoryBudget queryMemoryBudget(const Context& context) {
   for (std::uint32_t i = 0; i < memory.memoryProperties.memoryHeapCount; ++i) {
     const VkMemoryHeap& heap = memory.memoryProperties.memoryHeaps[i];
     if (!(heap.flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
-    const std::uint64_t available =
-        b.fromBudgetExtension
-            ? (budget.heapBudget[i] > budget.heapUsage[i] ? budget.heapBudget[i] - budget.heapUsage[i] : 0)
-            : heap.size;
+    const std::uint64_t available = b.fromBudgetExtension
+                                        ? (budget.heapBudget[i] > budget.heapUsage[i]
+                                               ? budget.heapBudget[i] - budget.heapUsage[i]
+                                               : 0)
+                                        : heap.size;
     b.deviceBytes = std::max<std::uint64_t>(b.deviceBytes, available);
   }
   b.hostBytes = hostAvailableBytes();
   return b;
 }
-
 
 // ---- DeviceMemory ------------------------------------------------------------------------------
 
@@ -100,16 +101,18 @@ Result<DeviceMemory> DeviceMemory::allocate(const Context& context,
                               ? VK_ERROR_OUT_OF_DEVICE_MEMORY
                               : vkAllocateMemory(context.device(), &info, nullptr, &memory.memory_);
   if (result != VK_SUCCESS)
-    return runtimeError("cannot allocate " + std::to_string(needs.size) + " bytes of GPU memory for " +
-                        name + ": vkAllocateMemory returned " + vkResultName(result));
+    return runtimeError("cannot allocate " + std::to_string(needs.size) +
+                        " bytes of GPU memory for " + name + ": vkAllocateMemory returned " +
+                        vkResultName(result));
   memory.device_ = context.device();
   memory.size_ = needs.size;
   memory.counter_ = &context.allocationCounter();
   *memory.counter_ += static_cast<std::int64_t>(needs.size);
   context.setDebugName(memory.memory_, VK_OBJECT_TYPE_DEVICE_MEMORY, name + " memory");
   if (use != MemoryUse::DeviceLocal)
-    LIC3D_TRY(checkVk(vkMapMemory(memory.device_, memory.memory_, 0, VK_WHOLE_SIZE, 0, &memory.mapped_),
-                      "vkMapMemory"));
+    LIC3D_TRY(
+        checkVk(vkMapMemory(memory.device_, memory.memory_, 0, VK_WHOLE_SIZE, 0, &memory.mapped_),
+                "vkMapMemory"));
   return memory;
 }
 
@@ -153,14 +156,15 @@ Result<Buffer> Buffer::create(const Context& context, VkDeviceSize size, VkBuffe
   Buffer buffer;
   buffer.device_ = context.device();
   buffer.size_ = size;
-  LIC3D_TRY(checkVk(vkCreateBuffer(context.device(), &info, nullptr, &buffer.buffer_),
-                    "vkCreateBuffer"));
+  LIC3D_TRY(
+      checkVk(vkCreateBuffer(context.device(), &info, nullptr, &buffer.buffer_), "vkCreateBuffer"));
   context.setDebugName(buffer.buffer_, VK_OBJECT_TYPE_BUFFER, name);
   VkMemoryRequirements needs;
   vkGetBufferMemoryRequirements(context.device(), buffer.buffer_, &needs);
   LIC3D_TRY_ASSIGN(buffer.memory_, DeviceMemory::allocate(context, needs, use, name));
-  LIC3D_TRY(checkVk(vkBindBufferMemory(context.device(), buffer.buffer_, buffer.memory_.handle(), 0),
-                    "vkBindBufferMemory"));
+  LIC3D_TRY(
+      checkVk(vkBindBufferMemory(context.device(), buffer.buffer_, buffer.memory_.handle(), 0),
+              "vkBindBufferMemory"));
   return buffer;
 }
 
@@ -210,10 +214,10 @@ Result<Image> Image::create(const Context& context, const ImageDesc& desc) {
   image.extent_ = desc.extent;
   const VkResult created = vkCreateImage(context.device(), &info, nullptr, &image.image_);
   if (created != VK_SUCCESS)
-    return runtimeError("cannot create image " + desc.name + " (" + std::to_string(desc.extent.width) +
-                        "x" + std::to_string(desc.extent.height) + "x" +
-                        std::to_string(desc.extent.depth) + "): vkCreateImage returned " +
-                        vkResultName(created));
+    return runtimeError(
+        "cannot create image " + desc.name + " (" + std::to_string(desc.extent.width) + "x" +
+        std::to_string(desc.extent.height) + "x" + std::to_string(desc.extent.depth) +
+        "): vkCreateImage returned " + vkResultName(created));
   context.setDebugName(image.image_, VK_OBJECT_TYPE_IMAGE, desc.name);
 
   VkMemoryRequirements needs;

@@ -3,11 +3,11 @@
 // Each resource gets its own VkDeviceMemory: lic3d holds a handful of large volumes, far below
 // maxMemoryAllocationCount, so a sub-allocator would add nothing.
 
+#include <vulkan/vulkan.h>
+
 #include <atomic>
 #include <cstdint>
 #include <string>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "core/memory_budget.h"

@@ -38,8 +38,8 @@ Result<void> submitToQueue(const Context& context, const VkSubmitInfo2& submit, 
   return checkVk(result, "vkQueueSubmit2");
 }
 
-Result<void> submitAndWait(const Context& context, const std::function<void(VkCommandBuffer)>& record,
-                           const char* what) {
+Result<void> submitAndWait(const Context& context,
+                           const std::function<void(VkCommandBuffer)>& record, const char* what) {
   VkDevice device = context.device();
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -59,7 +59,8 @@ Result<void> submitAndWait(const Context& context, const std::function<void(VkCo
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   allocInfo.commandBufferCount = 1;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  if (auto r = checkVk(vkAllocateCommandBuffers(device, &allocInfo, &cmd), "vkAllocateCommandBuffers");
+  if (auto r =
+          checkVk(vkAllocateCommandBuffers(device, &allocInfo, &cmd), "vkAllocateCommandBuffers");
       !r) {
     cleanup();
     return std::move(r).error();
@@ -85,8 +86,8 @@ Result<void> submitAndWait(const Context& context, const std::function<void(VkCo
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
   Result<void> result = submitToQueue(context, submit, fence);
-  if (result) result = checkVk(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX),
-                               "vkWaitForFences");
+  if (result)
+    result = checkVk(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   if (!result) {
     // The device may be lost; wait for idle so nothing still references the pool.
     vkDeviceWaitIdle(device);
@@ -116,9 +117,8 @@ void beginClearedRendering(VkCommandBuffer cmd, VkImageView view, VkExtent2D ext
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
-                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
-                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                  VkAccessFlags2 dstAccess) {
+                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   barrier.srcStageMask = srcStage;
   barrier.srcAccessMask = srcAccess;
@@ -166,11 +166,12 @@ Result<void> uploadImage(const Context& context, const Image& image, const void*
         region.imageExtent = image.extent();
         vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        imageBarrier(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        imageBarrier(
+            cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+            VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
       },
       "image upload");
 }

@@ -2,12 +2,12 @@
 // The one recipe for GPU work from the CPU's point of view: record, submit, wait on a fence.
 // Uploads and read-backs go through it; so do the LIC and slice passes when run offscreen.
 
+#include <vulkan/vulkan.h>
+
 #include <cstddef>
 #include <functional>
-#include <vector>
-
 #include <glm/vec3.hpp>
-#include <vulkan/vulkan.h>
+#include <vector>
 
 #include "core/error.h"
 #include "gpu/gpu_resources.h"
@@ -17,8 +17,8 @@ namespace lic3d {
 
 // Records into a fresh primary command buffer, submits it to the context's queue and waits.
 // Fails (with the call and VkResult) on device loss or out-of-memory at submission.
-Result<void> submitAndWait(const Context& context, const std::function<void(VkCommandBuffer)>& record,
-                           const char* what);
+Result<void> submitAndWait(const Context& context,
+                           const std::function<void(VkCommandBuffer)>& record, const char* what);
 
 // vkQueueSubmit2 of one submission to the context's queue, checked. Every submission of lic3d goes
 // through here. Test hook (docs/RELIABILITY.md): LIC3D_LOSE_DEVICE=N reports the N-th submission
@@ -27,9 +27,8 @@ Result<void> submitAndWait(const Context& context, const std::function<void(VkCo
 Result<void> submitToQueue(const Context& context, const VkSubmitInfo2& submit, VkFence fence);
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
-                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage,
-                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
-                  VkAccessFlags2 dstAccess);
+                  VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 // Begins dynamic rendering into one colour attachment (in COLOR_ATTACHMENT_OPTIMAL) cleared to
 // the opaque colour `clear`, over the whole extent.

@@ -1,7 +1,6 @@
 #include "gpu/gpu_timer.h"
 
 #include <algorithm>
-
 #include <utility>
 
 #include "gpu/vk_check.h"

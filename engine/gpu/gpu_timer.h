@@ -1,11 +1,11 @@
 #pragma once
 // GPU timestamps around regions of a command buffer: what the benchmark and the stats report.
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "gpu/vulkan_context.h"

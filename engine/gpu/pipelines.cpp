@@ -9,10 +9,9 @@ Result<ShaderModule> loadShader(const Context& context, ShaderId id) {
   return ShaderModule(context.device(), module);
 }
 
-Result<PipelineLayout> PipelineLayout::create(const Context& context,
-                                              std::span<const VkDescriptorSetLayoutBinding> bindings,
-                                              VkShaderStageFlags pushStages,
-                                              std::uint32_t pushBytes, const std::string& name) {
+Result<PipelineLayout> PipelineLayout::create(
+    const Context& context, std::span<const VkDescriptorSetLayoutBinding> bindings,
+    VkShaderStageFlags pushStages, std::uint32_t pushBytes, const std::string& name) {
   VkDevice device = context.device();
   PipelineLayout result;
 
@@ -52,9 +51,9 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
   info.stage.pSpecializationInfo = specialization;
   info.layout = layout.get();
   VkPipeline pipeline = VK_NULL_HANDLE;
-  LIC3D_TRY(checkVk(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr,
-                                             &pipeline),
-                    "vkCreateComputePipelines"));
+  LIC3D_TRY(checkVk(
+      vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+      "vkCreateComputePipelines"));
   context.setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
   return Pipeline(context.device(), pipeline);
 }

@@ -2,12 +2,12 @@
 // Owners of shader modules, pipeline layouts (with their push-descriptor set layout) and
 // pipelines, and the few calls every pass makes to build them.
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <span>
 #include <string>
 #include <utility>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "gpu/shader_library.h"

@@ -14,8 +14,8 @@
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
 #ifdef LIC3D_BENCH_RUNTIME_MODES
-#include "slice_runtime_frag_spv.h"
 #include "lic_naive_comp_spv.h"
+#include "slice_runtime_frag_spv.h"
 #endif
 
 namespace lic3d {
@@ -73,8 +73,9 @@ const char* shaderName(ShaderId id) {
 Result<VkShaderModule> createShaderModule(const Context& context, ShaderId id) {
   const std::span<const std::uint32_t> code = spirv(id);
   if (code.empty())
-    return unsupportedError(std::string(shaderName(id)) +
-                            " is not in this build (configure with -DLIC3D_BENCH_RUNTIME_MODES=ON)");
+    return unsupportedError(
+        std::string(shaderName(id)) +
+        " is not in this build (configure with -DLIC3D_BENCH_RUNTIME_MODES=ON)");
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = code.size_bytes();
   info.pCode = code.data();

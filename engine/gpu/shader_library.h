@@ -2,14 +2,14 @@
 // SPIR-V compiled from shaders/ at build time and embedded in the binary; pipelines are made
 // from it with typed specialization constants.
 
+#include <vulkan/vulkan.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <type_traits>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "gpu/vulkan_context.h"

@@ -3,9 +3,9 @@
 // outside the program (allocation, submission, device loss) return Result values instead: see
 // checkVk().
 
-#include <string>
-
 #include <vulkan/vulkan.h>
+
+#include <string>
 
 #include "core/error.h"
 
@@ -21,14 +21,14 @@ Result<void> checkVk(VkResult result, const char* call);
 
 }  // namespace lic3d
 
-#define LIC3D_VK_CHECK(call)                                                      \
-  do {                                                                            \
-    const VkResult lic3dVkResult = (call);                                        \
-    if (lic3dVkResult != VK_SUCCESS)                                              \
-      ::lic3d::abortOnVkError(#call, lic3dVkResult, __FILE__, __LINE__);          \
+#define LIC3D_VK_CHECK(call)                                             \
+  do {                                                                   \
+    const VkResult lic3dVkResult = (call);                               \
+    if (lic3dVkResult != VK_SUCCESS)                                     \
+      ::lic3d::abortOnVkError(#call, lic3dVkResult, __FILE__, __LINE__); \
   } while (false)
 
-#define LIC3D_ASSERT(condition)                                                    \
-  do {                                                                             \
-    if (!(condition)) ::lic3d::abortOnAssert(#condition, __FILE__, __LINE__);      \
+#define LIC3D_ASSERT(condition)                                               \
+  do {                                                                        \
+    if (!(condition)) ::lic3d::abortOnAssert(#condition, __FILE__, __LINE__); \
   } while (false)

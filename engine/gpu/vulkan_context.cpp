@@ -40,7 +40,8 @@ void keepVulkanModulesLoaded() {
         return 0;
       },
       &names);
-  for (const std::string& name : names) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+  for (const std::string& name : names)
+    dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
 }
 #else
 void keepVulkanModulesLoaded() {}
@@ -56,8 +57,9 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 bool hasInstanceExtension(const char* layer, const char* name) {
@@ -136,7 +138,8 @@ DeviceInfo describeDevice(VkPhysicalDevice device, int index,
   if (info.apiVersion < VK_API_VERSION_1_3)
     missing.push_back("Vulkan 1.3 (device reports " + versionString(info.apiVersion) + ")");
   else {
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan13Features features13{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!features13.dynamicRendering) missing.push_back("dynamicRendering");
@@ -175,8 +178,8 @@ Result<VkInstance> createInstance(bool validation, const std::vector<const char*
                               " is not installed (on Debian: apt-get install "
                               "vulkan-validationlayers)");
     layers.push_back(kValidationLayer);
-    *debugUtils = *debugUtils || hasInstanceExtension(kValidationLayer,
-                                                      VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    *debugUtils =
+        *debugUtils || hasInstanceExtension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   }
   if (*debugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -224,7 +227,8 @@ std::string lowercase(std::string s) {
 }
 
 Result<int> chooseDevice(const std::vector<DeviceInfo>& devices, const std::string& selector) {
-  if (devices.empty()) return unsupportedError(std::string("no Vulkan device found: ") + kNoDeviceHelp);
+  if (devices.empty())
+    return unsupportedError(std::string("no Vulkan device found: ") + kNoDeviceHelp);
   auto list = [&] {
     std::string text;
     for (const DeviceInfo& d : devices) text += "\n  " + std::to_string(d.index) + ": " + d.name;
@@ -244,7 +248,8 @@ Result<int> chooseDevice(const std::vector<DeviceInfo>& devices, const std::stri
           break;
         }
     }
-    if (chosen < 0) return inputError("--device " + selector + " matches no Vulkan device; found:" + list());
+    if (chosen < 0)
+      return inputError("--device " + selector + " matches no Vulkan device; found:" + list());
     if (!devices[chosen].usable)
       return unsupportedError("device " + std::to_string(chosen) + " (" + devices[chosen].name +
                               ") cannot run lic3d: " + devices[chosen].unusableReason);
@@ -356,7 +361,8 @@ Result<Context> Context::create(const ContextOptions& options) {
         vkGetInstanceProcAddr(state->instance, "vkSetDebugUtilsObjectNameEXT"));
   }
   if (state->validation && debugUtils) {
-    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
@@ -366,8 +372,9 @@ Result<Context> Context::create(const ContextOptions& options) {
     info.pUserData = &state->log;
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(state->instance, "vkCreateDebugUtilsMessengerEXT"));
-    if (create) LIC3D_TRY(checkVk(create(state->instance, &info, nullptr, &state->messenger),
-                                  "vkCreateDebugUtilsMessengerEXT"));
+    if (create)
+      LIC3D_TRY(checkVk(create(state->instance, &info, nullptr, &state->messenger),
+                        "vkCreateDebugUtilsMessengerEXT"));
   }
 
   if (options.createSurface) {
@@ -376,8 +383,8 @@ Result<Context> Context::create(const ContextOptions& options) {
   const std::vector<VkPhysicalDevice> physical = physicalDevices(state->instance);
   std::vector<DeviceInfo> infos;
   for (std::size_t i = 0; i < physical.size(); ++i)
-    infos.push_back(describeDevice(physical[i], static_cast<int>(i), options.deviceExtensions,
-                                   state->surface));
+    infos.push_back(
+        describeDevice(physical[i], static_cast<int>(i), options.deviceExtensions, state->surface));
   LIC3D_TRY_ASSIGN(const int chosen, chooseDevice(infos, options.device));
   state->physicalDevice = physical[chosen];
   state->info = infos[chosen];
@@ -390,8 +397,7 @@ Result<Context> Context::create(const ContextOptions& options) {
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(state->physicalDevice, &count, families.data());
     state->timestampBits = families[state->queueFamily].timestampValidBits;
-    state->timestamps = state->timestampBits > 0 &&
-                        state->properties.limits.timestampPeriod > 0.0f;
+    state->timestamps = state->timestampBits > 0 && state->properties.limits.timestampPeriod > 0.0f;
   }
 
   const float priority = 1.0f;
@@ -401,7 +407,8 @@ Result<Context> Context::create(const ContextOptions& options) {
   queueInfo.pQueuePriorities = &priority;
 
   // maintenance4 is required for local_size_x_id with SPIR-V 1.6 (LocalSizeId).
-  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan13Features features13{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   features13.dynamicRendering = VK_TRUE;
   features13.synchronization2 = VK_TRUE;
   features13.maintenance4 = VK_TRUE;

@@ -2,14 +2,14 @@
 // The Vulkan instance, the chosen physical device, the logical device and its one queue.
 // Works without any surface; a front end with a window passes its surface extensions in.
 
+#include <vulkan/vulkan.h>
+
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <vulkan/vulkan.h>
 
 #include "core/error.h"
 

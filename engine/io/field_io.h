@@ -21,8 +21,7 @@ namespace lic3d {
 // gets the array read and every vector array of the file; a field with no non-zero vector is an
 // error.
 Result<VectorField> readVectorField(const std::filesystem::path& path,
-                                    std::string_view arrayName = {},
-                                    FieldReadInfo* info = nullptr);
+                                    std::string_view arrayName = {}, FieldReadInfo* info = nullptr);
 
 // `.nrrd` or `.nhdr` (readNoiseNrrd).
 Result<NoiseVolume> readNoise(const std::filesystem::path& path);

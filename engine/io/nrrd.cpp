@@ -140,7 +140,7 @@ struct Layout {
 
 // What one reader accepts.
 struct Expectation {
-  std::size_t dimension;  // 3, or 4 with the components on the first axis
+  std::size_t dimension;   // 3, or 4 with the components on the first axis
   std::size_t components;  // the size of that first axis
   std::string_view dimensionMeaning;
   std::string_view componentsMeaning;
@@ -328,8 +328,8 @@ class HeaderInterpreter {
     }
     if (const HeaderField* lineSkip = find("line skip")) {
       if (!parseUnsigned(lineSkip->value, layout.lineSkip))
-        return fail("line skip", "expected a whole number, found " +
-                                     quoteForMessage(lineSkip->value));
+        return fail("line skip",
+                    "expected a whole number, found " + quoteForMessage(lineSkip->value));
     }
     if (const HeaderField* byteSkip = find("byte skip")) {
       std::uint64_t value = 0;
@@ -339,8 +339,8 @@ class HeaderInterpreter {
                  value <= static_cast<std::uint64_t>(INT64_MAX)) {
         layout.byteSkip = static_cast<std::int64_t>(value);
       } else {
-        return fail("byte skip", "expected -1 or a whole number, found " +
-                                     quoteForMessage(byteSkip->value));
+        return fail("byte skip",
+                    "expected -1 or a whole number, found " + quoteForMessage(byteSkip->value));
       }
     }
     return {};
@@ -565,8 +565,8 @@ Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
   }
   if (available == 0) return fileError(reader.path(), "gzip data is missing: the data is empty");
   // A gzip byte skip counts decompressed bytes, which the stream must hold as well.
-  const std::uint64_t inflated = needed + static_cast<std::uint64_t>(std::max<std::int64_t>(
-                                              layout.byteSkip, 0));
+  const std::uint64_t inflated =
+      needed + static_cast<std::uint64_t>(std::max<std::int64_t>(layout.byteSkip, 0));
   if (inflated < needed || inflated / kMaxDeflateRatio > available)
     return fileError(reader.path(), "gzip data of " + std::to_string(available) +
                                         " bytes cannot inflate to the " + std::to_string(needed) +
@@ -777,7 +777,7 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
 
   // 3 components per voxel, or 2 on a 2D grid (z stays 0).
   const glm::length_t components = static_cast<glm::length_t>(layout.components);
-  std::size_t voxel = 0;       // of the next value
+  std::size_t voxel = 0;  // of the next value
   glm::length_t component = 0;
   const auto store = [&](double value) {
     field.vectors[voxel][component] = vectorComponent(value);
@@ -795,12 +795,8 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
 }
 
 Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path) {
-  const Expectation expected{3,
-                             1,
-                             "a 3D grid of scalars",
-                             "",
-                             {ValueType::Float, ValueType::Double},
-                             "float or double"};
+  const Expectation expected{
+      3, 1, "a 3D grid of scalars", "", {ValueType::Float, ValueType::Double}, "float or double"};
   LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
   const Layout& layout = opened.layout;
   ScalarVolume volume;
@@ -915,8 +911,8 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
   if (noise.bytes.size() % bytesPerValue != 0)
     return inputError("cannot write '" + path.string() + "': the noise holds " +
                       std::to_string(noise.bytes.size()) + " bytes, not a whole number of values");
-  LIC3D_TRY(checkVolumeForWriting(path, noise.dims, noise.bytes.size() / bytesPerValue, 1,
-                                  nullptr));
+  LIC3D_TRY(
+      checkVolumeForWriting(path, noise.dims, noise.bytes.size() / bytesPerValue, 1, nullptr));
   const char* type = noise.type == NoiseType::UInt8    ? "uchar"
                      : noise.type == NoiseType::UInt16 ? "ushort"
                                                        : "float";
@@ -941,9 +937,8 @@ Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& 
       formatVector(volume.geometry.origin) + "\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
-    return static_cast<bool>(
-        out.write(reinterpret_cast<const char*>(volume.rgba.data()),
-                  static_cast<std::streamsize>(volume.rgba.size())));
+    return static_cast<bool>(out.write(reinterpret_cast<const char*>(volume.rgba.data()),
+                                       static_cast<std::streamsize>(volume.rgba.size())));
   });
 }
 

@@ -86,9 +86,11 @@ bool isValidUtf8(const std::string& text) {
   std::size_t i = 0;
   while (i < text.size()) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
-    const std::size_t length = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3
-                               : (c >> 3) == 30             ? 4
-                                                            : 0;
+    const std::size_t length = c < 0x80         ? 1
+                               : (c >> 5) == 6  ? 2
+                               : (c >> 4) == 14 ? 3
+                               : (c >> 3) == 30 ? 4
+                                                : 0;
     if (length == 0 || i + length > text.size()) return false;
     for (std::size_t k = 1; k < length; ++k)
       if ((static_cast<unsigned char>(text[i + k]) >> 6) != 2) return false;
@@ -133,8 +135,7 @@ Result<std::vector<png_text>> makeTexts(const std::filesystem::path& path, const
 }
 
 Result<void> encodeAndWrite(const std::filesystem::path& path, const PngFormat& format,
-                            const std::uint8_t* pixels, std::size_t rowBytes,
-                            const PngText& text) {
+                            const std::uint8_t* pixels, std::size_t rowBytes, const PngText& text) {
   LIC3D_TRY_ASSIGN(std::vector<png_text> texts, makeTexts(path, text));
   std::vector<png_bytep> rows(static_cast<std::size_t>(format.height));
   for (std::size_t y = 0; y < rows.size(); ++y)
@@ -147,8 +148,8 @@ Result<void> encodeAndWrite(const std::filesystem::path& path, const PngFormat& 
   return writeFileAtomically(path, encoded);
 }
 
-Result<void> checkSize(const std::filesystem::path& path, int width, int height,
-                       std::size_t values, std::size_t valuesPerPixel) {
+Result<void> checkSize(const std::filesystem::path& path, int width, int height, std::size_t values,
+                       std::size_t valuesPerPixel) {
   if (width <= 0 || height <= 0 ||
       values != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * valuesPerPixel)
     return inputError("cannot write '" + path.string() + "': the " + std::to_string(width) + "x" +

@@ -68,8 +68,8 @@ class SidecarReader {
     if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]);
         !problem.empty())
       return fail("dims: " + problem);
-    sidecar.dims = Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
-                        static_cast<int>(sizes[2]));
+    sidecar.dims =
+        Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
     LIC3D_TRY_ASSIGN(sidecar.geometry.spacing, triple(json, "spacing", 1.0, true));
     LIC3D_TRY_ASSIGN(sidecar.geometry.origin, triple(json, "origin", 0.0, false));
     if (json.contains("components")) {
@@ -77,8 +77,8 @@ class SidecarReader {
       if (!components.is_number_unsigned() || components.get<std::uint64_t>() != 3)
         return fail("components: expected 3 (a vector field), found " + shown(components));
     }
-    LIC3D_TRY_ASSIGN(const std::string order, word(json, "order", "interleaved",
-                                                   {"interleaved", "planar"}));
+    LIC3D_TRY_ASSIGN(const std::string order,
+                     word(json, "order", "interleaved", {"interleaved", "planar"}));
     sidecar.planar = order == "planar";
     LIC3D_TRY_ASSIGN(const std::string type, word(json, "type", "float32", {"float32", "float64"}));
     sidecar.valueBytes = type == "float64" ? 8 : 4;
@@ -156,8 +156,7 @@ Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPat
   if (stemExists && nameExists)
     return fileError(rawPath, "two JSON sidecars describe it, " +
                                   quoteForMessage(byStem.filename().string()) + " and " +
-                                  quoteForMessage(byName.filename().string()) +
-                                  "; remove one");
+                                  quoteForMessage(byName.filename().string()) + "; remove one");
   if (stemExists) return byStem;
   if (nameExists) return byName;
   return fileError(rawPath, "no JSON sidecar: expected " +
@@ -173,13 +172,12 @@ Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldR
   const std::uint64_t voxels = voxelCount(sidecar.dims);
   const std::uint64_t expected = voxels * 3 * sidecar.valueBytes;
   if (reader.size() != expected)
-    return fileError(path, "the file holds " + std::to_string(reader.size()) + " bytes; the " +
-                               std::to_string(sidecar.dims.x) + "x" +
-                               std::to_string(sidecar.dims.y) + "x" +
-                               std::to_string(sidecar.dims.z) + " grid of 3 " +
-                               (sidecar.valueBytes == 8 ? "float64" : "float32") +
-                               " components its sidecar describes needs " +
-                               std::to_string(expected));
+    return fileError(
+        path, "the file holds " + std::to_string(reader.size()) + " bytes; the " +
+                  std::to_string(sidecar.dims.x) + "x" + std::to_string(sidecar.dims.y) + "x" +
+                  std::to_string(sidecar.dims.z) + " grid of 3 " +
+                  (sidecar.valueBytes == 8 ? "float64" : "float32") +
+                  " components its sidecar describes needs " + std::to_string(expected));
 
   VectorField field;
   field.dims = sidecar.dims;

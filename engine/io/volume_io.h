@@ -3,6 +3,8 @@
 // besides the field, the rule for NaN and infinite vectors, cell-centred grids, zlib blocks, the
 // checks every writer makes, and the RGBA volume the writers save.
 
+#include <zlib.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -10,8 +12,6 @@
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <zlib.h>
 
 #include "core/error.h"
 #include "core/volume.h"

@@ -24,7 +24,18 @@ constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
 // Values are converted in chunks of this many.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
 
-enum class NumberType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64 };
+enum class NumberType {
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float32,
+  Float64
+};
 
 struct TypeInfo {
   std::string_view name;
@@ -132,7 +143,8 @@ class Base64Reader {
     if (padded) {
       // "xx==" or "xxx=": the quantum ends early; its '=' signs are consumed.
       if (sextets < 2 || sextets > 3) return fail();
-      while (position_ < text_.size() && (text_[position_] == '=' || isAsciiSpace(text_[position_])))
+      while (position_ < text_.size() &&
+             (text_[position_] == '=' || isAsciiSpace(text_[position_])))
         ++position_;
     }
     if (sextets == 0) return false;
@@ -327,9 +339,10 @@ Result<Extent> parseExtent(const VtiFile& file, const pugi::xml_node& node, cons
   for (std::size_t axis = 0; good && axis < 3; ++axis)
     good = extent.bounds[2 * axis] <= extent.bounds[2 * axis + 1];
   if (!good)
-    return file.fail(std::string(node.name()) + " " + name +
-                     ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
-                     quoteForMessage(attribute.value()));
+    return file.fail(
+        std::string(node.name()) + " " + name +
+        ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
+        quoteForMessage(attribute.value()));
   return extent;
 }
 
@@ -392,20 +405,20 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
   LIC3D_TRY_ASSIGN(const Extent whole, parseExtent(*file, image, "WholeExtent"));
   std::array<std::uint64_t, 3> sizes{};
   for (std::size_t axis = 0; axis < 3; ++axis)
-    sizes[axis] = static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
+    sizes[axis] =
+        static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
   if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]); !problem.empty())
     return file->fail("WholeExtent: " + problem);
-  file->dims = Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
-                    static_cast<int>(sizes[2]));
+  file->dims =
+      Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
   LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(*file, image, "Origin", 0.0, false));
   LIC3D_TRY_ASSIGN(file->geometry.spacing, parseTriple(*file, image, "Spacing", 1.0, true));
   // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
   // start at 0 moves the first voxel.
   for (glm::length_t axis = 0; axis < 3; ++axis)
     file->geometry.origin[axis] =
-        origin[axis] +
-        static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
-            file->geometry.spacing[axis];
+        origin[axis] + static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
+                           file->geometry.spacing[axis];
   for (glm::length_t axis = 0; axis < 3; ++axis)
     if (!std::isfinite(file->geometry.origin[axis]))
       return file->fail("ImageData: Origin + WholeExtent * Spacing is not finite");
@@ -422,11 +435,10 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
   if (file->piece.attribute("Extent")) {
     LIC3D_TRY_ASSIGN(const Extent extent, parseExtent(*file, file->piece, "Extent"));
     if (!(extent == whole))
-      return file->fail("the Piece's Extent " +
-                        quoteForMessage(file->piece.attribute("Extent").value()) +
-                        " differs from WholeExtent " +
-                        quoteForMessage(image.attribute("WholeExtent").value()) +
-                        " (lic3d reads one piece covering the whole grid)");
+      return file->fail(
+          "the Piece's Extent " + quoteForMessage(file->piece.attribute("Extent").value()) +
+          " differs from WholeExtent " + quoteForMessage(image.attribute("WholeExtent").value()) +
+          " (lic3d reads one piece covering the whole grid)");
   }
   return file;
 }
@@ -492,8 +504,8 @@ Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& a
         if (array.cellData != cellData || array.name != name) continue;
         if (!fits(array))
           return file.fail(describe(array) + " has " + std::to_string(array.components) +
-                           " components, expected " + std::to_string(components) +
-                           "; " + kind + " arrays: " + listNames(arrays, components));
+                           " components, expected " + std::to_string(components) + "; " + kind +
+                           " arrays: " + listNames(arrays, components));
         return array;
       }
     }
@@ -614,8 +626,9 @@ class ArrayReader {
     const std::size_t size = file_.header64 ? 8 : 4;
     std::array<unsigned char, 8> bytes{};
     if (source.read(bytes.data(), size) != size)
-      return fail(source.invalid() ? "invalid base64 data"
-                                   : "the data ends inside its header (" + std::string(field) + ")");
+      return fail(source.invalid()
+                      ? "invalid base64 data"
+                      : "the data ends inside its header (" + std::string(field) + ")");
     if (file_.order != std::endian::native) std::reverse(bytes.begin(), bytes.begin() + size);
     if (size == 4) {
       std::uint32_t value;
@@ -629,8 +642,8 @@ class ArrayReader {
 
   Error truncated(ByteSource& source, std::uint64_t needed) const {
     if (source.invalid()) return fail("invalid base64 data");
-    return fail("the data is truncated: " + std::to_string(needed) +
-                " bytes expected, at most " + std::to_string(source.maxRemaining()) + " present");
+    return fail("the data is truncated: " + std::to_string(needed) + " bytes expected, at most " +
+                std::to_string(source.maxRemaining()) + " present");
   }
 
   Result<void> readBinary(ByteSource& source, const std::function<void()>& allocate,
@@ -652,7 +665,8 @@ class ArrayReader {
     std::vector<unsigned char> chunk(
         static_cast<std::size_t>(std::min<std::uint64_t>(bytes_, kChunkValues * 8)));
     for (std::uint64_t left = bytes_; left > 0;) {
-      const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
+      const std::size_t want =
+          static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
       if (source.read(chunk.data(), want) != want) return truncated(source, bytes_);
       decoder.add(chunk.data(), want);
       left -= want;
@@ -709,10 +723,10 @@ class ArrayReader {
       if (source.read(compressed.data(), size) != size) return truncated(source, compressedTotal);
       const std::size_t inflatedSize =
           static_cast<std::size_t>(i + 1 == compressedSizes.size() ? lastBlock : blockSize);
-      LIC3D_TRY(inflateExactly(file_.path, what_ + " block " + std::to_string(i),
-                               std::string_view(reinterpret_cast<const char*>(compressed.data()),
-                                                size),
-                               std::span<char>(inflated.data(), inflatedSize)));
+      LIC3D_TRY(
+          inflateExactly(file_.path, what_ + " block " + std::to_string(i),
+                         std::string_view(reinterpret_cast<const char*>(compressed.data()), size),
+                         std::span<char>(inflated.data(), inflatedSize)));
       decoder.add(reinterpret_cast<const unsigned char*>(inflated.data()), inflatedSize);
     }
     return {};
@@ -734,7 +748,8 @@ CellCentredGrid gridOf(const VtiFile& file, const ArrayRef& array) {
 
 // XML attribute text: names come from the caller and may hold any character.
 Result<std::string> escapeXml(const std::filesystem::path& path, std::string_view text) {
-  if (text.empty()) return inputError("cannot write '" + path.string() + "': the array name is empty");
+  if (text.empty())
+    return inputError("cannot write '" + path.string() + "': the array name is empty");
   std::string escaped;
   for (const char c : text) {
     const unsigned char byte = static_cast<unsigned char>(c);
@@ -863,8 +878,8 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {
 Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
                             std::string_view arrayName) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, "Float32", 1, arrayName,
-                  volume.values.data(), volume.values.size() * sizeof(float));
+  return writeVti(path, volume.dims, volume.geometry, "Float32", 1, arrayName, volume.values.data(),
+                  volume.values.size() * sizeof(float));
 }
 
 Result<void> writeRgbaVti(const std::filesystem::path& path, const RgbaVolume& volume) {

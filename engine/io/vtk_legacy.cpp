@@ -31,12 +31,18 @@ struct DataType {
 // The sizes in BINARY files. `long` is 8 bytes because VTK writes sizeof(long), and legacy files
 // come from LP64 systems; vtkIdType is always written as a 32-bit int.
 constexpr DataType kDataTypes[] = {
-    {"unsigned_char", 1, NumberKind::Unsigned}, {"char", 1, NumberKind::Signed},
-    {"unsigned_short", 2, NumberKind::Unsigned}, {"short", 2, NumberKind::Signed},
-    {"unsigned_int", 4, NumberKind::Unsigned},   {"int", 4, NumberKind::Signed},
-    {"unsigned_long", 8, NumberKind::Unsigned},  {"long", 8, NumberKind::Signed},
-    {"vtktypeint64", 8, NumberKind::Signed},     {"vtktypeuint64", 8, NumberKind::Unsigned},
-    {"float", 4, NumberKind::Real},              {"double", 8, NumberKind::Real},
+    {"unsigned_char", 1, NumberKind::Unsigned},
+    {"char", 1, NumberKind::Signed},
+    {"unsigned_short", 2, NumberKind::Unsigned},
+    {"short", 2, NumberKind::Signed},
+    {"unsigned_int", 4, NumberKind::Unsigned},
+    {"int", 4, NumberKind::Signed},
+    {"unsigned_long", 8, NumberKind::Unsigned},
+    {"long", 8, NumberKind::Signed},
+    {"vtktypeint64", 8, NumberKind::Signed},
+    {"vtktypeuint64", 8, NumberKind::Unsigned},
+    {"float", 4, NumberKind::Real},
+    {"double", 8, NumberKind::Real},
     {"vtkidtype", 4, NumberKind::Signed},
 };
 
@@ -400,8 +406,7 @@ Result<void> readUniformCoordinates(Parser& parser, const Words& words, Geometry
   if (count != static_cast<std::uint64_t>(points))
     return parser.fail(key + " " + words[1] + " does not match DIMENSIONS, which gives " +
                        std::to_string(points) + " points along this axis");
-  LIC3D_TRY_ASSIGN(const std::vector<double> coordinates,
-                   parser.readNumbers(count, words[2], key));
+  LIC3D_TRY_ASSIGN(const std::vector<double> coordinates, parser.readNumbers(count, words[2], key));
   const double first = coordinates.front();
   const double last = coordinates.back();
   if (!std::isfinite(first) || !std::isfinite(last))
@@ -416,8 +421,7 @@ Result<void> readUniformCoordinates(Parser& parser, const Words& words, Geometry
   const bool isFloat = asciiLowerCase(words[2]) == "float";
   for (std::size_t i = 0; i < coordinates.size(); ++i) {
     const double uniform = first + spacing * static_cast<double>(i);
-    const double tolerance =
-        1e-6 * spacing + (isFloat ? std::abs(uniform) * 0x1p-24 : 0.0);
+    const double tolerance = 1e-6 * spacing + (isFloat ? std::abs(uniform) * 0x1p-24 : 0.0);
     if (!(std::abs(coordinates[i] - uniform) <= tolerance))
       return parser.fail(key + ": the coordinates are not uniform: coordinate " +
                          std::to_string(i) + " is " + formatDouble(coordinates[i]) +
@@ -658,8 +662,7 @@ Result<VectorField> readVectorFieldVtk(const std::filesystem::path& path,
       chosenName = name;
       return {};
     }
-    if (wanted && !cellVectors)
-      cellVectors = CellVectors{name, line[2], tuples, reader.position()};
+    if (wanted && !cellVectors) cellVectors = CellVectors{name, line[2], tuples, reader.position()};
     return skipAttribute(parser, line, tuples, section);
   };
 
@@ -693,10 +696,9 @@ Result<VectorField> readVectorFieldVtk(const std::filesystem::path& path,
     cellParser.setFormat(format);
     field.dims = cells.dims;
     field.geometry = cells.geometry;
-    LIC3D_TRY(cellParser.readVectors(cellVectors->tuples, cellVectors->type,
-                                     "VECTORS " + quoteForMessage(cellVectors->name) +
-                                         " (cell data)",
-                                     field.vectors));
+    LIC3D_TRY(cellParser.readVectors(
+        cellVectors->tuples, cellVectors->type,
+        "VECTORS " + quoteForMessage(cellVectors->name) + " (cell data)", field.vectors));
     chosenName = cellVectors->name;
   } else {
     return vectorsNotFound(parser, arrayName, seen);

@@ -57,14 +57,15 @@ void drawText(RgbaImage& image, int x, int y, std::string_view text, glm::u8vec4
                                         static_cast<int>(buffer.size()));
   for (int q = 0; q < quads; ++q) {
     const float* v0 = reinterpret_cast<const float*>(&buffer[static_cast<std::size_t>(q) * 64]);
-    const float* v2 = reinterpret_cast<const float*>(&buffer[static_cast<std::size_t>(q) * 64 + 32]);
+    const float* v2 =
+        reinterpret_cast<const float*>(&buffer[static_cast<std::size_t>(q) * 64 + 32]);
     fillRect(image, x + static_cast<int>(v0[0]) * scale, y + static_cast<int>(v0[1]) * scale,
              x + static_cast<int>(v2[0]) * scale, y + static_cast<int>(v2[1]) * scale, color);
   }
 }
 
-LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high,
-                     std::string_view title, glm::vec3 background) {
+LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high, std::string_view title,
+                     glm::vec3 background) {
   const int scale = std::max(1, image.height / 360);
   const glm::u8vec4 ink = inkFor(background, 255);
 
@@ -84,8 +85,7 @@ LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high,
   for (int y = box.y0; y < box.y1; ++y) {
     const float t = 1.0f - static_cast<float>(y - box.y0) / static_cast<float>(box.y1 - box.y0 - 1);
     const glm::vec3 c = sampleColormap(map, t);
-    fillRect(image, box.x0, y, box.x1, y + 1,
-             glm::u8vec4(glm::vec3(c * 255.0f + 0.5f), 255));
+    fillRect(image, box.x0, y, box.x1, y + 1, glm::u8vec4(glm::vec3(c * 255.0f + 0.5f), 255));
   }
   // A thin frame in the text colour keeps the bar readable on any background.
   fillRect(image, box.x0 - 1, box.y0 - 1, box.x1 + 1, box.y0, ink);
@@ -133,7 +133,8 @@ BoxAxes projectBoxAxes(const glm::mat4& viewProjection, glm::vec3 halfExtent, Di
     bool found = false;
     glm::vec2 best{0.0f};
     for (int k = 0; k < 4; ++k) {
-      glm::vec3 middle = corner((k & 1 ? 1 : 0) << ((axis + 1) % 3) | (k & 2 ? 1 : 0) << ((axis + 2) % 3));
+      glm::vec3 middle =
+          corner((k & 1 ? 1 : 0) << ((axis + 1) % 3) | (k & 2 ? 1 : 0) << ((axis + 2) % 3));
       middle[axis] = 0.0f;
       glm::vec2 at;
       if (!project(middle, at)) continue;

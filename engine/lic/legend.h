@@ -2,15 +2,13 @@
 // Annotations drawn into finished pictures on the CPU: text and the colour legend (a colour bar
 // with its value range), so CLI images carry their own key.
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <glm/mat4x4.hpp>
-#include <glm/vec2.hpp>
-
-#include <glm/vec4.hpp>
 
 #include "core/colormap.h"
 #include "core/rgba_image.h"
@@ -28,13 +26,13 @@ struct LegendBox {
 
 // A vertical colour bar at the right edge, `low` at the bottom and `high` at the top, labelled
 // with the values and `title`. Text is white or black, whichever stands out from `background`.
-LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high,
-                     std::string_view title, glm::vec3 background);
+LegendBox drawLegend(RgbaImage& image, Colormap map, float low, float high, std::string_view title,
+                     glm::vec3 background);
 
 // The volume's box as the camera sees it: 12 edges in pixels, and a label per axis at the middle
 // of the outline edge that runs along it, e.g. "x 0 .. 2.35".
 struct AxisLabel {
-  glm::vec2 at{0.0f};      // the middle of the labelled edge
+  glm::vec2 at{0.0f};  // the middle of the labelled edge
   std::string text;
   bool leftOfBox = false;  // the edge is left of the box's centre: put the text to its left
 };

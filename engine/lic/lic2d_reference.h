@@ -5,8 +5,8 @@
 
 #include "core/error.h"
 #include "core/lic_params.h"
-#include "lic/lic_reference.h"
 #include "core/volume.h"
+#include "lic/lic_reference.h"
 
 namespace lic3d {
 

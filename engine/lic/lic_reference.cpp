@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <optional>
 #include <thread>
-
-#include <glm/glm.hpp>
 
 namespace lic3d {
 namespace {
@@ -125,7 +124,9 @@ double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x) {
     return noise.value(voxelIndex(d, v.x, v.y, v.z));
   }
   const Corner cx = axisCorner(x.x, d.x), cy = axisCorner(x.y, d.y), cz = axisCorner(x.z, d.z);
-  auto n = [&](int i, int j, int k) { return static_cast<double>(noise.value(voxelIndex(d, i, j, k))); };
+  auto n = [&](int i, int j, int k) {
+    return static_cast<double>(noise.value(voxelIndex(d, i, j, k)));
+  };
   const double c00 = std::lerp(n(cx.i0, cy.i0, cz.i0), n(cx.i1, cy.i0, cz.i0), cx.t);
   const double c10 = std::lerp(n(cx.i0, cy.i1, cz.i0), n(cx.i1, cy.i1, cz.i0), cx.t);
   const double c01 = std::lerp(n(cx.i0, cy.i0, cz.i1), n(cx.i1, cy.i0, cz.i1), cx.t);
@@ -179,8 +180,8 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
         traceStreamline(sampler, noise.dims, params, start, sign, steps);
     // The start sample belongs to both directions; count it once (with the backward pass).
     for (std::size_t i = sign < 0 ? 0 : 1; i < samples.size(); ++i) {
-      const double w = kernelWeight(params.kernel, sign * static_cast<int>(i), params.length,
-                                    params.bias);
+      const double w =
+          kernelWeight(params.kernel, sign * static_cast<int>(i), params.length, params.bias);
       sum += w * sampleNoise(noise, params.noiseFilter, samples[i]);
       weights += w;
       // A hidden voxel's value is never shown: its streamline is not followed further, and

@@ -3,14 +3,13 @@
 // precision, multi-threaded. It is the oracle of the GPU tests and the `--cpu` fallback.
 
 #include <functional>
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "core/lic_params.h"
-#include "lic/sparsity.h"
 #include "core/volume.h"
+#include "lic/sparsity.h"
 
 namespace lic3d {
 

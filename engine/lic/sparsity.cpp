@@ -369,8 +369,8 @@ bool isBlack(const CheckerboardPattern& pattern, std::uint64_t s) {
          static_cast<std::uint64_t>(pattern.black);
 }
 
-
-// ---- Exact Poisson disk (Bridson 2007) -----------------------------------------------------------
+// ---- Exact Poisson disk (Bridson 2007)
+// -----------------------------------------------------------
 //
 // The volume is sampled in regions: slabs of grid cell layers along z, sampled concurrently, then
 // the bands between them. A region has its own background grid (the same x and y as the whole
@@ -421,7 +421,7 @@ struct PoissonSetup {
   FixedExtent extent;
   std::int64_t r, r2;
   PoissonGridShape shape;  // of the whole volume; regions take cell layers of it along z
-  std::size_t layers;      // cell layers along z, without padding: layer l holds z in [l C, l C + C)
+  std::size_t layers;  // cell layers along z, without padding: layer l holds z in [l C, l C + C)
   CellDivider toCell;
   std::vector<PoissonRow> rows;  // offsets in any grid with shape.nx by shape.ny cells per layer
 };
@@ -433,8 +433,7 @@ struct PoissonSetup {
 // are active from the start, so each gets k attempts inside it; the slab sampling could not try
 // there. With nothing around, the first sample is uniform in the region. Returns the new samples,
 // at most maxNew, in the order made.
-std::vector<FixedPoint> sampleRegion(const PoissonSetup& setup, std::size_t first,
-                                     std::size_t last,
+std::vector<FixedPoint> sampleRegion(const PoissonSetup& setup, std::size_t first, std::size_t last,
                                      std::span<const std::vector<FixedPoint>> around,
                                      Random& random, std::size_t maxNew) {
   const FixedExtent& extent = setup.extent;
@@ -745,8 +744,7 @@ std::vector<glm::vec3> poissonDiskPoints(Dims dims, float radius, std::uint64_t 
     // The slabs at once, each from its own stream of the seed.
     runConcurrently(slabs, threads, [&](std::size_t s) {
       Random random(seed, kPoissonSlabStream + s);
-      slabSamples[s] =
-          sampleRegion(setup, bounds[2 * s], bounds[2 * s + 1], {}, random, maxPoints);
+      slabSamples[s] = sampleRegion(setup, bounds[2 * s], bounds[2 * s + 1], {}, random, maxPoints);
     });
     // Then the bands, each started from the samples of the slabs on either side. Bands are a
     // slab apart and read the slabs only, so they too can be sampled at once. The points are
@@ -784,10 +782,10 @@ std::vector<std::pair<float, float>> poissonDiskBands(Dims dims, float radius) {
   const PoissonSetup setup(dims, radius);
   const std::vector<std::size_t> bounds = poissonSlabBounds(setup);
   const auto z = [&](std::size_t layer) {
-    return static_cast<float>(static_cast<std::int64_t>(layer) * setup.shape.cell) *
-           kFixedToVoxels;
+    return static_cast<float>(static_cast<std::int64_t>(layer) * setup.shape.cell) * kFixedToVoxels;
   };
-  for (std::size_t b = 1; b + 1 < bounds.size(); b += 2) bands.emplace_back(z(bounds[b]), z(bounds[b + 1]));
+  for (std::size_t b = 1; b + 1 < bounds.size(); b += 2)
+    bands.emplace_back(z(bounds[b]), z(bounds[b + 1]));
   return bands;
 }
 
@@ -1076,14 +1074,14 @@ CheckerboardPattern checkerboardPattern(float ratio, Dims dims) {
   return {};
 }
 
-std::vector<glm::vec3> poissonDiskPointsByCount(Dims dims, std::size_t count,
-                                                std::uint64_t seed) {
+std::vector<glm::vec3> poissonDiskPointsByCount(Dims dims, std::size_t count, std::uint64_t seed) {
   SparsityParams params;
   params.distribution = SparsityDistribution::Poisson;
   params.points = static_cast<int>(std::min<std::size_t>(count, kMaxSparsityPoints));
   params.seed = seed;
   const ResolvedParams resolved = resolve(params, dims);
-  std::vector<glm::vec3> points = poissonDiskPoints(dims, resolved.radius, seed, kMaxSparsityPoints);
+  std::vector<glm::vec3> points =
+      poissonDiskPoints(dims, resolved.radius, seed, kMaxSparsityPoints);
   keepRandomSubset(points, resolved.points, seed);
   return points;
 }
@@ -1143,8 +1141,8 @@ Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const F
   for (int k = 0; k < dims.z; ++k)
     for (int j = 0; j < dims.y; ++j)
       for (int i = 0; i < dims.x; ++i) {
-        const std::uint8_t black = whole.black[voxelIndex(
-            piece.wholeDims, piece.offset.x + i, piece.offset.y + j, piece.offset.z + k)];
+        const std::uint8_t black = whole.black[voxelIndex(piece.wholeDims, piece.offset.x + i,
+                                                          piece.offset.y + j, piece.offset.z + k)];
         mask.black[voxelIndex(dims, i, j, k)] = black;
         mask.blackCount += black;
       }

@@ -13,13 +13,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <span>
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/error.h"
 #include "core/lic_params.h"

@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "lic/analytic_fields.h"
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/volume_io.h"
+#include "lic/analytic_fields.h"
 
 namespace lic3d {
 

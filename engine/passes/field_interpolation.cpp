@@ -6,9 +6,9 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gpu/gpu_submit.h"
-#include "passes/lic_push.h"
-#include "lic/lic_reference.h"
 #include "gpu/shader_library.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_push.h"
 #include "shared_layout.h"
 
 namespace lic3d {

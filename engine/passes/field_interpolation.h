@@ -8,13 +8,13 @@
 #include <cstdint>
 
 #include "core/error.h"
+#include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/pipelines.h"
-#include "core/volume.h"
+#include "gpu/vulkan_context.h"
 #include "lic/time_series.h"
 #include "passes/volume_textures.h"
-#include "gpu/vulkan_context.h"
 
 namespace lic3d {
 

@@ -6,10 +6,10 @@
 #include <glm/gtc/packing.hpp>
 
 #include "gpu/gpu_submit.h"
+#include "gpu/shader_library.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_push.h"
-#include "gpu/shader_library.h"
 #include "shared_layout.h"
 
 namespace lic3d {

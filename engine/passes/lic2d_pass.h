@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/lic_params.h"
+#include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_timer.h"
-#include "core/lic_params.h"
 #include "gpu/pipelines.h"
-#include "core/volume.h"
-#include "passes/volume_textures.h"
 #include "gpu/vulkan_context.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d {
 

@@ -1,14 +1,14 @@
 #include "passes/lic_histogram.h"
 
-#include <array>
-#include <cstring>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 
 #include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
-#include "shared_layout.h"
 #include "gpu/vk_check.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 
@@ -48,12 +48,11 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
 
   LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_NEAREST, "histogram sampler"));
   const VkDeviceSize bytes = gpu::kHistogramBins * sizeof(std::uint32_t);
-  LIC3D_TRY_ASSIGN(pass.counts_,
-                   Buffer::create(context, bytes,
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  MemoryUse::DeviceLocal, "histogram counts"));
+  LIC3D_TRY_ASSIGN(pass.counts_, Buffer::create(context, bytes,
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                MemoryUse::DeviceLocal, "histogram counts"));
   LIC3D_TRY_ASSIGN(pass.readback_,
                    Buffer::create(context, bytes * kSlots, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                   MemoryUse::Readback, "histogram readback"));
@@ -81,7 +80,8 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
   const std::array<VkWriteDescriptorSet, 2> writes{
       descriptorWrite(gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                       &volumeInfo),
-      descriptorWrite(gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &countsInfo)};
+      descriptorWrite(gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                      &countsInfo)};
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
                                  static_cast<std::uint32_t>(writes.size()), writes.data());
   const gpu::HistogramPushConstants push{glm::ivec4(dims, 0)};

@@ -4,15 +4,15 @@
 // grey (ViewParams::contrast); this pass supplies their mean and spread without reading the
 // volume back.
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <vector>
 
-#include <vulkan/vulkan.h>
-
 #include "core/error.h"
+#include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
-#include "core/volume.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {

@@ -3,10 +3,10 @@
 #include <array>
 #include <cstdlib>
 
-#include "passes/lic_push.h"
 #include "gpu/shader_library.h"
-#include "shared_layout.h"
 #include "gpu/vk_check.h"
+#include "passes/lic_push.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 
@@ -36,16 +36,17 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
       {gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
        VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
   }};
-  const std::span<const VkDescriptorSetLayoutBinding> used(bindings.data(),
-                                                           separateNoise ? 4 : 3);
-  LIC3D_TRY_ASSIGN(pass.layout_,
-                   PipelineLayout::create(context, used, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::LicPushConstants), "lic"));
-  LIC3D_TRY_ASSIGN(pass.shader_, loadShader(context, separateNoise ? ShaderId::LicComputeSeparateNoise
-                                                                   : ShaderId::LicCompute));
-  LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_LINEAR, "lic trilinear sampler"));
+  const std::span<const VkDescriptorSetLayoutBinding> used(bindings.data(), separateNoise ? 4 : 3);
+  LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, used, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                        sizeof(gpu::LicPushConstants), "lic"));
+  LIC3D_TRY_ASSIGN(pass.shader_,
+                   loadShader(context, separateNoise ? ShaderId::LicComputeSeparateNoise
+                                                     : ShaderId::LicCompute));
+  LIC3D_TRY_ASSIGN(pass.sampler_,
+                   Sampler::create(context, VK_FILTER_LINEAR, "lic trilinear sampler"));
   // Integer textures cannot be filtered linearly; the mask is only read with texelFetch.
-  LIC3D_TRY_ASSIGN(pass.maskSampler_, Sampler::create(context, VK_FILTER_NEAREST, "lic mask sampler"));
+  LIC3D_TRY_ASSIGN(pass.maskSampler_,
+                   Sampler::create(context, VK_FILTER_NEAREST, "lic mask sampler"));
   return pass;
 }
 
@@ -54,9 +55,9 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
     if (spec == specialization) return pipeline.get();
 
   const Specialization<LicSpecialization> constants(specialization);
-  const std::string name =
-      licPipelineName(separateNoise_ ? "naive lic " : "lic ", specialization) +
-      (specialization.packing ? "/byte" : "") + (specialization.sparsity ? "/sparse" : "");
+  const std::string name = licPipelineName(separateNoise_ ? "naive lic " : "lic ", specialization) +
+                           (specialization.packing ? "/byte" : "") +
+                           (specialization.sparsity ? "/sparse" : "");
   LIC3D_TRY_ASSIGN(Pipeline pipeline,
                    createComputePipeline(*context_, shader_, layout_, constants.info(), name));
   const VkPipeline handle = pipeline.get();
@@ -84,7 +85,8 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
       descriptorWrite(gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &fieldInfo),
       descriptorWrite(gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &outputInfo),
       descriptorWrite(gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &maskInfo),
-      descriptorWrite(gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &noiseInfo)};
+      descriptorWrite(gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      &noiseInfo)};
   context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
                                  separateNoise_ ? 4u : 3u, writes.data());
 

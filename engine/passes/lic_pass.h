@@ -1,20 +1,20 @@
 #pragma once
 // The LIC compute pass: one invocation per voxel writes the LIC volume (a 3D storage image).
-// Each (integrator, kernel, noise filter, direction, scheme, packing, sparsity) variant is its own pipeline, specialized
-// at creation and cached: the thesis' #ifdef variants without copied shaders.
+// Each (integrator, kernel, noise filter, direction, scheme, packing, sparsity) variant is its own
+// pipeline, specialized at creation and cached: the thesis' #ifdef variants without copied shaders.
+
+#include <vulkan/vulkan.h>
 
 #include <cstdint>
 #include <utility>
 #include <vector>
 
-#include <vulkan/vulkan.h>
-
 #include "core/error.h"
-#include "gpu/gpu_resources.h"
 #include "core/lic_params.h"
+#include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
-#include "passes/volume_textures.h"
 #include "gpu/vulkan_context.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d {
 
@@ -29,7 +29,7 @@ struct LicSpecialization {
   std::uint32_t localSizeZ = 1;
   std::uint32_t sparsity = 0;
   std::uint32_t scheme = 0;
-  std::uint32_t packing = 0;  // 1 for FieldPrecision::Byte
+  std::uint32_t packing = 0;     // 1 for FieldPrecision::Byte
   std::uint32_t interleave = 1;  // 0 on CPU drivers (see shaders/lic.comp)
 
   bool operator==(const LicSpecialization&) const = default;

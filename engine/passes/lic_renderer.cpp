@@ -4,12 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-
 #include <glm/gtc/packing.hpp>
 
 #include "gpu/gpu_submit.h"
-#include "lic/legend.h"
 #include "gpu/vk_check.h"
+#include "lic/legend.h"
 
 namespace lic3d {
 namespace {
@@ -131,7 +130,8 @@ Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicPara
     texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
   }
   vkQueueWaitIdle(context_->queue());  // frames may still read the shown volume
-  LIC3D_TRY(uploadImage(*context_, frontVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
+  LIC3D_TRY(
+      uploadImage(*context_, frontVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
   LIC3D_TRY(submitAndWait(
       *context_,
       [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, frontVolume(), field_.dims, 0); },
@@ -287,7 +287,8 @@ Result<void> LicRenderer::requestLic(const LicParams& params) {
 Result<void> LicRenderer::uploadMask(const SparsityMask& mask) {
   ImageDesc desc;
   desc.format = kSparsityMaskFormat;
-  desc.extent = {static_cast<std::uint32_t>(field_.dims.x), static_cast<std::uint32_t>(field_.dims.y),
+  desc.extent = {static_cast<std::uint32_t>(field_.dims.x),
+                 static_cast<std::uint32_t>(field_.dims.y),
                  static_cast<std::uint32_t>(field_.dims.z)};
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "sparsity mask";
@@ -347,9 +348,9 @@ Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, s
   job_->nextZ = zEnd;
   if (zEnd < dims.z) return work;
 
-  imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-               VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-               kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+  imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   histogramPass_.record(cmd, back, dims, slot);
   // Shown once its statistics are read back: a frame never draws a volume with another's
@@ -378,7 +379,8 @@ Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallb
     if (job_->needsMask) job_->mask.wait();
     Result<LicWork> work = LicWork{};
     LIC3D_TRY(submitAndWait(
-        *context_, [&](VkCommandBuffer cmd) { work = recordLicWork(cmd, slab, 0); }, "lic compute"));
+        *context_, [&](VkCommandBuffer cmd) { work = recordLicWork(cmd, slab, 0); },
+        "lic compute"));
     LIC3D_TRY(work);
     if (work->finished) collectStatistics(0);
     if (progress && work->slicesRecorded > 0)
@@ -441,10 +443,10 @@ Result<void> LicRenderer::ensureTarget(int width, int height) {
   desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   desc.name = "offscreen colour";
   LIC3D_TRY_ASSIGN(target_, Image::create(*context_, desc));
-  LIC3D_TRY_ASSIGN(targetReadback_,
-                   Buffer::create(*context_, static_cast<VkDeviceSize>(width) * height * 8,
-                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
-                                  "offscreen readback"));
+  LIC3D_TRY_ASSIGN(
+      targetReadback_,
+      Buffer::create(*context_, static_cast<VkDeviceSize>(width) * height * 8,
+                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback, "offscreen readback"));
   return {};
 }
 
@@ -508,11 +510,12 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   }
   if (view.axes && view.stereo != StereoMode::SideBySide) {
     const VolumeFacts facts = volumeFacts();
-    const SliceFrame frame = makeSliceFrame(view, facts, Eye::Mono,
-                                            static_cast<float>(width) / static_cast<float>(view.height));
+    const SliceFrame frame = makeSliceFrame(
+        view, facts, Eye::Mono, static_cast<float>(width) / static_cast<float>(view.height));
     const bool legend = view.legend && view.color == ColorMode::Magnitude;
-    drawBoxAxes(image, projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims,
-                                      facts.geometry, width, view.height, legend),
+    drawBoxAxes(image,
+                projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims,
+                               facts.geometry, width, view.height, legend),
                 view.background);
   }
   return image;
@@ -520,8 +523,9 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
 
 Result<ScalarVolume> LicRenderer::readLicVolume() const {
   if (!shownParams_) return inputError("no LIC volume has been computed");
-  LIC3D_TRY_ASSIGN(std::vector<std::byte> bytes,
-                   readImage(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
+  LIC3D_TRY_ASSIGN(
+      std::vector<std::byte> bytes,
+      readImage(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
   ScalarVolume volume;
   volume.dims = field_.dims;
   volume.geometry = field_.geometry;
@@ -572,11 +576,10 @@ Result<double> LicRenderer::timeFrame(const ViewParams& view) {
         recordOffscreenFrame(cmd, view, status);
         timer_.end(cmd, 1);
         // Leave the target as the next frame's barrier expects it (after a copy).
-        imageBarrier(cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_NONE);
+        imageBarrier(
+            cmd, target_.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE);
       },
       "frame timing"));
   LIC3D_TRY(std::move(status));

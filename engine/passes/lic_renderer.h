@@ -14,20 +14,20 @@
 #include <optional>
 
 #include "core/error.h"
-#include "passes/field_interpolation.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_timer.h"
-#include "passes/lic_histogram.h"
 #include "core/lic_params.h"
-#include "passes/lic_pass.h"
-#include "lic/lic_reference.h"
 #include "core/rgba_image.h"
-#include "passes/slice_pass.h"
-#include "lic/sparsity.h"
 #include "core/view_params.h"
 #include "core/volume.h"
-#include "passes/volume_textures.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
+#include "lic/lic_reference.h"
+#include "lic/sparsity.h"
+#include "passes/field_interpolation.h"
+#include "passes/lic_histogram.h"
+#include "passes/lic_pass.h"
+#include "passes/slice_pass.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d {
 
@@ -38,7 +38,7 @@ enum class FramePrecision { Float16, Unorm8 };
 struct RendererOptions {
   FieldPrecision fieldPrecision = FieldPrecision::Auto;
   FramePrecision framePrecision = FramePrecision::Float16;
-  bool runtimeModes = false;   // benchmark builds only: see SlicePass::create
+  bool runtimeModes = false;    // benchmark builds only: see SlicePass::create
   bool doubleBuffered = false;  // a second LIC volume for frame-paced recomputes
   // Benchmark builds only: the LIC pass is the naive reference kernel (noise in an R8 texture of
   // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
@@ -48,13 +48,13 @@ struct RendererOptions {
 // What one recordLicWork() call did.
 struct LicWork {
   int slicesRecorded = 0;
-  bool finished = false;       // the job's last slice was recorded: the new volume is shown
+  bool finished = false;        // the job's last slice was recorded: the new volume is shown
   bool waitingForMask = false;  // the sparsity mask is still being made on a worker thread
 };
 
 struct LicStatus {
-  bool pending = false;    // a requested volume is not finished yet
-  double fraction = 1.0;   // of the pending job's slices recorded
+  bool pending = false;   // a requested volume is not finished yet
+  double fraction = 1.0;  // of the pending job's slices recorded
   bool waitingForMask = false;
 };
 
@@ -187,7 +187,7 @@ class LicRenderer {
   bool doubleBuffered_ = false;
   FieldTexture field_;
   Image separateNoise_;  // R8, only for the naive kernel
-  Image volumes_[2];  // the shown one is volumes_[front_]; the other is written by jobs
+  Image volumes_[2];     // the shown one is volumes_[front_]; the other is written by jobs
   int front_ = 0;
   std::optional<LicParams> shownParams_;  // what the shown volume holds; empty when none
   std::optional<Job> job_;

@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "core/colormap.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
-#include "shared_layout.h"
 #include "gpu/vk_check.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 
@@ -44,7 +43,8 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   frame.halfExtent = boxHalfExtent(volume.dims, volume.geometry);
   const CameraMatrices central = computeCamera(view.camera, frame.halfExtent, aspect);
   float eyeOffset = 0.0f;
-  if (eye != Eye::Mono) eyeOffset = (eye == Eye::Left ? -0.5f : 0.5f) * eyeSeparation(view, central);
+  if (eye != Eye::Mono)
+    eyeOffset = (eye == Eye::Left ? -0.5f : 0.5f) * eyeSeparation(view, central);
   frame.camera = eyeOffset == 0.0f ? central
                                    : computeCamera(view.camera, frame.halfExtent, aspect, eyeOffset,
                                                    zeroParallaxDistance(view, central));
@@ -74,8 +74,8 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.viewProjection = frame.camera.viewProjection;
   // texture coordinates -> world (box units) -> rotated region frame -> unit-size shape
   const glm::mat3 rotation = rotationFromEuler(view.roiRotation);
-  const glm::mat4 toWorld = glm::scale(glm::mat4(1.0f), 2.0f * h) *
-                            glm::translate(glm::mat4(1.0f), -view.roiCenter);
+  const glm::mat4 toWorld =
+      glm::scale(glm::mat4(1.0f), 2.0f * h) * glm::translate(glm::mat4(1.0f), -view.roiCenter);
   u.roiFromTexture = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / std::max(view.roiSize, 1e-6f))) *
                      glm::mat4(glm::transpose(rotation)) * toWorld;
   u.halfExtent = glm::vec4(h, view.alpha);
@@ -115,7 +115,8 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   SlicePass pass;
   pass.context_ = &context;
   pass.runtimeModes_ = runtimeModes;
-  constexpr VkShaderStageFlags kBothStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  constexpr VkShaderStageFlags kBothStages =
+      VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
       {gpu::kSliceBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -130,7 +131,8 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   LIC3D_TRY_ASSIGN(pass.fragmentShader_,
                    loadShader(context, runtimeModes ? ShaderId::SliceFragmentRuntimeModes
                                                     : ShaderId::SliceFragment));
-  LIC3D_TRY_ASSIGN(pass.linear_, Sampler::create(context, VK_FILTER_LINEAR, "slice linear sampler"));
+  LIC3D_TRY_ASSIGN(pass.linear_,
+                   Sampler::create(context, VK_FILTER_LINEAR, "slice linear sampler"));
 
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
@@ -144,10 +146,9 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
 
   const VkDeviceSize alignment = context.properties().limits.minUniformBufferOffsetAlignment;
   pass.slotSize_ = (sizeof(gpu::SliceUniforms) + alignment - 1) / alignment * alignment;
-  LIC3D_TRY_ASSIGN(pass.uniforms_,
-                   Buffer::create(context, pass.slotSize_ * kUniformSlots,
-                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload,
-                                  "slice uniforms"));
+  LIC3D_TRY_ASSIGN(pass.uniforms_, Buffer::create(context, pass.slotSize_ * kUniformSlots,
+                                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                                  MemoryUse::Upload, "slice uniforms"));
   return pass;
 }
 
@@ -197,12 +198,13 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specializat
   blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
   blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
   // Anaglyph: the left eye writes red, the right eye green and blue, into one image.
-  blendAttachment.colorWriteMask =
-      specialization.anaglyph == 1   ? VK_COLOR_COMPONENT_R_BIT
-      : specialization.anaglyph == 2 ? VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT
-                                     : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blendAttachment.colorWriteMask = specialization.anaglyph == 1 ? VK_COLOR_COMPONENT_R_BIT
+                                   : specialization.anaglyph == 2
+                                       ? VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT
+                                       : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                             VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = 1;
   blend.pAttachments = &blendAttachment;
   const std::array<VkDynamicState, 2> dynamicStates{VK_DYNAMIC_STATE_VIEWPORT,
@@ -227,12 +229,13 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specializat
   info.pDynamicState = &dynamic;
   info.layout = layout_.get();
   VkPipeline pipeline = VK_NULL_HANDLE;
-  LIC3D_TRY(checkVk(vkCreateGraphicsPipelines(context_->device(), VK_NULL_HANDLE, 1, &info,
-                                              nullptr, &pipeline),
-                    "vkCreateGraphicsPipelines"));
+  LIC3D_TRY(checkVk(
+      vkCreateGraphicsPipelines(context_->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+      "vkCreateGraphicsPipelines"));
   std::string name = "slices";
   const std::uint32_t* fields = reinterpret_cast<const std::uint32_t*>(&specialization);
-  for (std::size_t i = 0; i < sizeof(specialization) / 4; ++i) name += " " + std::to_string(fields[i]);
+  for (std::size_t i = 0; i < sizeof(specialization) / 4; ++i)
+    name += " " + std::to_string(fields[i]);
   context_->setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
   pipelines_.emplace_back(specialization, format, Pipeline(context_->device(), pipeline));
   return pipeline;
@@ -250,9 +253,12 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(key, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
-  const VkViewport vp{static_cast<float>(viewport.offset.x), static_cast<float>(viewport.offset.y),
+  const VkViewport vp{static_cast<float>(viewport.offset.x),
+                      static_cast<float>(viewport.offset.y),
                       static_cast<float>(viewport.extent.width),
-                      static_cast<float>(viewport.extent.height), 0.0f, 1.0f};
+                      static_cast<float>(viewport.extent.height),
+                      0.0f,
+                      1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &viewport);
 

@@ -5,21 +5,21 @@
 // specialization constants; one pipeline per (variant, attachment format), made on first use
 // and cached.
 
+#include <vulkan/vulkan.h>
+
 #include <cstdint>
 #include <tuple>
 #include <vector>
 
-#include <vulkan/vulkan.h>
-
 #include "core/camera.h"
 #include "core/error.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/pipelines.h"
-#include "shared_layout.h"
 #include "core/slice_geometry.h"
 #include "core/view_params.h"
-#include "passes/volume_textures.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/pipelines.h"
 #include "gpu/vulkan_context.h"
+#include "passes/volume_textures.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 

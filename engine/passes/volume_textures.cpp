@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/packing.hpp>
 
+#include "core/memory_budget.h"
 #include "gpu/gpu_submit.h"
 #include "lic/lic_reference.h"
-#include "core/memory_budget.h"
 
 namespace lic3d {
 namespace {
@@ -68,7 +67,7 @@ FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested
   // A CPU driver gains nothing from half floats (no texture-cache bandwidth to save) and pays
   // for converting them: lavapipe runs the LIC pass about 1.4x faster on RGBA32F.
   return context.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? FieldPrecision::Float
-                                                                   : FieldPrecision::Half;
+                                                                  : FieldPrecision::Half;
 }
 
 Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
@@ -107,10 +106,11 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   desc.name = "field and noise texture";
   if (texture.precision == FieldPrecision::Half) {
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    const std::vector<std::uint16_t> texels =
-        packTexels<std::uint16_t>(field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
+    const std::vector<std::uint16_t> texels = packTexels<std::uint16_t>(
+        field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
-    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+    LIC3D_TRY(
+        uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   } else if (texture.precision == FieldPrecision::Byte) {
     desc.format = VK_FORMAT_R8G8B8A8_SNORM;
     const std::vector<std::int8_t> texels = packByteTexels(field, noise, scale);
@@ -121,9 +121,11 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
     if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
       return unsupportedError(context.deviceInfo().name +
                               " cannot filter RGBA32F textures; use half precision");
-    const std::vector<float> texels = packTexels<float>(field, noise, scale, [](float f) { return f; });
+    const std::vector<float> texels =
+        packTexels<float>(field, noise, scale, [](float f) { return f; });
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
-    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+    LIC3D_TRY(
+        uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   }
   return texture;
 }

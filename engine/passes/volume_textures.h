@@ -12,8 +12,8 @@
 
 #include "core/error.h"
 #include "core/field_precision.h"
-#include "gpu/gpu_resources.h"
 #include "core/volume.h"
+#include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {

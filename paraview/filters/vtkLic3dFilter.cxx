@@ -23,11 +23,11 @@
 #include "vtkUnsignedCharArray.h"
 
 // The lic3d engine.
+#include "gpu/vulkan_context.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
-#include "passes/lic_renderer.h"
 #include "lic/noise.h"
-#include "gpu/vulkan_context.h"
+#include "passes/lic_renderer.h"
 
 vtkStandardNewMacro(vtkLic3dFilter);
 
@@ -174,8 +174,8 @@ int vtkLic3dFilter::RequestInformation(vtkInformation*, vtkInformationVector**,
 }
 
 namespace {
-lic3d::LicParams licParams(int length, double step, int bias, int integrator, int scheme, int kernel,
-                           int noiseFilter, int direction, int distribution, int points,
+lic3d::LicParams licParams(int length, double step, int bias, int integrator, int scheme,
+                           int kernel, int noiseFilter, int direction, int distribution, int points,
                            double radius, double ratio, int seed) {
   lic3d::LicParams params;
   params.length = length;
@@ -261,9 +261,9 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   output->Initialize();
 
   const lic3d::LicParams params = licParams(
-      this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel, this->NoiseFilter,
-      this->Direction, this->SparsityDistribution, this->SparsityPoints, this->SparsityRadius,
-      this->SparsityRatio, this->SparsitySeed);
+      this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel,
+      this->NoiseFilter, this->Direction, this->SparsityDistribution, this->SparsityPoints,
+      this->SparsityRadius, this->SparsityRatio, this->SparsitySeed);
   const int ghostLayers = lic3d::licGhostLayers(params);
   const int askedGhosts =
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());

@@ -32,7 +32,8 @@ void prepareSiblings() {
   gzip.resize(zs.total_out);
   deflateEnd(&zs);
   writeFile("data.gz", gzip);
-  const std::string fields = "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\nendian: little\n";
+  const std::string fields =
+      "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 1\nendian: little\n";
   writeFile("raw.nhdr", fields + "encoding: raw\nline skip: 1\nbyte skip: 2\ndata file: payload\n");
   writeFile("tail.nhdr", fields + "encoding: raw\nbyte skip: -1\ndata file: payload\n");
   writeFile("gzip.nhdr", fields + "encoding: gzip\nbyte skip: 3\ndata file: payload\n");
