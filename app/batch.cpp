@@ -277,11 +277,9 @@ Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& pl
   return {};
 }
 
+// Frame `frame` of an animation whose bias cycles every `count` frames.
 int cycledBias(int length, int frame, int count) {
-  const double phase = static_cast<double>(((frame % count) + count) % count) / count;
-  const double bias =
-      phase <= 0.5 ? -length + 4.0 * length * phase : 3.0 * length - 4.0 * length * phase;
-  return std::clamp(static_cast<int>(std::lround(bias)), -length, length);
+  return biasInCycle(length, static_cast<double>(((frame % count) + count) % count) / count);
 }
 
 Session frameSession(const Session& base, const FramePlan& plan, int frame) {

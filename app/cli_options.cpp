@@ -44,11 +44,55 @@ std::vector<std::string_view> splitCommas(std::string_view text) {
   return parts;
 }
 
+// The session keys the engine names parameters by (Error::parameter), and the flags that set
+// them: reportError shows the flag where the message has the key. Filled as the options are
+// added.
+std::map<std::string, std::string, std::less<>>& flagNames() {
+  static std::map<std::string, std::string, std::less<>> names;
+  return names;
+}
+
+// "--length" of "-L,--length".
+std::string longName(const std::string& flags) {
+  const std::size_t comma = flags.rfind(',');
+  return comma == std::string::npos ? flags : flags.substr(comma + 1);
+}
+
+void nameFlag(std::string_view key, const std::string& flags) {
+  flagNames().emplace(std::string(key), longName(flags));
+}
+
+bool isKeyCharacter(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.';
+}
+
 TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
-                    const std::string& help, const std::string& shownDefault = "") {
+                    const std::string& help, const std::string& shownDefault = "",
+                    std::string_view key = {}) {
   option.option = app.add_option(flag, option.text, help);
   if (!shownDefault.empty()) option.option->default_str(shownDefault);
+  if (!key.empty()) nameFlag(key, flag);
   return option;
+}
+
+// CLI11's check of a value against its range of core/parameter_ranges.h.
+CLI::Validator rangeCheck(const ParameterRange& range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size()) return {};  // CLI11 says
+        return range.contains(value) ? std::string() : "must be in " + range.text();
+      },
+      "in " + range.text(), "RANGE");
+}
+
+// A numeric option with its range, whose key error messages name.
+template <class T>
+CLI::Option* addRanged(CLI::App& app, const std::string& flags, T& value,
+                       const ParameterRange& range, const std::string& help) {
+  nameFlag(range.key, flags);
+  return app.add_option(flags, value, help)->check(rangeCheck(range))->capture_default_str();
 }
 
 }  // namespace
@@ -61,8 +105,32 @@ int exitCodeFor(const Error& error) {
   }
 }
 
+std::string messageWithFlags(const Error& error) {
+  std::string text = error.message;
+  if (error.parameter.empty()) return text;
+  // The key the message starts with, then every other key with a dot that it mentions.
+  const auto named = flagNames().find(error.parameter);
+  if (named != flagNames().end() && text.starts_with(error.parameter))
+    text.replace(0, error.parameter.size(), named->second);
+  for (const auto& [key, flag] : flagNames()) {
+    if (key.find('.') == std::string::npos) continue;
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at)) {
+      const std::size_t end = at + key.size();
+      const bool whole = (at == 0 || !isKeyCharacter(text[at - 1])) &&
+                         (end == text.size() || !isKeyCharacter(text[end]));
+      if (!whole) {
+        at = end;
+        continue;
+      }
+      text.replace(at, key.size(), flag);
+      at += flag.size();
+    }
+  }
+  return text;
+}
+
 int reportError(const Error& error) {
-  std::fprintf(stderr, "lic3d: error: %s\n", error.message.c_str());
+  std::fprintf(stderr, "lic3d: error: %s\n", messageWithFlags(error).c_str());
   return exitCodeFor(error);
 }
 
@@ -70,6 +138,7 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
   app.add_option("--device", options.device,
                  "Vulkan device: an index or part of a name from `lic3d devices` (default: "
                  "discrete GPU, then integrated, then CPU)");
+  nameFlag("device", "--device");
   app.add_flag("--validation", options.validation,
                "Enable the Khronos validation layer with synchronization validation; any "
                "message makes the command fail (also LIC3D_VALIDATION=1)");
@@ -93,6 +162,7 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
                               "), a file (.vtk, .vti, .nrrd, .nhdr, .raw), or a time series of "
                               "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
       ->capture_default_str();
+  nameFlag("field.source", "--field");
   app.add_option("--array", s.field.array,
                  "The vector array of a .vtk or .vti file with several (default: the active or "
                  "first one; the others are listed)");
@@ -100,26 +170,22 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
           planar ? "Grid of an analytic field: N (N^2 for a 2D field, N^3 for a 3D one), NX,NY "
                    "(2D) or NX,NY,NZ (3D), 1..2048 each"
                  : "Grid of an analytic field: N for N^3, or NX,NY,NZ (1..2048 each)",
-          "128");
+          "128", "field.grid");
   app.add_option("--noise", s.noise.file,
                  "Noise volume (.nrrd: uchar, ushort or float) on the field's grid (default: "
                  "seeded white noise)");
+  nameFlag("noise.file", "--noise");
   app.add_option("--seed", s.noise.seed, "Seed of the white noise")->capture_default_str();
-  app.add_option("--seed-noise", s.noise.seedSpots,
-                 "Sparse seed noise instead of white noise: N bright spots on black, placed by "
-                 "Poisson-disk sampling (streamlines become distinct lines)")
-      ->check(CLI::Range(0, 1 << 30))
-      ->capture_default_str();
+  addRanged(app, "--seed-noise", s.noise.seedSpots, ranges::kSeedSpots,
+            "Sparse seed noise instead of white noise: N bright spots on black, placed by "
+            "Poisson-disk sampling (streamlines become distinct lines)");
 
   LicParams& params = s.lic;
-  app.add_option("-L,--length", params.length, "Streamline steps each way (L)")
-      ->check(CLI::Range(0, kMaxLicLength))
-      ->capture_default_str();
-  app.add_option("--step", params.step, "Step length h in voxels")
-      ->check(CLI::Range(1e-3, 8.0))
-      ->capture_default_str();
+  addRanged(app, "-L,--length", params.length, ranges::kLength, "Streamline steps each way (L)");
+  addRanged(app, "--step", params.step, ranges::kStep, "Step length h in voxels");
   app.add_option("--bias", params.bias, "Integer bias: L-B steps backward, L+B forward, |B| <= L")
       ->capture_default_str();
+  nameFlag("lic.bias", "--bias");
   addEnumOption(app, "--integrator", params.integrator, "Streamline integrator");
   addEnumOption(app, "--kernel", params.kernel, "Convolution kernel");
   addEnumOption(app, "--noise-filter", params.noiseFilter, "Noise lookup along streamlines");
@@ -135,34 +201,25 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
   addEnumOption(app, "--sparsity", sparsity.distribution,
                 "Sparsity mask (thesis 5.1.4): voxels whose streamline touches a black point are "
                 "not drawn; points from");
-  app.add_option("--sparsity-points", sparsity.points,
-                 "Black points for poisson, poisson-approx, halton, hammersley (0: automatic)")
-      ->check(CLI::Range(0, 1 << 30))
-      ->capture_default_str();
-  app.add_option("--sparsity-radius", sparsity.radius,
-                 "Minimum distance between black points in voxels, for poisson and jitter (0: "
-                 "automatic)")
-      ->check(CLI::Range(0.0, 4096.0))
-      ->capture_default_str();
-  app.add_option("--sparsity-ratio", sparsity.ratio,
-                 "Fraction of black voxels of the checkerboard, in (0,1)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  nameFlag("lic.sparsity.distribution", "--sparsity");
+  addRanged(app, "--sparsity-points", sparsity.points, ranges::kSparsityPoints,
+            "Black points for poisson, poisson-approx, halton, hammersley (0: automatic)");
+  addRanged(app, "--sparsity-radius", sparsity.radius, ranges::kSparsityRadius,
+            "Minimum distance between black points in voxels, for poisson and jitter (0: "
+            "automatic)");
+  addRanged(app, "--sparsity-ratio", sparsity.ratio, ranges::kSparsityRatio,
+            "Fraction of black voxels of the checkerboard, in (0,1)");
   app.add_option("--sparsity-seed", sparsity.seed, "Seed of the random sparsity distributions")
       ->capture_default_str();
   options.time =
-      app.add_option("--time", s.time,
-                     "Time of an unsteady field (docs/TIME.md): the tornado's and the wave's time "
-                     "parameter, or for a series of files the position in steps (1.5: halfway "
-                     "between the second and the third file)")
-          ->check(CLI::Range(-1e12, 1e12))
-          ->capture_default_str();
-  app.add_option("--time-steps", s.timeSteps,
-                 "A time-dependent analytic field (tornado) as a series of K steps over its "
-                 "period, blended on the GPU as a series of files is (0: sampled at each time "
-                 "exactly)")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
+      addRanged(app, "--time", s.time, ranges::kTime,
+                "Time of an unsteady field (docs/TIME.md): the tornado's and the wave's time "
+                "parameter, or for a series of files the position in steps (1.5: halfway "
+                "between the second and the third file)");
+  addRanged(app, "--time-steps", s.timeSteps, ranges::kTimeSteps,
+            "A time-dependent analytic field (tornado) as a series of K steps over its "
+            "period, blended on the GPU as a series of files is (0: sampled at each time "
+            "exactly)");
   addEnumOption(app, "--field-precision", s.precision,
                 "Precision of the field and noise texture on the device: auto (float on CPU "
                 "drivers, half on GPUs), half (RGBA16F), float (RGBA32F) or byte (RGBA8: 8-bit "
@@ -201,13 +258,10 @@ void addGreyAndColorOptions(CLI::App& app, SessionOptions& options, const char* 
   addText(app, "--window", options.window,
           "Intensity window mapped to black..white instead of the contrast stretch: auto or "
           "LO,HI in 0..1",
-          "auto");
-  app.add_option("--gain", view.gain, "Scales grey values around mid-grey")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--brightness", view.brightness, "Added to grey values (-1..1)")
-      ->check(CLI::Range(-1.0, 1.0))
-      ->capture_default_str();
+          "auto", "view.window");
+  addRanged(app, "--gain", view.gain, ranges::kGain, "Scales grey values around mid-grey");
+  addRanged(app, "--brightness", view.brightness, ranges::kBrightness,
+            "Added to grey values (-1..1)");
   addEnumOption(app, "--color", view.color,
                 std::string("none: grey LIC; magnitude: colour by |v| through --colormap, the LIC "
                             "intensity modulating it") +
@@ -215,7 +269,7 @@ void addGreyAndColorOptions(CLI::App& app, SessionOptions& options, const char* 
   addEnumOption(app, "--colormap", view.colormap, "Colour map");
   addText(app, "--color-range", options.colorRange,
           "|v| mapped to the ends of the colour map: auto (the field's min and max) or MIN,MAX",
-          "auto");
+          "auto", "view.color_range");
   app.add_flag("--legend", view.legend,
                "Draw the colour legend into the image (with --color magnitude)");
 }
@@ -224,88 +278,72 @@ void addGreyAndColorOptions(CLI::App& app, SessionOptions& options, const char* 
 
 void addViewOptions(CLI::App& app, SessionOptions& options) {
   ViewParams& view = options.session.view;
-  app.add_option("--width", view.width, "Image width in pixels")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
-  app.add_option("--height", view.height, "Image height in pixels")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
-  app.add_option("--slices", view.slices,
-                 "Number of slices (0: one per voxel along the view direction)")
-      ->check(CLI::Range(0, 16384))
-      ->capture_default_str();
+  addRanged(app, "--width", view.width, ranges::kImageWidth, "Image width in pixels");
+  addRanged(app, "--height", view.height, ranges::kImageHeight, "Image height in pixels");
+  addRanged(app, "--slices", view.slices, ranges::kSlices,
+            "Number of slices (0: one per voxel along the view direction)");
   addEnumOption(app, "--slicing", view.slicing,
                 "Slice planes: view (perpendicular to the view direction) or axis (perpendicular "
                 "to the grid axis closest to it)");
-  app.add_option("--azimuth", view.camera.azimuth, "Camera azimuth in degrees around +z")
-      ->capture_default_str();
-  app.add_option("--elevation", view.camera.elevation, "Camera elevation in degrees")
-      ->check(CLI::Range(-90.0, 90.0))
-      ->capture_default_str();
-  app.add_option("--distance", view.camera.distance,
-                 "Camera distance from the volume centre (the longest box side is 1; 0 fits the "
-                 "whole volume)")
-      ->check(CLI::Range(0.0, 1000.0))
-      ->capture_default_str();
-  app.add_option("--fov", view.camera.fovY, "Vertical field of view in degrees")
-      ->check(CLI::Range(1.0, 170.0))
-      ->capture_default_str();
+  addRanged(app, "--azimuth", view.camera.azimuth, ranges::kAzimuth,
+            "Camera azimuth in degrees around +z");
+  addRanged(app, "--elevation", view.camera.elevation, ranges::kElevation,
+            "Camera elevation in degrees");
+  addRanged(app, "--distance", view.camera.distance, ranges::kDistance,
+            "Camera distance from the volume centre (the longest box side is 1; 0 fits the "
+            "whole volume)");
+  addRanged(app, "--fov", view.camera.fovY, ranges::kFov, "Vertical field of view in degrees");
   app.add_flag("--ortho", view.camera.orthographic, "Orthographic projection");
-  app.add_option("--alpha", view.alpha,
-                 "Opacity per voxel of depth, corrected for the slice spacing (0: invisible)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  nameFlag("view.camera.orthographic", "--ortho");
+  addRanged(app, "--alpha", view.alpha, ranges::kAlpha,
+            "Opacity per voxel of depth, corrected for the slice spacing (0: invisible)");
   addEnumOption(app, "--opacity", view.opacityMode,
                 "Opacity transfer: constant (alpha everywhere) or intensity (alpha x grey, so "
                 "dark gaps between streamlines turn clear)");
   addEnumOption(app, "--filter", view.filter,
                 "Sampling of the LIC volume by the slices (thesis 6.4)");
   addText(app, "--background", options.background,
-          "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1", "0,0,0");
+          "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1", "0,0,0",
+          "view.background");
 
   addGreyAndColorOptions(app, options, "the drawn voxels'", " (thesis 5.1.2)");
   app.add_flag("--axes", view.axes,
                "Draw the box's edges and label each axis with its physical range (the grid's "
                "origin and spacing)");
-  app.add_option("--magnitude-opacity", view.magnitudeOpacity,
-                 "Opacity x (normalised |v|)^E so slow regions fade (thesis 5.1.3); 0 is off")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--magnitude-threshold", view.magnitudeThreshold,
-                 "Voxels whose normalised |v| is below this vanish")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  addRanged(app, "--magnitude-opacity", view.magnitudeOpacity, ranges::kMagnitudeOpacity,
+            "Opacity x (normalised |v|)^E so slow regions fade (thesis 5.1.3); 0 is off");
+  addRanged(app, "--magnitude-threshold", view.magnitudeThreshold, ranges::kMagnitudeThreshold,
+            "Voxels whose normalised |v| is below this vanish");
 
   addText(app, "--clip", options.clip,
-          "Keep X0..X1, Y0..Y1, Z0..Z1 of the box, as fractions (thesis 5.2.1)", "0,1,0,1,0,1");
+          "Keep X0..X1, Y0..Y1, Z0..Z1 of the box, as fractions (thesis 5.2.1)", "0,1,0,1,0,1",
+          "view.clip_min");
+  nameFlag("view.clip_max", "--clip");
   addEnumOption(app, "--roi", view.roi, "Region of interest (thesis 5.2.2)");
   addText(app, "--roi-center", options.roiCenter, "Centre X,Y,Z as fractions of the box",
-          "0.5,0.5,0.5");
-  app.add_option("--roi-size", view.roiSize,
-                 "Diameter (sphere, cylinder) or side (cube) as a fraction of the longest box side")
-      ->check(CLI::Range(1e-3, 10.0))
-      ->capture_default_str();
+          "0.5,0.5,0.5", "view.roi_center");
+  addRanged(app, "--roi-size", view.roiSize, ranges::kRoiSize,
+            "Diameter (sphere, cylinder) or side (cube) as a fraction of the longest box side");
   addText(app, "--roi-rotate", options.roiRotate,
-          "Rotation AX,AY,AZ in degrees (about x, then y, then z)", "0,0,0");
+          "Rotation AX,AY,AZ in degrees (about x, then y, then z)", "0,0,0", "view.roi_rotation");
   app.add_flag("--roi-outside", view.roiOutside, "Keep the outside of the region instead");
 
   addText(app, "--fog", options.fog,
           "Depth cueing START,END: fog grows linearly from START to END, fractions of the depth "
-          "from the volume's nearest to its farthest point (thesis 5.3.1)");
-  addText(app, "--fog-color", options.fogColor, "Fog colour R,G,B (default: the background)");
+          "from the volume's nearest to its farthest point (thesis 5.3.1)",
+          "", "view.fog_range");
+  addText(app, "--fog-color", options.fogColor, "Fog colour R,G,B (default: the background)", "",
+          "view.fog_color");
 
   addEnumOption(app, "--stereo", view.stereo,
                 "Stereo with an off-axis frustum (thesis 5.3.2): anaglyph is red left, cyan "
                 "right; side-by-side is left|right, twice the width");
-  app.add_option("--eye-separation", view.eyeSeparation,
-                 "Distance between the eyes in box units (0: zero-parallax distance / 30)")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--zero-parallax", view.zeroParallax,
-                 "Distance from the eye of the plane that shows no disparity (0: the volume "
-                 "centre)")
-      ->check(CLI::Range(0.0, 1000.0))
-      ->capture_default_str();
+  nameFlag("view.stereo", "--stereo");
+  addRanged(app, "--eye-separation", view.eyeSeparation, ranges::kEyeSeparation,
+            "Distance between the eyes in box units (0: zero-parallax distance / 30)");
+  addRanged(app, "--zero-parallax", view.zeroParallax, ranges::kZeroParallax,
+            "Distance from the eye of the plane that shows no disparity (0: the volume "
+            "centre)");
   addEnumOption(app, "--lighting", view.lighting,
                 "phong: normals from the streamline's TNB frame (thesis 5.3.3); lines: "
                 "illuminated lines, lit from the tangent alone");
@@ -313,19 +351,21 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
 
 void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane) {
   PlaneParams& p = options.session.plane;
-  app.add_option("--width", p.width,
-                 "Width of the LIC image in pixels (default: the field's grid; with --height "
-                 "alone, keeping the grid's aspect). Larger than the grid, the noise is finer "
-                 "than the field and the picture stays sharp")
-      ->check(CLI::Range(1, 16384));
-  app.add_option("--height", p.height, "Height of the LIC image in pixels (see --width)")
-      ->check(CLI::Range(1, 16384));
+  addRanged(app, "--width", p.width, ranges::kPlaneWidth.atLeast(1),
+            "Width of the LIC image in pixels (default: the field's grid; with --height alone, "
+            "keeping the grid's aspect). Larger than the grid, the noise is finer than "
+            "the field and the picture stays sharp");
+  addRanged(app, "--height", p.height, ranges::kPlaneHeight.atLeast(1),
+            "Height of the LIC image in pixels (see --width)");
   addText(app, "--slice", plane.slice,
           "The plane of a 3D field (analytic or file): AXIS or AXIS:INDEX, x, y or z, INDEX in "
-          "voxels (default z, the middle layer)");
+          "voxels (default z, the middle layer)",
+          "", "plane.index");
+  nameFlag("plane.axis", "--slice");
   addGreyAndColorOptions(app, options, "the image's", "");
   addText(app, "--background", options.background,
-          "Background colour R,G,B the legend's text is set against (0..1, or 0..255)", "0,0,0");
+          "Background colour R,G,B the legend's text is set against (0..1, or 0..255)", "0,0,0",
+          "view.background");
 }
 
 Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session) {
@@ -377,8 +417,9 @@ Result<Dims> parseGrid(const std::string& text, bool planar) {
       continue;
     }
     LIC3D_TRY_ASSIGN(dims[a], parseNumber<int>(parts[parts.size() == 1 ? 0 : a], "--grid"));
-    if (dims[a] < 1 || dims[a] > 2048)
-      return inputError("--grid: each size must be in 1..2048, got '" + text + "'");
+    if (!ranges::kGrid.contains(dims[a]))
+      return inputError("--grid: each size must be in " + ranges::kGrid.text() + ", got '" + text +
+                        "'");
   }
   return dims;
 }
@@ -424,15 +465,11 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
   return values;
 }
 
-Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
+namespace {
+
+// The view flags whose text needs parsing, into the session (checked with it afterwards).
+Result<void> applyViewOptions(SessionOptions& options) {
   Session& s = options.session;
-  if (options.grid.given()) {
-    LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text, options.planar));
-  }
-  LIC3D_TRY(validate(s.lic));
-  if (s.noise.seedSpots > 0 && !s.noise.file.empty())
-    return inputError("--seed-noise and --noise both choose the noise: give one");
-  if (!withView) return {};
 
   ViewParams& view = s.view;
   if (options.background.given()) {
@@ -444,8 +481,6 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
     if (view.manualWindow) {
       LIC3D_TRY_ASSIGN(const std::vector<float> w,
                        parseFloatList(options.window.text, "--window", 2));
-      if (!(w[0] >= 0.0f && w[1] <= 1.0f && w[0] < w[1]))
-        return inputError("--window: need 0 <= LO < HI <= 1, got '" + options.window.text + "'");
       view.windowLow = w[0];
       view.windowHigh = w[1];
     }
@@ -455,8 +490,6 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
     if (!view.autoColorRange) {
       LIC3D_TRY_ASSIGN(const std::vector<float> r,
                        parseFloatList(options.colorRange.text, "--color-range", 2));
-      if (!(r[0] < r[1]))
-        return inputError("--color-range: need MIN < MAX, got '" + options.colorRange.text + "'");
       view.colorLow = r[0];
       view.colorHigh = r[1];
     }
@@ -488,7 +521,20 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
     LIC3D_TRY_ASSIGN(view.fogColor, parseColor(options.fogColor.text, "--fog-color"));
     view.fogColorFromBackground = false;
   }
-  return validate(view);
+  return {};
+}
+
+}  // namespace
+
+Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
+  Session& s = options.session;
+  if (options.grid.given()) {
+    LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text, options.planar));
+  }
+  if (withView) LIC3D_TRY(applyViewOptions(options));
+  // The CLI's one validation of the session: every parameter against its range
+  // (core/parameter_ranges.h), the flags named by reportError.
+  return validate(s);
 }
 
 Result<TimeDomain> timeDomainOf(const Session& session) {

@@ -707,11 +707,10 @@ void App::animate(double seconds) {
   }
   if (!ui_.playing) return;
   LicParams& lic = session_.lic;
-  const int span = 2 * lic.length + 1;
   if (lic.length == 0) return;
-  // The bias runs from -L to L and wraps: the texture moves forward along the streamlines.
-  biasPhase_ = std::fmod(biasPhase_ + seconds * ui_.animationSpeed, static_cast<double>(span));
-  lic.bias = static_cast<int>(biasPhase_) - lic.length;
+  // The CLI's bias cycle, -L..L..-L (4L steps), at ui_.animationSpeed steps per second.
+  biasPhase_ = std::fmod(biasPhase_ + seconds * ui_.animationSpeed / (4.0 * lic.length), 1.0);
+  lic.bias = biasInCycle(lic.length, biasPhase_);
 }
 
 // Blends the field at the session's time from the two steps around it, reading the steps that

@@ -82,24 +82,8 @@ bool touchesBlack(vec3 x) {
   return SPARSITY != 0 && texelFetch(sparsityMask, ivec3(floor(x + 0.5)), 0).r != 0u;
 }
 
-float weightOf(int i) {
-  if (KERNEL == 1) return 0.5 * (1.0 + cos(3.14159265358979 * float(i) / pc.hannDenominator));
-  if (KERNEL == 2) {
-    float t = float(i) * pc.gaussScale;
-    return exp(-0.5 * t * t);
-  }
-  return 1.0;
-}
-
-// One step of signed length sh from x, whose direction d0 = directionOf(v(x)) is non-zero.
-vec3 advance(vec3 x, vec3 d0, float sh) {
-  if (INTEGRATOR == 0) return x + sh * d0;
-  if (INTEGRATOR == 1) return x + sh * directionOf(fieldAt(x + 0.5 * sh * d0));
-  vec3 k2 = directionOf(fieldAt(x + 0.5 * sh * d0));
-  vec3 k3 = directionOf(fieldAt(x + 0.5 * sh * k2));
-  vec3 k4 = directionOf(fieldAt(x + sh * k3));
-  return x + (sh / 6.0) * (d0 + 2.0 * k2 + 2.0 * k3 + k4);
-}
+#define LIC_VEC vec3
+#include "lic_streamline.glsl"
 
 bool outsideGrid(vec3 x) {
   return any(lessThan(x, vec3(0.0))) || any(greaterThan(x, vec3(pc.dims.xyz - 1)));
@@ -127,9 +111,8 @@ void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
   }
   vec3 x;
   if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) {
-    // Two-step Adams-Bashforth: second order from the directions already fetched at the last
-    // two samples, so the sample's own fetch is the only one.
-    x = w.x + w.sh * (1.5 * w.d - 0.5 * w.dPrev);
+    // Adams-Bashforth from the directions already fetched: the sample's own fetch is the only one.
+    x = ab2Step(w.x, w.d, w.dPrev, w.sh);
   } else {
     x = advance(w.x, w.d, w.sh);
   }

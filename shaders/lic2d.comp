@@ -43,24 +43,8 @@ vec2 directionOf(vec2 v) {
   return DIRECTION == 0 ? v / magnitude : v;
 }
 
-float weightOf(int i) {
-  if (KERNEL == 1) return 0.5 * (1.0 + cos(3.14159265358979 * float(i) / pc.hannDenominator));
-  if (KERNEL == 2) {
-    float t = float(i) * pc.gaussScale;
-    return exp(-0.5 * t * t);
-  }
-  return 1.0;
-}
-
-// One step of signed length sh from x, whose direction d0 is non-zero.
-vec2 advance(vec2 x, vec2 d0, float sh) {
-  if (INTEGRATOR == 0) return x + sh * d0;
-  if (INTEGRATOR == 1) return x + sh * directionOf(fieldAt(x + 0.5 * sh * d0));
-  vec2 k2 = directionOf(fieldAt(x + 0.5 * sh * d0));
-  vec2 k3 = directionOf(fieldAt(x + 0.5 * sh * k2));
-  vec2 k4 = directionOf(fieldAt(x + sh * k3));
-  return x + (sh / 6.0) * (d0 + 2.0 * k2 + 2.0 * k3 + k4);
-}
+#define LIC_VEC vec2
+#include "lic_streamline.glsl"
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -83,7 +67,7 @@ void main() {
       // A streamline ends at a critical point (the sample there was already taken) ...
       vec2 d = directionOf(v);
       if (d == vec2(0.0)) break;
-      if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) x += sh * (1.5 * d - 0.5 * previous);
+      if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) x = ab2Step(x, d, previous, sh);
       else x = advance(x, d, sh);
       previous = d;
       // ... or where it leaves the image: outside samples are never clamped back in.

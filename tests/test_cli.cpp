@@ -1106,6 +1106,29 @@ TEST_F(CliTest, Render2DWritesTheLicImageAtTheGridsOrTheChosenSize) {
   EXPECT_LT(sum / (96 * 48), 1.0) << "GPU and CPU pictures differ by more than a grey level";
 }
 
+// The engine names parameters by their session keys (Error::parameter); the CLI shows its own
+// flags in their place, in the leading position and wherever another parameter is mentioned.
+TEST_F(CliTest, EngineErrorsNameTheFlag) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"render --grid 16 --sparsity halton --sparsity-points 5000", "--sparsity-points must be"},
+      {"render --grid 16 --sparsity jitter --sparsity-radius 0.25", "--sparsity-radius must be"},
+      {"render --grid 16 --length 4 --bias 9", "--bias must satisfy |bias| <= --length (4)"},
+      {"render --grid 16 --clip 0,1,0.5,0.5,0,1", "--clip needs min < max"},
+      {"render --grid 16 --stereo anaglyph --ortho",
+       "--stereo needs a perspective camera, not --ortho"},
+      {"render2d --field circle --sparsity poisson", "--sparsity hides voxels"},
+      {"render --device no-such-device", "--device no-such-device matches no Vulkan device"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const CommandRun r = run(std::string(args) + " -o out.png");
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("lic."), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("view."), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_EQ(listFolder(), std::vector<std::string>{});
+}
+
 TEST_F(CliTest, Render2DBadInputExitsWithStatusTwoNamingTheProblem) {
   const std::pair<const char*, const char*> cases[] = {
       {"render2d --field circle --sparsity poisson", "sparsity"},

@@ -582,47 +582,50 @@ TEST(Sparsity, MaskBlackensTheVoxelOfEachPoint) {
   EXPECT_EQ(poisson->blackCount, 200u) << "points given, radius derived from them";
 }
 
-TEST(Sparsity, ValidateNamesTheFlag) {
-  const auto expectError = [](const SparsityParams& params, Dims dims, const std::string& flag) {
+// The engine names the parameter by its session key (the CLI shows its flag instead: see
+// CliTest.EngineErrorsNameTheFlag).
+TEST(Sparsity, ValidateNamesTheParameter) {
+  const auto expectError = [](const SparsityParams& params, Dims dims, const std::string& key) {
     const Result<void> result = validate(params, dims);
-    ASSERT_FALSE(result.ok()) << flag;
+    ASSERT_FALSE(result.ok()) << key;
     EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput);
-    EXPECT_NE(result.error().message.find(flag), std::string::npos) << result.error().message;
+    EXPECT_EQ(result.error().parameter, key);
+    EXPECT_NE(result.error().message.find(key), std::string::npos) << result.error().message;
     EXPECT_FALSE(makeSparsityMask(params, dims).ok());
   };
   SparsityParams params = paramsFor(SparsityDistribution::Halton);
   EXPECT_TRUE(validate(params, kOddDims).ok());
   params.points = -1;
-  expectError(params, kOddDims, "--sparsity-points");
+  expectError(params, kOddDims, "lic.sparsity.points");
   params.points = 24 * 32 * 40 + 1;
-  expectError(params, kOddDims, "--sparsity-points");
+  expectError(params, kOddDims, "lic.sparsity.points");
   params.points = 24 * 32 * 40;
   EXPECT_TRUE(validate(params, kOddDims).ok());
 
   params = paramsFor(SparsityDistribution::PoissonApprox);
   params.points = static_cast<int>(kMaxBestCandidatePoints) + 1;
-  expectError(params, {64, 64, 64}, "--sparsity-points");
+  expectError(params, {64, 64, 64}, "lic.sparsity.points");
 
   params = paramsFor(SparsityDistribution::Jitter);
   for (const float radius : {-1.0f, 0.25f, 40.5f, std::numeric_limits<float>::quiet_NaN()}) {
     params.radius = radius;
-    expectError(params, kOddDims, "--sparsity-radius");
+    expectError(params, kOddDims, "lic.sparsity.radius");
   }
   params.radius = 40.0f;
   EXPECT_TRUE(validate(params, kOddDims).ok());
   // Too many cells for the memory limits: the message says which radius would do.
   params.radius = 0.5f;
-  expectError(params, {1024, 1024, 1024}, "--sparsity-radius");
+  expectError(params, {1024, 1024, 1024}, "lic.sparsity.radius");
   params.distribution = SparsityDistribution::Poisson;
-  expectError(params, {1024, 1024, 1024}, "--sparsity-radius");
+  expectError(params, {1024, 1024, 1024}, "lic.sparsity.radius");
   params.radius = 0.0f;
   params.points = 1 << 30;
-  expectError(params, {1024, 1024, 1024}, "--sparsity-points");
+  expectError(params, {1024, 1024, 1024}, "lic.sparsity.points");
 
   params = paramsFor(SparsityDistribution::Checkerboard);
   for (const float ratio : {0.0f, 1.0f, -0.5f, std::numeric_limits<float>::quiet_NaN()}) {
     params.ratio = ratio;
-    expectError(params, kOddDims, "--sparsity-ratio");
+    expectError(params, kOddDims, "lic.sparsity.ratio");
   }
 
   EXPECT_FALSE(validate(paramsFor(SparsityDistribution::None), {0, 4, 4}).ok());

@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -23,10 +24,20 @@ struct Error {
   // VK_ERROR_DEVICE_LOST or VK_ERROR_SURFACE_LOST_KHR: nothing made on the device can be used
   // again, but a new device (and surface) can carry on (the desktop app does, docs/RELIABILITY.md).
   bool deviceLost = false;
+  // The parameter the error is about, by its session key ("lic.length", "view.camera.fov",
+  // "field.source"), or empty. The message names it by that key; a front end may put its own
+  // name for it in place of the key (the CLI its flag, the app its widget).
+  std::string parameter;
 };
 
 inline Error inputError(std::string message) {
   return {ErrorKind::InvalidInput, std::move(message)};
+}
+// An InvalidInput error about a parameter: "<key> <problem>".
+inline Error parameterError(std::string_view key, std::string problem) {
+  Error error{ErrorKind::InvalidInput, std::string(key) + " " + std::move(problem)};
+  error.parameter = key;
+  return error;
 }
 inline Error unsupportedError(std::string message) {
   return {ErrorKind::Unsupported, std::move(message)};

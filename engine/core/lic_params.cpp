@@ -1,35 +1,42 @@
 #include "core/lic_params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <numbers>
+
+#include "lic_kernel.h"
 
 namespace lic3d {
 
 Result<void> validate(const LicParams& params) {
-  if (params.length < 0 || params.length > kMaxLicLength)
-    return inputError("LIC length must be in [0, " + std::to_string(kMaxLicLength) + "], got " +
-                      std::to_string(params.length));
-  if (!(params.step > 0.0f) || params.step > 8.0f)
-    return inputError("LIC step must be in (0, 8] voxels, got " + std::to_string(params.step));
+  LIC3D_TRY(checkRange(ranges::kLength, params.length));
+  LIC3D_TRY(checkRange(ranges::kStep, params.step));
   if (std::abs(params.bias) > params.length)
-    return inputError("LIC bias must satisfy |bias| <= length (" + std::to_string(params.length) +
-                      "), got " + std::to_string(params.bias));
-  return {};
+    return parameterError("lic.bias", "must satisfy |bias| <= lic.length (" +
+                                          std::to_string(params.length) + "), got " +
+                                          std::to_string(params.bias));
+  LIC3D_TRY(checkRange(ranges::kSparsityPoints, params.sparsity.points));
+  LIC3D_TRY(checkRange(ranges::kSparsityRadius, params.sparsity.radius));
+  return checkRange(ranges::kSparsityRatio, params.sparsity.ratio);
 }
 
-double kernelWeight(Kernel kernel, int i, int length, int bias) {
-  switch (kernel) {
-    case Kernel::Box: return 1.0;
-    case Kernel::Hann:
-      return 0.5 * (1.0 + std::cos(std::numbers::pi * i / (length + std::abs(bias) + 1)));
-    case Kernel::Gauss: {
-      if (length == 0) return 1.0;  // only the centre sample exists
-      const double t = i / (0.5 * length);
-      return std::exp(-0.5 * t * t);
-    }
-  }
-  return 1.0;
+KernelShape kernelShape(int length, int bias) {
+  KernelShape shape;
+  shape.hannDenominator = length + std::abs(bias) + 1;
+  shape.gaussScale = length > 0 ? 1.0 / (0.5 * length) : 0.0;
+  return shape;
+}
+
+double kernelWeight(Kernel kernel, int i, const KernelShape& shape) {
+  return glsl::licKernelWeight(static_cast<unsigned>(kernel), i, shape.hannDenominator,
+                               shape.gaussScale);
+}
+
+int biasInCycle(int length, double phase) {
+  phase -= std::floor(phase);
+  const double bias =
+      phase <= 0.5 ? -length + 4.0 * length * phase : 3.0 * length - 4.0 * length * phase;
+  return std::clamp(static_cast<int>(std::lround(bias)), -length, length);
 }
 
 }  // namespace lic3d

@@ -7,6 +7,7 @@
 
 #include "core/enum_names.h"
 #include "core/error.h"
+#include "core/parameter_ranges.h"
 
 namespace lic3d {
 
@@ -72,14 +73,30 @@ struct LicParams {
   bool operator==(const LicParams&) const = default;
 };
 
-// Checks ranges: 0 <= L <= kMaxLicLength, 0 < h <= 8, |bias| <= L.
+// The ranges of core/parameter_ranges.h, and |bias| <= L; InvalidInput naming the parameter.
 Result<void> validate(const LicParams& params);
-inline constexpr int kMaxLicLength = 4096;
 
 // A streamline stops where |v| <= kCriticalFraction * max|v| (a critical point).
 inline constexpr double kCriticalFraction = 1e-6;
 
-// Kernel weight of sample i (i = -Lb..Lf), the same formula on CPU and GPU.
-double kernelWeight(Kernel kernel, int i, int length, int bias);
+// The two numbers the kernel weights depend on besides i: the GPU passes push them (as floats),
+// the CPU reference takes them in double (shaders/lic_kernel.h has the formula both run).
+struct KernelShape {
+  double hannDenominator = 1.0;  // L + |bias| + 1
+  double gaussScale = 0.0;       // 1 / (0.5 L), 0 when L = 0
+};
+KernelShape kernelShape(int length, int bias);
+
+// Kernel weight of sample i (i = -Lb..Lf): shaders/lic_kernel.h in double.
+double kernelWeight(Kernel kernel, int i, const KernelShape& shape);
+inline double kernelWeight(Kernel kernel, int i, int length, int bias) {
+  return kernelWeight(kernel, i, kernelShape(length, bias));
+}
+
+// The bias animation (thesis 3.3.3): over one cycle, phase 0 to 1, the bias runs -L..L..-L (a
+// triangle, so a looped animation has no jump and the texture flows back and forth along the
+// streamlines). Phases outside [0, 1) wrap around. The CLI's --animate-bias and the app's "play
+// bias" both run it.
+int biasInCycle(int length, double phase);
 
 }  // namespace lic3d

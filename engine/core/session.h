@@ -60,6 +60,10 @@ struct Session {
 
 inline constexpr int kSessionVersion = 1;
 
+// The ranges of core/parameter_ranges.h (validate(LicParams), validate(ViewParams) and the
+// session's own: grid, noise, time, plane); InvalidInput naming the parameter by its key.
+Result<void> validate(const Session& session);
+
 std::string sessionToJson(const Session& session);
 // Missing keys keep their defaults; an unknown key, a wrong type or an unknown name is an
 // InvalidInput error naming `source` and the key.

@@ -3,13 +3,9 @@
 #include <algorithm>
 #include <string>
 
+#include "core/parameter_ranges.h"
+
 namespace lic3d {
-namespace {
-
-bool inUnit(float v) { return v >= 0.0f && v <= 1.0f; }
-
-}  // namespace
-
 glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts) {
   float scale = 1.0f, offset = 0.0f;  // grey before gain and brightness
   if (view.manualWindow) {
@@ -35,30 +31,60 @@ glm::vec2 magnitudeTransfer(const ColorRange& range) {
 }
 
 Result<void> validate(const ViewParams& view) {
-  if (view.width < 1 || view.height < 1 || view.width > 16384 || view.height > 16384)
-    return inputError("image size must be 1..16384 pixels per side, got " +
-                      std::to_string(view.width) + "x" + std::to_string(view.height));
-  if (!inUnit(view.alpha)) return inputError("--alpha must be in [0,1]");
-  if (view.manualWindow && !(view.windowLow < view.windowHigh))
-    return inputError("--window: need LO < HI");
-  if (!view.autoColorRange && !(view.colorLow < view.colorHigh))
-    return inputError("--color-range: need MIN < MAX");
-  if (view.magnitudeOpacity < 0.0f || !inUnit(view.magnitudeThreshold))
-    return inputError("--magnitude-opacity must be >= 0 and --magnitude-threshold in [0,1]");
-  for (int a = 0; a < 3; ++a)
-    if (!inUnit(view.clipMin[a]) || !inUnit(view.clipMax[a]) ||
-        !(view.clipMin[a] < view.clipMax[a]))
-      return inputError("--clip: each axis needs 0 <= min < max <= 1");
-  if (view.roi != RoiShape::None && !(view.roiSize > 0.0f))
-    return inputError("--roi-size must be positive");
-  if (view.fog && !(view.fogStart < view.fogEnd)) return inputError("--fog: need START < END");
+  namespace r = ranges;
+  LIC3D_TRY(checkRange(r::kImageWidth, view.width));
+  LIC3D_TRY(checkRange(r::kImageHeight, view.height));
+  LIC3D_TRY(checkRange(r::kSlices, view.slices));
+  LIC3D_TRY(checkRange(r::kAzimuth, view.camera.azimuth));
+  LIC3D_TRY(checkRange(r::kElevation, view.camera.elevation));
+  LIC3D_TRY(checkRange(r::kDistance, view.camera.distance));
+  LIC3D_TRY(checkRange(r::kFov, view.camera.fovY));
+  for (int c = 0; c < 3; ++c) {
+    LIC3D_TRY(checkRange(r::kBackground, view.background[c]));
+    LIC3D_TRY(checkRange(r::kFogColor, view.fogColor[c]));
+  }
+  LIC3D_TRY(checkRange(r::kAlpha, view.alpha));
+  if (view.manualWindow) {
+    LIC3D_TRY(checkRange(r::kWindow, view.windowLow));
+    LIC3D_TRY(checkRange(r::kWindow, view.windowHigh));
+    if (!(view.windowLow < view.windowHigh)) return parameterError(r::kWindow.key, "needs LO < HI");
+  }
+  LIC3D_TRY(checkRange(r::kGain, view.gain));
+  LIC3D_TRY(checkRange(r::kBrightness, view.brightness));
+  if (!view.autoColorRange) {
+    LIC3D_TRY(checkRange(r::kColorRange, view.colorLow));
+    LIC3D_TRY(checkRange(r::kColorRange, view.colorHigh));
+    if (!(view.colorLow < view.colorHigh))
+      return parameterError(r::kColorRange.key, "needs MIN < MAX");
+  }
+  LIC3D_TRY(checkRange(r::kMagnitudeOpacity, view.magnitudeOpacity));
+  LIC3D_TRY(checkRange(r::kMagnitudeThreshold, view.magnitudeThreshold));
+  for (int a = 0; a < 3; ++a) {
+    LIC3D_TRY(checkRange(r::kClipMin, view.clipMin[a]));
+    LIC3D_TRY(checkRange(r::kClipMax, view.clipMax[a]));
+    if (!(view.clipMin[a] < view.clipMax[a]))
+      return parameterError(r::kClipMin.key, "needs min < max on each axis");
+    LIC3D_TRY(checkRange(r::kRoiCenter, view.roiCenter[a]));
+    LIC3D_TRY(checkRange(r::kRoiRotation, view.roiRotation[a]));
+  }
+  LIC3D_TRY(checkRange(r::kRoiSize, view.roiSize));
+  LIC3D_TRY(checkRange(r::kFogRange, view.fogStart));
+  LIC3D_TRY(checkRange(r::kFogRange, view.fogEnd));
+  if (view.fog && !(view.fogStart < view.fogEnd))
+    return parameterError(r::kFogRange.key, "needs START < END");
   if (view.stereo != StereoMode::None && view.camera.orthographic)
-    return inputError("--stereo needs a perspective camera (drop --ortho)");
-  if (view.eyeSeparation < 0.0f || view.zeroParallax < 0.0f)
-    return inputError("--eye-separation and --zero-parallax must not be negative");
-  if (view.stereo == StereoMode::SideBySide && view.width > 8192)
-    return inputError("side-by-side stereo doubles the width: --width must be at most 8192");
-  return {};
+    return parameterError("view.stereo",
+                          "needs a perspective camera, not view.camera.orthographic");
+  LIC3D_TRY(checkRange(r::kEyeSeparation, view.eyeSeparation));
+  LIC3D_TRY(checkRange(r::kZeroParallax, view.zeroParallax));
+  if (view.stereo == StereoMode::SideBySide && 2 * view.width > kMaxImageSize)
+    return parameterError(r::kImageWidth.key, "must be at most " +
+                                                  std::to_string(kMaxImageSize / 2) +
+                                                  " with side-by-side stereo, which doubles it");
+  LIC3D_TRY(checkRange(r::kAmbient, view.light.ambient));
+  LIC3D_TRY(checkRange(r::kDiffuse, view.light.diffuse));
+  LIC3D_TRY(checkRange(r::kSpecular, view.light.specular));
+  return checkRange(r::kShininess, view.light.shininess);
 }
 
 }  // namespace lic3d

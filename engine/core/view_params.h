@@ -149,7 +149,8 @@ ColorRange colorRange(const ViewParams& view, const TransferFacts& facts);
 // t = (|v| - x) * y maps the colour range to [0, 1].
 glm::vec2 magnitudeTransfer(const ColorRange& range);
 
-// Ranges and consistency; InvalidInput naming the flag.
+// The ranges of core/parameter_ranges.h and their consistency; InvalidInput naming the
+// parameter.
 Result<void> validate(const ViewParams& view);
 
 }  // namespace lic3d

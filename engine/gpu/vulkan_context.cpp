@@ -249,7 +249,7 @@ Result<int> chooseDevice(const std::vector<DeviceInfo>& devices, const std::stri
         }
     }
     if (chosen < 0)
-      return inputError("--device " + selector + " matches no Vulkan device; found:" + list());
+      return parameterError("device", selector + " matches no Vulkan device; found:" + list());
     if (!devices[chosen].usable)
       return unsupportedError("device " + std::to_string(chosen) + " (" + devices[chosen].name +
                               ") cannot run lic3d: " + devices[chosen].unusableReason);

@@ -161,12 +161,6 @@ bool parseUnsigned(std::string_view text, std::uint64_t& value) {
 bool parseDouble(std::string_view text, double& value) { return parseReal(text, value); }
 bool parseFloat(std::string_view text, float& value) { return parseReal(text, value); }
 
-std::string formatDouble(double value) {
-  std::array<char, 32> text{};
-  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() ? std::string(text.data(), end) : std::string("nan");
-}
-
 bool isAsciiSpace(int c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "core/volume.h"
 
 namespace lic3d {
@@ -35,9 +36,6 @@ std::string quoteForMessage(std::string_view text);
 bool parseUnsigned(std::string_view text, std::uint64_t& value);
 bool parseDouble(std::string_view text, double& value);
 bool parseFloat(std::string_view text, float& value);
-
-// The shortest text that parseDouble reads back as the same double ("0.1", "1e-07", "nan").
-std::string formatDouble(double value);
 
 // ASCII text helpers for the parsers, independent of the locale.
 bool isAsciiSpace(int c);

@@ -31,8 +31,8 @@ Result<VectorField> planarField(const VectorField& field, const std::string& wha
       ++flatAxes;
     }
   if (flatAxes == 0)
-    return inputError(what + ": the grid " + gridText(field.dims) +
-                      " is 3D; choose a plane of it with --slice AXIS[:INDEX]");
+    return parameterError("plane.axis", "must name a plane of " + what + ": its grid " +
+                                            gridText(field.dims) + " is 3D");
   if (flatAxes > 1)
     return inputError(what + ": the grid " + gridText(field.dims) +
                       " is flat along more than one axis; 2D LIC needs a plane");

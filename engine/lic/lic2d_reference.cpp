@@ -29,7 +29,8 @@ Result<void> checkLic2DInputs(const VectorField& field, const NoiseVolume& noise
 Result<void> checkLic2DParams(const LicParams& params) {
   LIC3D_TRY(validate(params));
   if (params.sparsity.distribution != SparsityDistribution::None)
-    return inputError("--sparsity hides voxels of a volume; 2D LIC shows every pixel");
+    return parameterError("lic.sparsity.distribution",
+                          "hides voxels of a volume; 2D LIC shows every pixel");
   return {};
 }
 

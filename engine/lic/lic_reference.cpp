@@ -173,6 +173,7 @@ double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const L
 LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,
                            const LicParams& params, glm::ivec3 voxel, const SparsityMask* mask) {
   const glm::dvec3 start(voxel);
+  const KernelShape shape = kernelShape(params.length, params.bias);
   double sum = 0.0, weights = 0.0;
   for (int sign : {-1, 1}) {
     const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
@@ -180,8 +181,7 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
         traceStreamline(sampler, noise.dims, params, start, sign, steps);
     // The start sample belongs to both directions; count it once (with the backward pass).
     for (std::size_t i = sign < 0 ? 0 : 1; i < samples.size(); ++i) {
-      const double w =
-          kernelWeight(params.kernel, sign * static_cast<int>(i), params.length, params.bias);
+      const double w = kernelWeight(params.kernel, sign * static_cast<int>(i), shape);
       sum += w * sampleNoise(noise, params.noiseFilter, samples[i]);
       weights += w;
       // A hidden voxel's value is never shown: its streamline is not followed further, and

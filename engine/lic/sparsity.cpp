@@ -263,12 +263,6 @@ void keepRandomSubset(std::vector<glm::vec3>& points, std::size_t count, std::ui
   points.resize(count);
 }
 
-std::string formatFloat(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 // phi_b(i) as one integer (the mirrored digits) over base^digits: a single rounding at the end,
 // so the value is the same on every machine (no running floating-point sum to contract or
 // reorder). Digits past a 64-bit denominator are worth less than base * 2^-64 and dropped.
@@ -649,28 +643,32 @@ Result<void> validate(const SparsityParams& params, Dims dims) {
                       std::to_string(kMaxVoxels) + " voxels");
   const std::size_t voxels = voxelCount(dims);
   if (params.points < 0 || static_cast<std::size_t>(params.points) > voxels)
-    return inputError("--sparsity-points must be in [0, " + std::to_string(voxels) +
-                      "] (0 = automatic, at most one per voxel of " + gridText(dims) + "), got " +
-                      std::to_string(params.points));
+    return parameterError("lic.sparsity.points", "must be in [0, " + std::to_string(voxels) +
+                                                     "] (0 = automatic, at most one per voxel of " +
+                                                     gridText(dims) + "), got " +
+                                                     std::to_string(params.points));
   const float largest = largestAxis(dims);
   if (!(params.radius == 0.0f || (params.radius >= kMinSparsityRadius && params.radius <= largest)))
-    return inputError("--sparsity-radius must be 0 (automatic) or in [" +
-                      formatFloat(kMinSparsityRadius) + ", " + formatFloat(largest) +
-                      "] voxels, got " + formatFloat(params.radius));
+    return parameterError("lic.sparsity.radius", "must be 0 (automatic) or in [" +
+                                                     formatNumber(kMinSparsityRadius) + ", " +
+                                                     formatNumber(largest) + "] voxels, got " +
+                                                     formatNumber(params.radius));
   if (!(params.ratio > 0.0f && params.ratio < 1.0f))
-    return inputError("--sparsity-ratio must be in (0, 1), got " + formatFloat(params.ratio));
+    return parameterError("lic.sparsity.ratio",
+                          "must be in (0, 1), got " + formatNumber(params.ratio));
 
   const ResolvedParams resolved = resolve(params, dims);
   const std::size_t pointLimit = params.distribution == SparsityDistribution::PoissonApprox
                                      ? kMaxBestCandidatePoints
                                      : kMaxSparsityPoints;
   if (resolved.points > pointLimit)
-    return inputError("--sparsity-points must be at most " + std::to_string(pointLimit) + " for " +
-                      std::string(enumName(params.distribution)) +
-                      (params.distribution == SparsityDistribution::PoissonApprox
-                           ? " (its time grows with the square of the points)"
-                           : "") +
-                      ", got " + std::to_string(params.points));
+    return parameterError("lic.sparsity.points",
+                          "must be at most " + std::to_string(pointLimit) + " for " +
+                              std::string(enumName(params.distribution)) +
+                              (params.distribution == SparsityDistribution::PoissonApprox
+                                   ? " (its time grows with the square of the points)"
+                                   : "") +
+                              ", got " + std::to_string(params.points));
   if (params.distribution == SparsityDistribution::Poisson && !poissonFits(dims, resolved.radius)) {
     const float smallest =
         smallestRadiusThatFits([&](float r) { return poissonFits(dims, r); }, largest);
@@ -678,17 +676,21 @@ Result<void> validate(const SparsityParams& params, Dims dims) {
                                 ": its search grid would exceed " +
                                 std::to_string(kMaxPoissonGridCells) + " cells; ";
     if (resolved.radiusFromPoints)
-      return inputError("--sparsity-points " + std::to_string(params.points) + " is too many" +
-                        problem + "give --sparsity-radius " + formatFloat(smallest) + " or more");
-    return inputError("--sparsity-radius " + formatFloat(resolved.radius) + " is too small" +
-                      problem + "use " + formatFloat(smallest) + " or more");
+      return parameterError("lic.sparsity.points", std::to_string(params.points) + " is too many" +
+                                                       problem + "give lic.sparsity.radius " +
+                                                       formatNumber(smallest) + " or more");
+    return parameterError("lic.sparsity.radius", formatNumber(resolved.radius) + " is too small" +
+                                                     problem + "use " + formatNumber(smallest) +
+                                                     " or more");
   }
   if (params.distribution == SparsityDistribution::Jitter && !jitterFits(dims, resolved.radius))
-    return inputError(
-        "--sparsity-radius " + formatFloat(resolved.radius) + " is too small for jitter on " +
-        gridText(dims) + ": more than " + std::to_string(kMaxSparsityPoints) + " cells; use " +
-        formatFloat(smallestRadiusThatFits([&](float r) { return jitterFits(dims, r); }, largest)) +
-        " or more");
+    return parameterError("lic.sparsity.radius",
+                          formatNumber(resolved.radius) + " is too small for jitter on " +
+                              gridText(dims) + ": more than " + std::to_string(kMaxSparsityPoints) +
+                              " cells; use " +
+                              formatNumber(smallestRadiusThatFits(
+                                  [&](float r) { return jitterFits(dims, r); }, largest)) +
+                              " or more");
   return {};
 }
 

@@ -45,17 +45,18 @@ Result<std::vector<fs::path>> numberedFiles(const std::string& pattern) {
   const std::optional<Conversion> c = findConversion(name, &problem);
   if (!c) {
     if (findConversion(pattern, nullptr))
-      return inputError("--field " + pattern +
-                        ": the step number must be in the file name, not "
-                        "in a folder name");
-    return inputError("--field " + pattern + ": " + problem);
+      return parameterError("field.source", pattern +
+                                                ": the step number must be in the file name, not "
+                                                "in a folder name");
+    return parameterError("field.source", pattern + ": " + problem);
   }
   const std::string prefix = unescapePercent(std::string_view(name).substr(0, c->begin));
   const std::string suffix = unescapePercent(std::string_view(name).substr(c->end));
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
   if (!fs::is_directory(folder, ec))
-    return inputError("--field " + pattern + ": folder " + folder.string() + " does not exist");
+    return parameterError("field.source",
+                          pattern + ": folder " + folder.string() + " does not exist");
   std::vector<std::pair<unsigned long long, fs::path>> found;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
     const std::string file = entry.path().filename().string();
@@ -71,8 +72,8 @@ Result<std::vector<fs::path>> numberedFiles(const std::string& pattern) {
     found.emplace_back(std::stoull(number), path.parent_path() / file);
   }
   if (ec)
-    return inputError("--field " + pattern + ": cannot list " + folder.string() + ": " +
-                      ec.message());
+    return parameterError("field.source",
+                          pattern + ": cannot list " + folder.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
   std::vector<fs::path> files;
   for (auto& [number, file] : found) files.push_back(std::move(file));
@@ -90,7 +91,7 @@ Result<std::vector<fs::path>> globbedFiles(const std::string& pattern) {
     }
   globfree(&matches);
   if (status != 0 && status != GLOB_NOMATCH)
-    return inputError("--field " + pattern + ": cannot read the folders it names");
+    return parameterError("field.source", pattern + ": cannot read the folders it names");
   return files;
 }
 
@@ -152,19 +153,21 @@ Result<TimeSeries> fileSeries(const std::string& pattern) {
     LIC3D_TRY_ASSIGN(series.files, globbedFiles(pattern));
   }
   if (series.files.size() < 2)
-    return inputError("--field " + pattern + ": a time series needs at least two files; " +
-                      (series.files.empty()
-                           ? std::string("none match")
-                           : "only " + series.files.front().string() + " matches"));
+    return parameterError(
+        "field.source",
+        pattern + ": a time series needs at least two files; " +
+            (series.files.empty() ? std::string("none match")
+                                  : "only " + series.files.front().string() + " matches"));
   series.steps = static_cast<int>(series.files.size());
   return series;
 }
 
 Result<TimeSeries> analyticSeries(AnalyticField field, Dims grid, int steps) {
   if (timePeriod(field) <= 0.0)
-    return inputError("--time-steps: " + std::string(enumName(field)) +
-                      " does not change with time (the tornado does)");
-  if (steps < 2) return inputError("--time-steps: a time series needs at least 2 steps");
+    return parameterError("time_steps",
+                          "is for fields that change with time: " + std::string(enumName(field)) +
+                              " does not (the tornado does)");
+  if (steps < 2) return parameterError("time_steps", "must be at least 2 for a time series");
   TimeSeries series;
   series.analytic = field;
   series.grid = grid;

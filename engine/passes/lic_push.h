@@ -17,8 +17,9 @@ void setLicPushParams(Push& push, const LicParams& params) {
   push.bias = params.bias;
   push.step = params.step;
   push.criticalEpsilon = static_cast<float>(kCriticalFraction);
-  push.hannDenominator = static_cast<float>(params.length + std::abs(params.bias) + 1);
-  push.gaussScale = params.length > 0 ? 1.0f / (0.5f * static_cast<float>(params.length)) : 0.0f;
+  const KernelShape shape = kernelShape(params.length, params.bias);
+  push.hannDenominator = static_cast<float>(shape.hannDenominator);
+  push.gaussScale = static_cast<float>(shape.gaussScale);
 }
 
 // Work groups of `localSize` invocations that cover `n` (n >= 0).
