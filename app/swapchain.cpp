@@ -1,7 +1,6 @@
 #include "swapchain.h"
 
 #include <algorithm>
-#include <utility>
 
 #include "gpu/vk_check.h"
 
@@ -43,7 +42,6 @@ Result<Swapchain> Swapchain::create(const Context& context, VkExtent2D extent, b
   }
 
   Swapchain swapchain;
-  swapchain.device_ = context.device();
   swapchain.format_ = chosen.format;
   swapchain.presentMode_ = mode;
   swapchain.extent_ =
@@ -72,13 +70,15 @@ Result<Swapchain> Swapchain::create(const Context& context, VkExtent2D extent, b
   info.presentMode = mode;
   info.clipped = VK_TRUE;
   info.oldSwapchain = old;
-  LIC3D_TRY(checkVk(vkCreateSwapchainKHR(context.device(), &info, nullptr, &swapchain.swapchain_),
+  VkSwapchainKHR handle = VK_NULL_HANDLE;
+  LIC3D_TRY(checkVk(vkCreateSwapchainKHR(context.device(), &info, nullptr, &handle),
                     "vkCreateSwapchainKHR"));
-  context.setDebugName(swapchain.swapchain_, VK_OBJECT_TYPE_SWAPCHAIN_KHR, "swapchain");
+  swapchain.swapchain_ = {context.device(), handle};
+  context.setDebugName(handle, VK_OBJECT_TYPE_SWAPCHAIN_KHR, "swapchain");
 
-  vkGetSwapchainImagesKHR(context.device(), swapchain.swapchain_, &count, nullptr);
+  vkGetSwapchainImagesKHR(context.device(), handle, &count, nullptr);
   swapchain.images_.resize(count);
-  vkGetSwapchainImagesKHR(context.device(), swapchain.swapchain_, &count, swapchain.images_.data());
+  vkGetSwapchainImagesKHR(context.device(), handle, &count, swapchain.images_.data());
   for (std::uint32_t i = 0; i < count; ++i) {
     context.setDebugName(swapchain.images_[i], VK_OBJECT_TYPE_IMAGE,
                          "swapchain image " + std::to_string(i));
@@ -90,37 +90,10 @@ Result<Swapchain> Swapchain::create(const Context& context, VkExtent2D extent, b
     VkImageView view = VK_NULL_HANDLE;
     LIC3D_TRY(checkVk(vkCreateImageView(context.device(), &viewInfo, nullptr, &view),
                       "vkCreateImageView"));
-    swapchain.views_.push_back(view);
+    swapchain.views_.emplace_back(context.device(), view);
     context.setDebugName(view, VK_OBJECT_TYPE_IMAGE_VIEW, "swapchain view " + std::to_string(i));
   }
   return swapchain;
-}
-
-Swapchain::Swapchain(Swapchain&& other) noexcept { *this = std::move(other); }
-
-Swapchain& Swapchain::operator=(Swapchain&& other) noexcept {
-  if (this != &other) {
-    release();
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    swapchain_ = std::exchange(other.swapchain_, VK_NULL_HANDLE);
-    format_ = other.format_;
-    extent_ = other.extent_;
-    minImageCount_ = other.minImageCount_;
-    presentMode_ = other.presentMode_;
-    images_ = std::move(other.images_);
-    views_ = std::move(other.views_);
-    other.views_.clear();
-  }
-  return *this;
-}
-
-Swapchain::~Swapchain() { release(); }
-
-void Swapchain::release() {
-  for (VkImageView v : views_) vkDestroyImageView(device_, v, nullptr);
-  views_.clear();
-  if (swapchain_) vkDestroySwapchainKHR(device_, swapchain_, nullptr);
-  swapchain_ = VK_NULL_HANDLE;
 }
 
 }  // namespace lic3d

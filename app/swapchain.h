@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {
@@ -20,29 +21,27 @@ class Swapchain {
   // `old` (may be null) is retired and its images may still be presented meanwhile.
   static Result<Swapchain> create(const Context& context, VkExtent2D extent, bool vsync,
                                   VkSwapchainKHR old = VK_NULL_HANDLE);
-  Swapchain(Swapchain&& other) noexcept;
-  Swapchain& operator=(Swapchain&& other) noexcept;
-  ~Swapchain();
+  Swapchain(Swapchain&&) noexcept = default;
+  Swapchain& operator=(Swapchain&&) noexcept = default;  // the views go before the swapchain
+  ~Swapchain() { views_.clear(); }
 
-  VkSwapchainKHR handle() const { return swapchain_; }
+  VkSwapchainKHR handle() const { return swapchain_.get(); }
   VkFormat format() const { return format_; }
   VkExtent2D extent() const { return extent_; }
   std::uint32_t imageCount() const { return static_cast<std::uint32_t>(images_.size()); }
   std::uint32_t minImageCount() const { return minImageCount_; }
   VkImage image(std::uint32_t i) const { return images_[i]; }
-  VkImageView view(std::uint32_t i) const { return views_[i]; }
+  VkImageView view(std::uint32_t i) const { return views_[i].get(); }
   VkPresentModeKHR presentMode() const { return presentMode_; }
 
  private:
-  void release();
-  VkDevice device_ = VK_NULL_HANDLE;
-  VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
+  std::vector<DeviceHandle<VkImageView, vkDestroyImageView>> views_;
+  DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR> swapchain_;
+  std::vector<VkImage> images_;  // owned by the swapchain
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   VkExtent2D extent_{};
   std::uint32_t minImageCount_ = 0;
   VkPresentModeKHR presentMode_ = VK_PRESENT_MODE_FIFO_KHR;
-  std::vector<VkImage> images_;
-  std::vector<VkImageView> views_;
 };
 
 }  // namespace lic3d

@@ -23,19 +23,6 @@ bool injectedAllocationFailure() {
   return failAt > 0 && ++count == failAt;
 }
 
-bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
-  std::uint32_t count = 0;
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS)
-    return false;
-  std::vector<VkExtensionProperties> extensions(count);
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) !=
-      VK_SUCCESS)
-    return false;
-  for (const VkExtensionProperties& e : extensions)
-    if (std::strcmp(e.extensionName, name) == 0) return true;
-  return false;
-}
-
 }  // namespace
 
 MemoryBudget queryMemoryBudget(const Context& context) {
@@ -96,53 +83,25 @@ Result<DeviceMemory> DeviceMemory::allocate(const Context& context,
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = needs.size;
   info.memoryTypeIndex = type;
-  DeviceMemory memory;
+  VkDeviceMemory handle = VK_NULL_HANDLE;
   const VkResult result = injectedAllocationFailure()
                               ? VK_ERROR_OUT_OF_DEVICE_MEMORY
-                              : vkAllocateMemory(context.device(), &info, nullptr, &memory.memory_);
+                              : vkAllocateMemory(context.device(), &info, nullptr, &handle);
   if (result != VK_SUCCESS)
     return runtimeError("cannot allocate " + std::to_string(needs.size) +
                         " bytes of GPU memory for " + name + ": vkAllocateMemory returned " +
                         vkResultName(result));
-  memory.device_ = context.device();
+  DeviceMemory memory;
+  memory.memory_ = {context.device(), handle};
   memory.size_ = needs.size;
-  memory.counter_ = &context.allocationCounter();
-  *memory.counter_ += static_cast<std::int64_t>(needs.size);
-  context.setDebugName(memory.memory_, VK_OBJECT_TYPE_DEVICE_MEMORY, name + " memory");
+  const auto bytes = static_cast<std::int64_t>(needs.size);
+  context.allocationCounter() += bytes;
+  memory.counted_ = {&context.allocationCounter(), AllocationUncount{bytes}};
+  context.setDebugName(handle, VK_OBJECT_TYPE_DEVICE_MEMORY, name + " memory");
   if (use != MemoryUse::DeviceLocal)
-    LIC3D_TRY(
-        checkVk(vkMapMemory(memory.device_, memory.memory_, 0, VK_WHOLE_SIZE, 0, &memory.mapped_),
-                "vkMapMemory"));
+    LIC3D_TRY(checkVk(vkMapMemory(context.device(), handle, 0, VK_WHOLE_SIZE, 0, &memory.mapped_),
+                      "vkMapMemory"));
   return memory;
-}
-
-DeviceMemory::DeviceMemory(DeviceMemory&& other) noexcept
-    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
-      memory_(std::exchange(other.memory_, VK_NULL_HANDLE)),
-      size_(std::exchange(other.size_, 0)),
-      mapped_(std::exchange(other.mapped_, nullptr)),
-      counter_(std::exchange(other.counter_, nullptr)) {}
-
-DeviceMemory& DeviceMemory::operator=(DeviceMemory&& other) noexcept {
-  if (this != &other) {
-    release();
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
-    size_ = std::exchange(other.size_, 0);
-    mapped_ = std::exchange(other.mapped_, nullptr);
-    counter_ = std::exchange(other.counter_, nullptr);
-  }
-  return *this;
-}
-
-DeviceMemory::~DeviceMemory() { release(); }
-
-void DeviceMemory::release() {
-  if (memory_ == VK_NULL_HANDLE) return;
-  vkFreeMemory(device_, memory_, nullptr);  // unmaps implicitly
-  if (counter_) *counter_ -= static_cast<std::int64_t>(size_);
-  memory_ = VK_NULL_HANDLE;
-  mapped_ = nullptr;
 }
 
 // ---- Buffer ------------------------------------------------------------------------------------
@@ -153,44 +112,18 @@ Result<Buffer> Buffer::create(const Context& context, VkDeviceSize size, VkBuffe
   info.size = size;
   info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer handle = VK_NULL_HANDLE;
+  LIC3D_TRY(checkVk(vkCreateBuffer(context.device(), &info, nullptr, &handle), "vkCreateBuffer"));
   Buffer buffer;
-  buffer.device_ = context.device();
+  buffer.buffer_ = {context.device(), handle};
   buffer.size_ = size;
-  LIC3D_TRY(
-      checkVk(vkCreateBuffer(context.device(), &info, nullptr, &buffer.buffer_), "vkCreateBuffer"));
-  context.setDebugName(buffer.buffer_, VK_OBJECT_TYPE_BUFFER, name);
+  context.setDebugName(handle, VK_OBJECT_TYPE_BUFFER, name);
   VkMemoryRequirements needs;
-  vkGetBufferMemoryRequirements(context.device(), buffer.buffer_, &needs);
+  vkGetBufferMemoryRequirements(context.device(), handle, &needs);
   LIC3D_TRY_ASSIGN(buffer.memory_, DeviceMemory::allocate(context, needs, use, name));
-  LIC3D_TRY(
-      checkVk(vkBindBufferMemory(context.device(), buffer.buffer_, buffer.memory_.handle(), 0),
-              "vkBindBufferMemory"));
+  LIC3D_TRY(checkVk(vkBindBufferMemory(context.device(), handle, buffer.memory_.handle(), 0),
+                    "vkBindBufferMemory"));
   return buffer;
-}
-
-Buffer::Buffer(Buffer&& other) noexcept
-    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
-      buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
-      size_(std::exchange(other.size_, 0)),
-      memory_(std::move(other.memory_)) {}
-
-Buffer& Buffer::operator=(Buffer&& other) noexcept {
-  if (this != &other) {
-    release();
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
-    size_ = std::exchange(other.size_, 0);
-    memory_ = std::move(other.memory_);
-  }
-  return *this;
-}
-
-Buffer::~Buffer() { release(); }
-
-void Buffer::release() {
-  if (buffer_ != VK_NULL_HANDLE) vkDestroyBuffer(device_, buffer_, nullptr);
-  buffer_ = VK_NULL_HANDLE;
-  memory_ = DeviceMemory();
 }
 
 // ---- Image -------------------------------------------------------------------------------------
@@ -208,65 +141,37 @@ Result<Image> Image::create(const Context& context, const ImageDesc& desc) {
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
 
-  Image image;
-  image.device_ = context.device();
-  image.format_ = desc.format;
-  image.extent_ = desc.extent;
-  const VkResult created = vkCreateImage(context.device(), &info, nullptr, &image.image_);
+  VkImage handle = VK_NULL_HANDLE;
+  const VkResult created = vkCreateImage(context.device(), &info, nullptr, &handle);
   if (created != VK_SUCCESS)
     return runtimeError(
         "cannot create image " + desc.name + " (" + std::to_string(desc.extent.width) + "x" +
         std::to_string(desc.extent.height) + "x" + std::to_string(desc.extent.depth) +
         "): vkCreateImage returned " + vkResultName(created));
-  context.setDebugName(image.image_, VK_OBJECT_TYPE_IMAGE, desc.name);
+  Image image;
+  image.image_ = {context.device(), handle};
+  image.format_ = desc.format;
+  image.extent_ = desc.extent;
+  context.setDebugName(handle, VK_OBJECT_TYPE_IMAGE, desc.name);
 
   VkMemoryRequirements needs;
-  vkGetImageMemoryRequirements(context.device(), image.image_, &needs);
+  vkGetImageMemoryRequirements(context.device(), handle, &needs);
   LIC3D_TRY_ASSIGN(image.memory_,
                    DeviceMemory::allocate(context, needs, MemoryUse::DeviceLocal, desc.name));
-  LIC3D_TRY(checkVk(vkBindImageMemory(context.device(), image.image_, image.memory_.handle(), 0),
+  LIC3D_TRY(checkVk(vkBindImageMemory(context.device(), handle, image.memory_.handle(), 0),
                     "vkBindImageMemory"));
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  viewInfo.image = image.image_;
+  viewInfo.image = handle;
   viewInfo.viewType = desc.type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
   viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  LIC3D_TRY(checkVk(vkCreateImageView(context.device(), &viewInfo, nullptr, &image.view_),
-                    "vkCreateImageView"));
-  context.setDebugName(image.view_, VK_OBJECT_TYPE_IMAGE_VIEW, desc.name + " view");
+  VkImageView view = VK_NULL_HANDLE;
+  LIC3D_TRY(
+      checkVk(vkCreateImageView(context.device(), &viewInfo, nullptr, &view), "vkCreateImageView"));
+  image.view_ = {context.device(), view};
+  context.setDebugName(view, VK_OBJECT_TYPE_IMAGE_VIEW, desc.name + " view");
   return image;
-}
-
-Image::Image(Image&& other) noexcept
-    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
-      image_(std::exchange(other.image_, VK_NULL_HANDLE)),
-      view_(std::exchange(other.view_, VK_NULL_HANDLE)),
-      format_(other.format_),
-      extent_(other.extent_),
-      memory_(std::move(other.memory_)) {}
-
-Image& Image::operator=(Image&& other) noexcept {
-  if (this != &other) {
-    release();
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
-    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
-    format_ = other.format_;
-    extent_ = other.extent_;
-    memory_ = std::move(other.memory_);
-  }
-  return *this;
-}
-
-Image::~Image() { release(); }
-
-void Image::release() {
-  if (view_ != VK_NULL_HANDLE) vkDestroyImageView(device_, view_, nullptr);
-  if (image_ != VK_NULL_HANDLE) vkDestroyImage(device_, image_, nullptr);
-  view_ = VK_NULL_HANDLE;
-  image_ = VK_NULL_HANDLE;
-  memory_ = DeviceMemory();
 }
 
 // ---- Sampler -----------------------------------------------------------------------------------
@@ -280,29 +185,12 @@ Result<Sampler> Sampler::create(const Context& context, VkFilter filter, const s
   info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   info.maxLod = 0.0f;
+  VkSampler handle = VK_NULL_HANDLE;
+  LIC3D_TRY(checkVk(vkCreateSampler(context.device(), &info, nullptr, &handle), "vkCreateSampler"));
   Sampler sampler;
-  sampler.device_ = context.device();
-  LIC3D_TRY(checkVk(vkCreateSampler(context.device(), &info, nullptr, &sampler.sampler_),
-                    "vkCreateSampler"));
-  context.setDebugName(sampler.sampler_, VK_OBJECT_TYPE_SAMPLER, name);
+  sampler.sampler_ = {context.device(), handle};
+  context.setDebugName(handle, VK_OBJECT_TYPE_SAMPLER, name);
   return sampler;
-}
-
-Sampler::Sampler(Sampler&& other) noexcept
-    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
-      sampler_(std::exchange(other.sampler_, VK_NULL_HANDLE)) {}
-
-Sampler& Sampler::operator=(Sampler&& other) noexcept {
-  if (this != &other) {
-    if (sampler_ != VK_NULL_HANDLE) vkDestroySampler(device_, sampler_, nullptr);
-    device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-    sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
-  }
-  return *this;
-}
-
-Sampler::~Sampler() {
-  if (sampler_ != VK_NULL_HANDLE) vkDestroySampler(device_, sampler_, nullptr);
 }
 
 bool supportsFormat(const Context& context, VkFormat format, VkFormatFeatureFlags2 features) {

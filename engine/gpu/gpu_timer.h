@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {
@@ -17,11 +18,8 @@ class GpuTimer {
   GpuTimer() = default;
   static Result<GpuTimer> create(const Context& context, std::uint32_t regions,
                                  const std::string& name);
-  GpuTimer(GpuTimer&& other) noexcept;
-  GpuTimer& operator=(GpuTimer&& other) noexcept;
-  ~GpuTimer();
 
-  bool valid() const { return pool_ != VK_NULL_HANDLE; }
+  bool valid() const { return static_cast<bool>(pool_); }
   // Record reset, begin and end of one region in one command buffer, then read it once that
   // command buffer completed.
   void reset(VkCommandBuffer cmd, std::uint32_t region) const;
@@ -30,8 +28,7 @@ class GpuTimer {
   Result<double> milliseconds(std::uint32_t region) const;
 
  private:
-  VkDevice device_ = VK_NULL_HANDLE;
-  VkQueryPool pool_ = VK_NULL_HANDLE;
+  DeviceHandle<VkQueryPool, vkDestroyQueryPool> pool_;
   std::uint32_t regions_ = 0;
   double nanosecondsPerTick_ = 1.0;
   std::uint64_t tickMask_ = ~0ull;  // timestampValidBits of the queue

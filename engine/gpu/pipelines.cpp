@@ -9,16 +9,20 @@ Result<ShaderModule> loadShader(const Context& context, ShaderId id) {
   return ShaderModule(context.device(), module);
 }
 
-Result<PipelineLayout> PipelineLayout::create(
-    const Context& context, std::span<const VkDescriptorSetLayoutBinding> bindings,
-    VkShaderStageFlags pushStages, std::uint32_t pushBytes, const std::string& name) {
+Result<PipelineLayout> PipelineLayout::create(const Context& context,
+                                              std::span<const Binding> bindings,
+                                              VkShaderStageFlags pushStages,
+                                              std::uint32_t pushBytes, const std::string& name) {
   VkDevice device = context.device();
   PipelineLayout result;
 
+  std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+  for (const Binding& b : bindings)
+    layoutBindings.push_back({b.binding, b.type, 1, b.stages, nullptr});
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  setInfo.pBindings = bindings.data();
+  setInfo.bindingCount = static_cast<std::uint32_t>(layoutBindings.size());
+  setInfo.pBindings = layoutBindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   LIC3D_TRY(checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout),
                     "vkCreateDescriptorSetLayout"));
@@ -58,24 +62,52 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
   return Pipeline(context.device(), pipeline);
 }
 
-VkWriteDescriptorSet descriptorWrite(std::uint32_t binding, VkDescriptorType type,
-                                     const VkDescriptorImageInfo* image) {
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+VkWriteDescriptorSet& DescriptorWrites::add(std::uint32_t binding, VkDescriptorType type) {
+  LIC3D_ASSERT(count_ < kMax);
+  VkWriteDescriptorSet& write = writes_[count_++];
+  write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstBinding = binding;
   write.descriptorCount = 1;
   write.descriptorType = type;
-  write.pImageInfo = image;
   return write;
 }
 
-VkWriteDescriptorSet descriptorWrite(std::uint32_t binding, VkDescriptorType type,
-                                     const VkDescriptorBufferInfo* buffer) {
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = type;
-  write.pBufferInfo = buffer;
-  return write;
+DescriptorWrites& DescriptorWrites::sampledImage(std::uint32_t binding, const Sampler& sampler,
+                                                 VkImageView view) {
+  add(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+  images_[count_ - 1] = {sampler.handle(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  return *this;
+}
+
+DescriptorWrites& DescriptorWrites::storageImage(std::uint32_t binding, VkImageView view) {
+  add(binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  images_[count_ - 1] = {VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
+  return *this;
+}
+
+DescriptorWrites& DescriptorWrites::storageBuffer(std::uint32_t binding, const Buffer& buffer) {
+  add(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  buffers_[count_ - 1] = {buffer.handle(), 0, VK_WHOLE_SIZE};
+  return *this;
+}
+
+DescriptorWrites& DescriptorWrites::uniformBuffer(std::uint32_t binding, const Buffer& buffer,
+                                                  VkDeviceSize offset, VkDeviceSize range) {
+  add(binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+  buffers_[count_ - 1] = {buffer.handle(), offset, range};
+  return *this;
+}
+
+void DescriptorWrites::push(const Context& context, VkCommandBuffer cmd,
+                            VkPipelineBindPoint bindPoint, const PipelineLayout& layout) {
+  // The info pointers are set here, so a moved or copied DescriptorWrites stays valid.
+  for (std::uint32_t i = 0; i < count_; ++i) {
+    const bool buffer = writes_[i].descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
+                        writes_[i].descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    writes_[i].pImageInfo = buffer ? nullptr : &images_[i];
+    writes_[i].pBufferInfo = buffer ? &buffers_[i] : nullptr;
+  }
+  context.cmdPushDescriptorSet(cmd, bindPoint, layout.get(), 0, count_, writes_.data());
 }
 
 }  // namespace lic3d

@@ -1,61 +1,41 @@
 #pragma once
-// Owners of shader modules, pipeline layouts (with their push-descriptor set layout) and
-// pipelines, and the few calls every pass makes to build them.
+// Shader modules, pipeline layouts (with their push-descriptor set layout), pipelines and their
+// variant cache, and the descriptors a pass pushes: the few calls every pass makes to build and
+// bind its pipelines.
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/error.h"
+#include "gpu/gpu_resources.h"
 #include "gpu/shader_library.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {
-
-// A handle destroyed with vkDestroy<Kind> when its owner goes away. Move-only.
-template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)>
-class DeviceHandle {
- public:
-  DeviceHandle() = default;
-  DeviceHandle(VkDevice device, Handle handle) : device_(device), handle_(handle) {}
-  DeviceHandle(DeviceHandle&& other) noexcept
-      : device_(other.device_), handle_(std::exchange(other.handle_, VK_NULL_HANDLE)) {}
-  DeviceHandle& operator=(DeviceHandle&& other) noexcept {
-    if (this != &other) {
-      reset();
-      device_ = other.device_;
-      handle_ = std::exchange(other.handle_, VK_NULL_HANDLE);
-    }
-    return *this;
-  }
-  ~DeviceHandle() { reset(); }
-
-  Handle get() const { return handle_; }
-  explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
-
- private:
-  void reset() {
-    if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
-    handle_ = VK_NULL_HANDLE;
-  }
-  VkDevice device_ = VK_NULL_HANDLE;
-  Handle handle_ = VK_NULL_HANDLE;
-};
 
 using ShaderModule = DeviceHandle<VkShaderModule, vkDestroyShaderModule>;
 using Pipeline = DeviceHandle<VkPipeline, vkDestroyPipeline>;
 
 Result<ShaderModule> loadShader(const Context& context, ShaderId id);
 
+// One descriptor of a pass's push-descriptor set (shaders/shared_layout.h numbers them).
+struct Binding {
+  std::uint32_t binding = 0;
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT;
+};
+
 // One push-descriptor set (the pass's bindings) and one push-constant range (none if 0 bytes).
 class PipelineLayout {
  public:
   PipelineLayout() = default;
-  static Result<PipelineLayout> create(const Context& context,
-                                       std::span<const VkDescriptorSetLayoutBinding> bindings,
+  static Result<PipelineLayout> create(const Context& context, std::span<const Binding> bindings,
                                        VkShaderStageFlags pushStages, std::uint32_t pushBytes,
                                        const std::string& name);
 
@@ -71,10 +51,46 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
                                        const VkSpecializationInfo* specialization,
                                        const std::string& name);
 
-// A descriptor write for vkCmdPushDescriptorSetKHR (no set: dstSet is ignored there).
-VkWriteDescriptorSet descriptorWrite(std::uint32_t binding, VkDescriptorType type,
-                                     const VkDescriptorImageInfo* image);
-VkWriteDescriptorSet descriptorWrite(std::uint32_t binding, VkDescriptorType type,
-                                     const VkDescriptorBufferInfo* buffer);
+// The pipeline variants of a pass, each made the first time its key (a specialization struct,
+// or one with the attachment format) is asked for and kept for the pass's life.
+template <class Key>
+class PipelineCache {
+ public:
+  // `make(key)` returns Result<Pipeline> for a key not seen before.
+  template <class Make>
+  Result<VkPipeline> get(const Key& key, const Make& make) {
+    for (const auto& [known, pipeline] : pipelines_)
+      if (known == key) return pipeline.get();
+    LIC3D_TRY_ASSIGN(Pipeline pipeline, make(key));
+    const VkPipeline handle = pipeline.get();
+    pipelines_.emplace_back(key, std::move(pipeline));
+    return handle;
+  }
+  std::size_t size() const { return pipelines_.size(); }
+
+ private:
+  std::vector<std::pair<Key, Pipeline>> pipelines_;
+};
+
+// The descriptors of one dispatch or draw, pushed with vkCmdPushDescriptorSetKHR: sampled images
+// in SHADER_READ_ONLY_OPTIMAL, storage images in GENERAL, whole storage buffers, uniform ranges.
+class DescriptorWrites {
+ public:
+  DescriptorWrites& sampledImage(std::uint32_t binding, const Sampler& sampler, VkImageView view);
+  DescriptorWrites& storageImage(std::uint32_t binding, VkImageView view);
+  DescriptorWrites& storageBuffer(std::uint32_t binding, const Buffer& buffer);
+  DescriptorWrites& uniformBuffer(std::uint32_t binding, const Buffer& buffer, VkDeviceSize offset,
+                                  VkDeviceSize range);
+  void push(const Context& context, VkCommandBuffer cmd, VkPipelineBindPoint bindPoint,
+            const PipelineLayout& layout);
+
+ private:
+  static constexpr std::size_t kMax = 8;
+  VkWriteDescriptorSet& add(std::uint32_t binding, VkDescriptorType type);
+  std::array<VkWriteDescriptorSet, kMax> writes_{};
+  std::array<VkDescriptorImageInfo, kMax> images_{};
+  std::array<VkDescriptorBufferInfo, kMax> buffers_{};
+  std::uint32_t count_ = 0;
+};
 
 }  // namespace lic3d

@@ -72,16 +72,6 @@ bool hasInstanceExtension(const char* layer, const char* name) {
   });
 }
 
-bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
-  std::uint32_t count = 0;
-  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
-  std::vector<VkExtensionProperties> extensions(count);
-  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
-  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
-    return std::strcmp(e.extensionName, name) == 0;
-  });
-}
-
 // One queue family that does graphics and compute (and presents to `surface`, if any): lic3d
 // records every pass on one queue.
 std::uint32_t findQueueFamily(VkPhysicalDevice device, VkSurfaceKHR surface = VK_NULL_HANDLE) {
@@ -273,6 +263,16 @@ struct MessageLog {
 };
 
 }  // namespace
+
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
 
 const char* deviceTypeName(VkPhysicalDeviceType type) {
   switch (type) {

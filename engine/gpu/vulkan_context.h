@@ -41,6 +41,9 @@ struct DeviceInfo {
 
 const char* deviceTypeName(VkPhysicalDeviceType type);
 
+// Whether the physical device offers the device extension `name`.
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name);
+
 // Every Vulkan device the loader reports, in the loader's order, with whether lic3d can use it.
 Result<std::vector<DeviceInfo>> listDevices();
 

@@ -98,18 +98,13 @@ Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& fie
 Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
   FieldInterpolation pass;
   pass.context_ = &context;
-  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
-      {gpu::kLerpBindingStepA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLerpBindingStepB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLerpBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-      {gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-  }};
+  constexpr Binding bindings[] = {
+      {gpu::kLerpBindingStepA},
+      {gpu::kLerpBindingStepB},
+      {gpu::kLerpBindingNoise},
+      {gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+      {gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+  };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::LerpPushConstants), "field lerp"));
@@ -204,22 +199,12 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
   push.unitScale = glm::vec4(glm::vec3(unit), static_cast<float>(std::clamp(weight, 0.0, 1.0)));
   push.stepScales = glm::vec4(static_cast<float>(a.scale), static_cast<float>(b.scale), 0.0f, 0.0f);
 
-  const VkDescriptorImageInfo aInfo{nearest_.handle(), a.image.view(),
-                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo bInfo{nearest_.handle(), b.image.view(),
-                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo noiseInfo{nearest_.handle(), noise_.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo targetInfo{VK_NULL_HANDLE, target.image.view(),
-                                         VK_IMAGE_LAYOUT_GENERAL};
-  const VkDescriptorBufferInfo rangesInfo{ranges_.handle(), 0, VK_WHOLE_SIZE};
-  const std::array<VkWriteDescriptorSet, 5> writes{
-      descriptorWrite(gpu::kLerpBindingStepA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &aInfo),
-      descriptorWrite(gpu::kLerpBindingStepB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &bInfo),
-      descriptorWrite(gpu::kLerpBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &noiseInfo),
-      descriptorWrite(gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &targetInfo),
-      descriptorWrite(gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rangesInfo)};
+  DescriptorWrites writes;
+  writes.sampledImage(gpu::kLerpBindingStepA, nearest_, a.image.view())
+      .sampledImage(gpu::kLerpBindingStepB, nearest_, b.image.view())
+      .sampledImage(gpu::kLerpBindingNoise, nearest_, noise_.view())
+      .storageImage(gpu::kLerpBindingTarget, target.image.view())
+      .storageBuffer(gpu::kLerpBindingRanges, ranges_);
   const std::uint32_t groupsX = groupCount(target.dims.x, gpu::kLerpLocalSizeX);
   const std::uint32_t groupsY = groupCount(target.dims.y, gpu::kLerpLocalSizeY);
   const std::uint32_t groupsZ = static_cast<std::uint32_t>(target.dims.z);
@@ -242,8 +227,7 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
         imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                      kReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
-                                       static_cast<std::uint32_t>(writes.size()), writes.data());
+        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
         vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         if (timer_.valid()) {
           timer_.reset(cmd, 0);

@@ -107,14 +107,11 @@ Result<Lic2DInputs> uploadLic2DInputs(const Context& context, const VectorField&
 Result<Lic2DPass> Lic2DPass::create(const Context& context) {
   Lic2DPass pass;
   pass.context_ = &context;
-  const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
-      {gpu::kLic2DBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLic2DBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLic2DBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-  }};
+  constexpr Binding bindings[] = {
+      {gpu::kLic2DBindingField},
+      {gpu::kLic2DBindingNoise},
+      {gpu::kLic2DBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+  };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::Lic2DPushConstants), "lic 2d"));
@@ -127,38 +124,23 @@ Result<Lic2DPass> Lic2DPass::create(const Context& context) {
   return pass;
 }
 
-Result<VkPipeline> Lic2DPass::pipelineFor(const Lic2DSpecialization& specialization) {
-  for (const auto& [spec, pipeline] : pipelines_)
-    if (spec == specialization) return pipeline.get();
-  const Specialization<Lic2DSpecialization> constants(specialization);
-  const std::string name = licPipelineName("lic 2d ", specialization);
-  LIC3D_TRY_ASSIGN(Pipeline pipeline,
-                   createComputePipeline(*context_, shader_, layout_, constants.info(), name));
-  const VkPipeline handle = pipeline.get();
-  pipelines_.emplace_back(specialization, std::move(pipeline));
-  return handle;
-}
-
 Result<void> Lic2DPass::record(VkCommandBuffer cmd, const Lic2DInputs& inputs, const Image& output,
                                const LicParams& params) {
   LIC3D_TRY(checkLic2DParams(params));
   const Lic2DSpecialization specialization = lic2DSpecialization(params);
-  LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(specialization));
+  LIC3D_TRY_ASSIGN(VkPipeline pipeline,
+                   pipelines_.get(specialization, [&](const Lic2DSpecialization& key) {
+                     const Specialization<Lic2DSpecialization> constants(key);
+                     return createComputePipeline(*context_, shader_, layout_, constants.info(),
+                                                  licPipelineName("lic 2d ", key));
+                   }));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
 
-  const VkDescriptorImageInfo fieldInfo{linear_.handle(), inputs.field.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo noiseInfo{linear_.handle(), inputs.noise.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output.view(), VK_IMAGE_LAYOUT_GENERAL};
-  const std::array<VkWriteDescriptorSet, 3> writes{
-      descriptorWrite(gpu::kLic2DBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &fieldInfo),
-      descriptorWrite(gpu::kLic2DBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &noiseInfo),
-      descriptorWrite(gpu::kLic2DBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &outputInfo)};
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
-                                 static_cast<std::uint32_t>(writes.size()), writes.data());
+  DescriptorWrites()
+      .sampledImage(gpu::kLic2DBindingField, linear_, inputs.field.view())
+      .sampledImage(gpu::kLic2DBindingNoise, linear_, inputs.noise.view())
+      .storageImage(gpu::kLic2DBindingOutput, output.view())
+      .push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
 
   const Dims size = inputs.imageDims;
   gpu::Lic2DPushConstants push{};

@@ -80,15 +80,13 @@ class Lic2DPass {
   std::size_t variantCount() const { return pipelines_.size(); }
 
  private:
-  Result<VkPipeline> pipelineFor(const Lic2DSpecialization& specialization);
-
   const Context* context_ = nullptr;
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler linear_;
   GpuTimer timer_;
   double lastMs_ = 0.0;
-  std::vector<std::pair<Lic2DSpecialization, Pipeline>> pipelines_;
+  PipelineCache<Lic2DSpecialization> pipelines_;
 };
 
 }  // namespace lic3d

@@ -33,12 +33,10 @@ IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts
 Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   LicHistogramPass pass;
   pass.context_ = &context;
-  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
-      {gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-  }};
+  constexpr Binding bindings[] = {
+      {gpu::kHistogramBindingVolume},
+      {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+  };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::HistogramPushConstants), "histogram"));
@@ -74,16 +72,10 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  const VkDescriptorImageInfo volumeInfo{sampler_.handle(), volume.view(),
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorBufferInfo countsInfo{counts_.handle(), 0, VK_WHOLE_SIZE};
-  const std::array<VkWriteDescriptorSet, 2> writes{
-      descriptorWrite(gpu::kHistogramBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &volumeInfo),
-      descriptorWrite(gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                      &countsInfo)};
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
-                                 static_cast<std::uint32_t>(writes.size()), writes.data());
+  DescriptorWrites()
+      .sampledImage(gpu::kHistogramBindingVolume, sampler_, volume.view())
+      .storageBuffer(gpu::kHistogramBindingCounts, counts_)
+      .push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
   const gpu::HistogramPushConstants push{glm::ivec4(dims, 0)};
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);

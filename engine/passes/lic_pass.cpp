@@ -26,17 +26,13 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
   LicPass pass;
   pass.context_ = &context;
   pass.separateNoise_ = separateNoise;
-  const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
-      {gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-      {gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-  }};
-  const std::span<const VkDescriptorSetLayoutBinding> used(bindings.data(), separateNoise ? 4 : 3);
+  constexpr Binding bindings[] = {
+      {gpu::kLicBindingField},
+      {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+      {gpu::kLicBindingMask},
+      {gpu::kLicBindingNoise},  // the naive kernel's own noise texture
+  };
+  const std::span<const Binding> used(bindings, separateNoise ? 4 : 3);
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, used, VK_SHADER_STAGE_COMPUTE_BIT,
                                                         sizeof(gpu::LicPushConstants), "lic"));
   LIC3D_TRY_ASSIGN(pass.shader_,
@@ -50,45 +46,27 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
   return pass;
 }
 
-Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization) {
-  for (const auto& [spec, pipeline] : pipelines_)
-    if (spec == specialization) return pipeline.get();
-
-  const Specialization<LicSpecialization> constants(specialization);
-  const std::string name = licPipelineName(separateNoise_ ? "naive lic " : "lic ", specialization) +
-                           (specialization.packing ? "/byte" : "") +
-                           (specialization.sparsity ? "/sparse" : "");
-  LIC3D_TRY_ASSIGN(Pipeline pipeline,
-                   createComputePipeline(*context_, shader_, layout_, constants.info(), name));
-  const VkPipeline handle = pipeline.get();
-  pipelines_.emplace_back(specialization, std::move(pipeline));
-  return handle;
-}
-
 Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                              const Image& output, const LicParams& params, int zBegin, int zEnd,
                              const Image* noise) {
   LIC3D_ASSERT(!separateNoise_ || noise);
   LicSpecialization specialization = licSpecialization(params, field.precision);
   specialization.interleave = context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 1u;
-  LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(specialization));
+  LIC3D_TRY_ASSIGN(
+      VkPipeline pipeline, pipelines_.get(specialization, [&](const LicSpecialization& key) {
+        const Specialization<LicSpecialization> constants(key);
+        const std::string name = licPipelineName(separateNoise_ ? "naive lic " : "lic ", key) +
+                                 (key.packing ? "/byte" : "") + (key.sparsity ? "/sparse" : "");
+        return createComputePipeline(*context_, shader_, layout_, constants.info(), name);
+      }));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
 
-  const VkDescriptorImageInfo fieldInfo{sampler_.handle(), field.image.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output.view(), VK_IMAGE_LAYOUT_GENERAL};
-  const VkDescriptorImageInfo maskInfo{maskSampler_.handle(), mask.view(),
-                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo noiseInfo{sampler_.handle(), noise ? noise->view() : VK_NULL_HANDLE,
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const std::array<VkWriteDescriptorSet, 4> writes{
-      descriptorWrite(gpu::kLicBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &fieldInfo),
-      descriptorWrite(gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, &outputInfo),
-      descriptorWrite(gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, &maskInfo),
-      descriptorWrite(gpu::kLicBindingNoise, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &noiseInfo)};
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0,
-                                 separateNoise_ ? 4u : 3u, writes.data());
+  DescriptorWrites writes;
+  writes.sampledImage(gpu::kLicBindingField, sampler_, field.image.view())
+      .storageImage(gpu::kLicBindingOutput, output.view())
+      .sampledImage(gpu::kLicBindingMask, maskSampler_, mask.view());
+  if (separateNoise_) writes.sampledImage(gpu::kLicBindingNoise, sampler_, noise->view());
+  writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
 
   const Dims dims = field.dims;
   gpu::LicPushConstants push{};

@@ -62,15 +62,13 @@ class LicPass {
   bool separateNoise() const { return separateNoise_; }
 
  private:
-  Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
-
   const Context* context_ = nullptr;
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler sampler_;
   Sampler maskSampler_;
   bool separateNoise_ = false;
-  std::vector<std::pair<LicSpecialization, Pipeline>> pipelines_;
+  PipelineCache<LicSpecialization> pipelines_;
 };
 
 }  // namespace lic3d

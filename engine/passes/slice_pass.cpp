@@ -117,15 +117,13 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   pass.runtimeModes_ = runtimeModes;
   constexpr VkShaderStageFlags kBothStages =
       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  const std::array<VkDescriptorSetLayoutBinding, 4> bindings{{
-      {gpu::kSliceBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
-      {gpu::kSliceBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
-      {gpu::kSliceBindingColormap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
-      {gpu::kSliceBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, kBothStages, nullptr},
-  }};
+  constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  constexpr Binding bindings[] = {
+      {gpu::kSliceBindingVolume, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+      {gpu::kSliceBindingField, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+      {gpu::kSliceBindingColormap, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+      {gpu::kSliceBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBothStages},
+  };
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, bindings, 0, 0, "slice"));
   LIC3D_TRY_ASSIGN(pass.vertexShader_, loadShader(context, ShaderId::SliceVertex));
   LIC3D_TRY_ASSIGN(pass.fragmentShader_,
@@ -152,11 +150,9 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   return pass;
 }
 
-Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specialization,
-                                          VkFormat format) {
-  for (const auto& [spec, f, pipeline] : pipelines_)
-    if (spec == specialization && f == format) return pipeline.get();
-
+Result<Pipeline> SlicePass::createPipeline(const SliceVariant& variant) const {
+  const SliceSpecialization& specialization = variant.specialization;
+  const VkFormat format = variant.format;
   const Specialization<SliceSpecialization> constants(specialization);
   std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
   stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -237,8 +233,7 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceSpecialization& specializat
   for (std::size_t i = 0; i < sizeof(specialization) / 4; ++i)
     name += " " + std::to_string(fields[i]);
   context_->setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
-  pipelines_.emplace_back(specialization, format, Pipeline(context_->device(), pipeline));
-  return pipeline;
+  return Pipeline(context_->device(), pipeline);
 }
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
@@ -250,7 +245,9 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   if (runtimeModes_)
     key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
                               .fieldPacking = frame.specialization.fieldPacking};
-  LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(key, colorFormat));
+  LIC3D_TRY_ASSIGN(
+      VkPipeline pipeline,
+      pipelines_.get({key, colorFormat}, [&](const SliceVariant& v) { return createPipeline(v); }));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
   const VkViewport vp{static_cast<float>(viewport.offset.x),
@@ -267,23 +264,12 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
               sizeof(frame.uniforms));
 
   // Nearest filtering happens in the shader (texelFetch); the sampler is always linear.
-  const VkDescriptorImageInfo volumeInfo{linear_.handle(), volume.view(),
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo fieldInfo{linear_.handle(), field.image.view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo colormapInfo{linear_.handle(), colormaps_.view(),
-                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorBufferInfo uniformInfo{uniforms_.handle(), offset, sizeof(gpu::SliceUniforms)};
-  const std::array<VkWriteDescriptorSet, 4> writes{
-      descriptorWrite(gpu::kSliceBindingVolume, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &volumeInfo),
-      descriptorWrite(gpu::kSliceBindingField, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &fieldInfo),
-      descriptorWrite(gpu::kSliceBindingColormap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                      &colormapInfo),
-      descriptorWrite(gpu::kSliceBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &uniformInfo)};
-  context_->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0,
-                                 static_cast<std::uint32_t>(writes.size()), writes.data());
+  DescriptorWrites()
+      .sampledImage(gpu::kSliceBindingVolume, linear_, volume.view())
+      .sampledImage(gpu::kSliceBindingField, linear_, field.image.view())
+      .sampledImage(gpu::kSliceBindingColormap, linear_, colormaps_.view())
+      .uniformBuffer(gpu::kSliceBindingUniforms, uniforms_, offset, sizeof(gpu::SliceUniforms))
+      .push(*context_, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_);
   vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
   return {};
 }

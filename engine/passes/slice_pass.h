@@ -98,7 +98,13 @@ class SlicePass {
   std::size_t variantCount() const { return pipelines_.size(); }
 
  private:
-  Result<VkPipeline> pipelineFor(const SliceSpecialization& specialization, VkFormat format);
+  // A pipeline per display variant and colour attachment format.
+  struct SliceVariant {
+    SliceSpecialization specialization;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    bool operator==(const SliceVariant&) const = default;
+  };
+  Result<Pipeline> createPipeline(const SliceVariant& variant) const;
 
   const Context* context_ = nullptr;
   bool runtimeModes_ = false;
@@ -109,7 +115,7 @@ class SlicePass {
   Image colormaps_;
   Buffer uniforms_;
   VkDeviceSize slotSize_ = 0;
-  std::vector<std::tuple<SliceSpecialization, VkFormat, Pipeline>> pipelines_;
+  PipelineCache<SliceVariant> pipelines_;
 };
 
 }  // namespace lic3d
