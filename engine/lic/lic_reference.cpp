@@ -5,7 +5,8 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
-#include <thread>
+
+#include "core/parallel.h"
 
 namespace lic3d {
 namespace {
@@ -222,28 +223,21 @@ ScalarVolume computeLicOnGrid(const FieldSampler& sampler, const NoiseVolume& no
   out.values.resize(voxelCount(dims));
   if (mask) out.drawn.resize(out.values.size());
 
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   // Work is handed out in rows (y, z pairs): a 2D grid has a single z slice.
-  const int rows = dims.y * dims.z;
-  std::atomic<int> next{0};
-  std::atomic<int> done{0};
-  auto work = [&](bool reports) {
-    for (int row = next++; row < rows; row = next++) {
-      const int j = row % dims.y, k = row / dims.y;
-      for (int i = 0; i < dims.x; ++i) {
-        const std::size_t index = voxelIndex(dims, i, j, k);
-        const LicSample sample = licSampleAtVoxel(sampler, noise, params, {i, j, k}, mask);
-        out.values[index] = static_cast<float>(sample.value);
-        if (mask) out.drawn[index] = sample.drawn ? 1 : 0;
-      }
-      const int finished = ++done;
-      if (reports && progress) progress(static_cast<double>(finished) / rows);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
-  work(true);
-  for (std::thread& t : pool) t.join();
+  const auto rows = static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(dims.z);
+  parallelFor(
+      rows, threads,
+      [&](std::size_t row) {
+        const int j = static_cast<int>(row % static_cast<std::size_t>(dims.y));
+        const int k = static_cast<int>(row / static_cast<std::size_t>(dims.y));
+        for (int i = 0; i < dims.x; ++i) {
+          const std::size_t index = voxelIndex(dims, i, j, k);
+          const LicSample sample = licSampleAtVoxel(sampler, noise, params, {i, j, k}, mask);
+          out.values[index] = static_cast<float>(sample.value);
+          if (mask) out.drawn[index] = sample.drawn ? 1 : 0;
+        }
+      },
+      progress);
   if (progress) progress(1.0);
   return out;
 }

@@ -79,14 +79,15 @@ double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const L
                   glm::ivec3 voxel);
 
 // The whole LIC volume (with `drawn` filled when params.sparsity has a distribution); `threads`
-// = 0 uses every hardware thread.
+// = 0 uses every CPU the process may run on (availableThreads, core/parallel.h).
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,
                                          const LicParams& params, unsigned threads = 0,
                                          const ProgressCallback& progress = {});
 
 // The LIC value of every voxel of the noise's grid, whose streamlines follow `sampler` (made for
 // that grid), with the sparsity `mask` when given; rows are shared by `threads` threads (0: every
-// hardware thread). computeLicReference and the 2D reference (lic2d_reference.h) both use it.
+// CPU the process may run on). computeLicReference and the 2D reference (lic2d_reference.h) both
+// use it.
 ScalarVolume computeLicOnGrid(const FieldSampler& sampler, const NoiseVolume& noise,
                               const LicParams& params, const SparsityMask* mask,
                               unsigned threads = 0, const ProgressCallback& progress = {});

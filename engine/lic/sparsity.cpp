@@ -15,6 +15,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "core/parallel.h"
 #include "io/file_util.h"
 #include "lic/noise.h"
 
@@ -602,38 +603,6 @@ std::vector<std::size_t> poissonSlabBounds(const PoissonSetup& setup) {
   return bounds;
 }
 
-// Calls task(i) for every i in [0, count) on up to `threads` threads (0: one per hardware
-// thread), the calling thread among them. The tasks share nothing they write, so what they
-// compute does not depend on which thread ran which, or when. If tasks throw (bad_alloc), the
-// exception of the lowest one is rethrown here once all have finished.
-template <class Task>
-void runConcurrently(std::size_t count, unsigned threads, const Task& task) {
-  std::vector<std::exception_ptr> failures(count);
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < count; i = next++) {
-      try {
-        task(i);
-      } catch (...) {
-        failures[i] = std::current_exception();
-      }
-    }
-  };
-  const std::size_t wanted =
-      std::min<std::size_t>(count, threads > 0 ? threads : std::thread::hardware_concurrency());
-  std::vector<std::thread> helpers;
-  helpers.reserve(wanted);
-  try {
-    while (helpers.size() + 1 < wanted) helpers.emplace_back(work);
-  } catch (const std::system_error&) {
-    // No more threads to be had: those started and this one do the rest.
-  }
-  work();
-  for (std::thread& helper : helpers) helper.join();
-  for (const std::exception_ptr& failure : failures)
-    if (failure) std::rethrow_exception(failure);
-}
-
 }  // namespace
 
 Result<void> validate(const SparsityParams& params, Dims dims) {
@@ -744,7 +713,7 @@ std::vector<glm::vec3> poissonDiskPoints(Dims dims, float radius, std::uint64_t 
     slabSamples[0] = sampleRegion(setup, 0, setup.layers, {}, random, maxPoints);
   } else {
     // The slabs at once, each from its own stream of the seed.
-    runConcurrently(slabs, threads, [&](std::size_t s) {
+    parallelFor(slabs, threads, [&](std::size_t s) {
       Random random(seed, kPoissonSlabStream + s);
       slabSamples[s] = sampleRegion(setup, bounds[2 * s], bounds[2 * s + 1], {}, random, maxPoints);
     });
@@ -754,7 +723,7 @@ std::vector<glm::vec3> poissonDiskPoints(Dims dims, float radius, std::uint64_t 
     // maxPoints already is not needed.
     std::size_t bands = 0, below = slabSamples[0].size();
     while (bands + 1 < slabs && below < maxPoints) below += slabSamples[++bands].size();
-    runConcurrently(bands, threads, [&](std::size_t b) {
+    parallelFor(bands, threads, [&](std::size_t b) {
       Random random(seed, kPoissonBandStream + b);
       bandSamples[b] = sampleRegion(setup, bounds[2 * b + 1], bounds[2 * b + 2],
                                     std::span(slabSamples).subspan(b, 2), random, maxPoints);

@@ -96,13 +96,13 @@ std::vector<glm::vec3> hammersleyPoints(Dims dims, std::size_t count);
 // dimensions"), O(n): background grid of cell r / sqrt(3), k = kPoissonAttempts candidates in the
 // annulus [r, 2r] around an active sample. Every pair is at least `radius` apart, and the set is
 // maximal up to the k-attempt criterion, or stops at maxPoints. Volumes of many grid layers along
-// z are cut into 2 or 4 slabs, sampled on up to `threads` threads at once (0: one per hardware
-// thread), and then the thin bands between them (poissonDiskBands) are sampled from the slabs'
-// samples on either side (see the .cpp). The points depend on the arguments other than `threads`
-// only: never on the machine, the thread count or the timing. The active sample is drawn from
-// the first grid tile that has one, for cache locality (see the .cpp), so each slab grows along z,
-// and the points are listed in z order (slab, band, slab, ...): a set stopped by maxPoints lacks
-// the top of the volume. For n even points, take a radius whose maximal set is larger (about
+// z are cut into 2 or 4 slabs, sampled on up to `threads` threads at once (0: one per CPU
+// the process may run on), and then the thin bands between them (poissonDiskBands) are sampled from
+// the slabs' samples on either side (see the .cpp). The points depend on the arguments other than
+// `threads` only: never on the machine, the thread count or the timing. The active sample is drawn
+// from the first grid tile that has one, for cache locality (see the .cpp), so each slab grows
+// along z, and the points are listed in z order (slab, band, slab, ...): a set stopped by maxPoints
+// lacks the top of the volume. For n even points, take a radius whose maximal set is larger (about
 // kPoissonDensity V / r^3 points) and a random subset. radius is raised to kMinSparsityRadius.
 // Memory: grids of about 5.2 V / r^3 cells of 4 bytes in all, and 12 bytes per point.
 std::vector<glm::vec3> poissonDiskPoints(Dims dims, float radius, std::uint64_t seed,

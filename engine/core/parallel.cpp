@@ -1,0 +1,55 @@
+#include "core/parallel.h"
+
+#include <sched.h>
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace lic3d {
+
+unsigned availableThreads() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    const int count = CPU_COUNT(&set);
+    if (count > 0) return static_cast<unsigned>(count);
+  }
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,
+                 const std::function<void(double)>& progress) {
+  std::vector<std::exception_ptr> failures(count);
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> finished{0};
+  const auto work = [&](bool reports) {
+    for (std::size_t i = next++; i < count; i = next++) {
+      try {
+        task(i);
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+      const std::size_t done = ++finished;
+      if (reports && progress) progress(static_cast<double>(done) / static_cast<double>(count));
+    }
+  };
+  const std::size_t wanted =
+      std::min<std::size_t>(count, threads > 0 ? threads : availableThreads());
+  std::vector<std::thread> helpers;
+  helpers.reserve(wanted);
+  try {
+    while (helpers.size() + 1 < wanted) helpers.emplace_back(work, false);
+  } catch (const std::system_error&) {
+    // No more threads to be had: those started and this one do the rest.
+  }
+  work(true);
+  for (std::thread& helper : helpers) helper.join();
+  for (const std::exception_ptr& failure : failures)
+    if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace lic3d

@@ -1,0 +1,23 @@
+#pragma once
+// The one thread fan-out of the CPU work (the reference LIC, the sparsity samplers): tasks
+// handed out in order to the threads the process may run on.
+
+#include <cstddef>
+#include <functional>
+
+namespace lic3d {
+
+// The CPUs this process may run on: its affinity mask (taskset, a batch system's CPU set), else
+// the hardware's thread count. At least 1.
+unsigned availableThreads();
+
+// Calls task(i) for every i in [0, count) on up to `threads` threads (0: availableThreads()), the
+// calling thread among them; a thread that finishes a task takes the next one not yet taken.
+// After each task the calling thread ran, `progress` (when given) gets the fraction of all tasks
+// finished, on the calling thread. Tasks must not write what other tasks read: the result is
+// then the same whichever thread ran which task. If tasks throw, the exception of the lowest one
+// is rethrown here once all have finished.
+void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,
+                 const std::function<void(double)>& progress = {});
+
+}  // namespace lic3d
