@@ -9,14 +9,9 @@
 #include <sstream>
 
 #include "core/enum_names.h"
-#include "core/memory_budget.h"
-#include "gpu/gpu_resources.h"
-#include "io/field_io.h"
+#include "core/parameter_ranges.h"
 #include "io/session_file.h"
 #include "lic/analytic_fields.h"
-#include "lic/noise.h"
-#include "lic/time_series.h"
-#include "passes/volume_textures.h"
 
 namespace lic3d::cli {
 namespace {
@@ -163,6 +158,7 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar) {
                               "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
       ->capture_default_str();
   nameFlag("field.source", "--field");
+  nameFlag("field.array", "--array");
   app.add_option("--array", s.field.array,
                  "The vector array of a .vtk or .vti file with several (default: the active or "
                  "first one; the others are listed)");
@@ -535,91 +531,6 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
   // The CLI's one validation of the session: every parameter against its range
   // (core/parameter_ranges.h), the flags named by reportError.
   return validate(s);
-}
-
-Result<TimeDomain> timeDomainOf(const Session& session) {
-  const std::string& field = session.field.field;
-  double period = 0.0;
-  if (const auto analytic = parseEnum<AnalyticField>(field)) period = timePeriod(*analytic);
-  if (const auto analytic = parseEnum<AnalyticField2D>(field)) period = timePeriod(*analytic);
-  if (period > 0.0) return TimeDomain{0.0, period, true, true};
-  if (!parseEnum<AnalyticField>(field) && !parseEnum<AnalyticField2D>(field) &&
-      isFieldSeriesPattern(field)) {
-    LIC3D_TRY_ASSIGN(const TimeSeries series, fileSeries(field));
-    return TimeDomain{0.0, series.endTime(), false, true};
-  }
-  return TimeDomain{};
-}
-
-Result<void> checkHostMemory(Dims dims) {
-  // Before the field is made: its host copies alone must fit (the device is checked later, with
-  // the whole request, by checkRequestMemory). The float texture is the larger of the two.
-  MemoryRequest request;
-  request.dims = dims;
-  request.precision = FieldPrecision::Float;
-  return checkMemoryBudget(request, hostMemoryBudget(), "the field");
-}
-
-Result<void> checkRequestMemory(const Context& context, const Session& session, Dims dims,
-                                const RequestShape& shape) {
-  MemoryRequest request;
-  request.dims = dims;
-  request.precision = resolvePrecision(context, session.precision);
-  request.sparsity = session.lic.sparsity.distribution != SparsityDistribution::None;
-  request.doubleBuffered = shape.doubleBuffered;
-  request.volumeReadback = shape.volumeReadback;
-  request.timeSeries = shape.timeSeries;
-  if (shape.frame) {
-    const bool sideBySide = session.view.stereo == StereoMode::SideBySide;
-    request.frameWidth =
-        shape.frameWidth > 0 ? shape.frameWidth : session.view.width * (sideBySide ? 2 : 1);
-    request.frameHeight = shape.frameHeight > 0 ? shape.frameHeight : session.view.height;
-  }
-  return checkMemoryBudget(request, queryMemoryBudget(context),
-                           "the LIC of " + session.field.field);
-}
-
-Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
-                              double time) {
-  if (const auto analytic = parseEnum<AnalyticField>(source.field)) {
-    if (!source.array.empty())
-      return inputError("--array " + source.array + ": " + source.field +
-                        " is an analytic field; --array picks a vector array of a .vtk or .vti "
-                        "file");
-    LIC3D_TRY(checkHostMemory(source.grid));
-    return makeAnalyticField(*analytic, source.grid, time);
-  }
-  if (parseEnum<AnalyticField2D>(source.field))
-    return inputError("--field " + source.field +
-                      " is a 2D field: make its LIC with `lic3d render2d` (or the app's 2D mode)");
-  if (isFieldSeriesPattern(source.field))
-    return inputError("--field " + source.field + " names a time series, not one field");
-  if (gridGiven)
-    return inputError("--grid applies to analytic fields only; " + source.field +
-                      " has its own grid");
-  const std::filesystem::path path(source.field);
-  if (!path.has_extension())
-    return inputError("--field: '" + source.field + "' is neither an analytic field (" +
-                      enumChoices<AnalyticField>() + ") nor a file name with an extension");
-  return readVectorField(path, source.array, info);
-}
-
-Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {
-  if (source.seedSpots > 0 && !source.file.empty())
-    return inputError("--seed-noise and --noise both choose the noise: give one");
-  if (source.seedSpots > 0) {
-    if (static_cast<std::size_t>(source.seedSpots) > voxelCount(dims))
-      return inputError("--seed-noise: more spots than voxels");
-    return makeSeedNoise(dims, static_cast<std::size_t>(source.seedSpots), source.seed);
-  }
-  if (source.file.empty()) return makeWhiteNoise(dims, source.seed);
-  LIC3D_TRY_ASSIGN(NoiseVolume noise, readNoise(source.file));
-  if (noise.dims != dims)
-    return inputError(source.file + ": the noise grid " + std::to_string(noise.dims.x) + "x" +
-                      std::to_string(noise.dims.y) + "x" + std::to_string(noise.dims.z) +
-                      " does not match the field grid " + std::to_string(dims.x) + "x" +
-                      std::to_string(dims.y) + "x" + std::to_string(dims.z));
-  return noise;
 }
 
 Result<void> checkOutputPath(const std::string& path, const char* extension) {

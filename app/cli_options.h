@@ -12,11 +12,7 @@
 #include "core/error.h"
 #include "core/session.h"
 #include "core/volume.h"
-#include "io/volume_io.h"
-
-namespace lic3d {
-class Context;
-}
+#include "inputs/session_inputs.h"
 
 namespace lic3d::cli {
 
@@ -104,40 +100,6 @@ Result<std::vector<int>> parseIntList(const std::string& text, const char* flag,
 Result<std::vector<float>> parseFloatList(const std::string& text, const char* flag,
                                           std::size_t count);
 
-// The times a field has (docs/TIME.md): a periodic one (an analytic field) repeats after `end`,
-// a series of files runs from step 0 to its last step.
-struct TimeDomain {
-  double start = 0.0;
-  double end = 0.0;
-  bool periodic = false;
-  bool timeDependent = false;  // false: the field is steady, a time animation is refused
-};
-// The time domain of the session's field, before it is loaded (a series' files are listed).
-Result<TimeDomain> timeDomainOf(const Session& session);
-
-// Refuses grids whose host-side arrays would not fit this machine's memory.
-Result<void> checkHostMemory(Dims dims);
-
-// What a command keeps resident besides the field, the noise and one LIC volume.
-struct RequestShape {
-  bool doubleBuffered = false;  // the app's second LIC volume
-  bool volumeReadback = false;  // `compute` reads the volume back
-  bool frame = false;           // a frame of the session's size (or frameWidth x frameHeight)
-  int frameWidth = 0;
-  int frameHeight = 0;
-  bool timeSeries = false;  // two resident time steps blended on the GPU (docs/TIME.md)
-};
-// ResourceLimit error (exit status 3) if the request does not fit the device and the host:
-// checked before anything of it is allocated on the device.
-Result<void> checkRequestMemory(const Context& context, const Session& session, Dims dims,
-                                const RequestShape& shape);
-// A file field also fills `info` (when given): the array read, the file's vector arrays and the
-// count of NaN or infinite vectors read as zero.
-// An analytic field is sampled at `time` (the tornado's time parameter; ignored by steady
-// fields). A series of files (time_series.h) is not one field: InvalidInput.
-Result<VectorField> loadField(const FieldSource& source, bool gridGiven,
-                              FieldReadInfo* info = nullptr, double time = 0.0);
-Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);
 // The output must have `extension` and lie in an existing folder: checked before any work.
 Result<void> checkOutputPath(const std::string& path, const char* extension);
 

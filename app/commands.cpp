@@ -10,6 +10,7 @@
 #include "core/memory_budget.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
+#include "inputs/plane_inputs.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
 #include "lic/analytic_fields.h"
@@ -21,7 +22,6 @@
 #include "passes/field_interpolation.h"
 #include "passes/lic2d_pass.h"
 #include "passes/lic_renderer.h"
-#include "plane_inputs.h"
 #include "progress.h"
 
 namespace lic3d::cli {
@@ -54,23 +54,6 @@ std::string tripleText(glm::dvec3 v) {
   return formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z);
 }
 
-// What the frames' fields come from (docs/TIME.md): one steady field; a time-dependent analytic
-// field sampled exactly at each time; or a time series whose steps are blended (on the GPU, or
-// on the CPU with --cpu), two resident at a time.
-struct Inputs {
-  VectorField field;  // steady or sampled: the field at `time`; a series: its first step read
-  NoiseVolume noise;
-  FieldReadInfo info;  // of a file field (a series: of its first step read)
-  bool fromFile = false;
-  std::optional<AnalyticField> sampled;
-  std::optional<TimeSeries> series;
-  std::optional<int> fieldStep;  // the step of the series `field` is, until it is replaced
-  double time = 0.0;
-  std::map<int, VectorField> hostSteps;  // --cpu with a series: at most the two in use
-  int stepsRead = 0;                     // of the series, for the closing report
-  std::vector<double> blendMs;           // GPU time of each blend
-};
-
 // --time given for a field that has none is a mistake worth naming.
 Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {
   if (options.time && options.time->count() > 0 && !domain.timeDependent)
@@ -80,117 +63,20 @@ Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& dom
   return {};
 }
 
-// A step of the series, checked against the grid of the first step read.
-Result<VectorField> loadSeriesStep(const Session& session, Inputs& inputs, int k) {
-  FieldReadInfo info;
-  LIC3D_TRY_ASSIGN(VectorField step, inputs.series->loadStep(k, session.field.array, &info));
-  if (step.dims != inputs.field.dims || !(step.geometry == inputs.field.geometry))
-    return inputError((inputs.series->files.empty()
-                           ? std::string("time step ") + std::to_string(k)
-                           : inputs.series->files[static_cast<std::size_t>(k)].string()) +
-                      ": the steps of a time series must share the first step's grid " +
-                      std::to_string(inputs.field.dims.x) + "x" +
-                      std::to_string(inputs.field.dims.y) + "x" +
-                      std::to_string(inputs.field.dims.z) + ", spacing and origin");
-  inputs.info.nonFiniteVectors += info.nonFiniteVectors;
-  ++inputs.stepsRead;
-  return step;
-}
-
-Result<Inputs> loadInputs(const ComputeOptions& options) {
+Result<SessionInputs> loadInputs(const ComputeOptions& options) {
   const Session& session = options.inputs.session;
-  LIC3D_TRY(validate(session.lic));
   if (session.twoD)
     return inputError(
         "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
   LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
-  Inputs inputs;
-  inputs.time = session.time;
-  const std::optional<AnalyticField> analytic = parseEnum<AnalyticField>(session.field.field);
-  if (analytic && session.timeSteps > 0) {
-    LIC3D_TRY(checkHostMemory(session.field.grid));
-    LIC3D_TRY_ASSIGN(inputs.series,
-                     analyticSeries(*analytic, session.field.grid, session.timeSteps));
-  } else if (!analytic && isFieldSeriesPattern(session.field.field)) {
-    if (options.inputs.grid.given())
-      return inputError("--grid applies to analytic fields only; " + session.field.field +
-                        " has its own grid");
-    LIC3D_TRY_ASSIGN(inputs.series, fileSeries(session.field.field));
-    inputs.fromFile = true;
-  }
-  if (inputs.series) {
-    const int first = inputs.series->bracket(session.time).first;
-    LIC3D_TRY_ASSIGN(inputs.field,
-                     inputs.series->loadStep(first, session.field.array, &inputs.info));
-    inputs.fieldStep = first;  // used as the step itself, not read again
-    inputs.stepsRead = 1;
-  } else {
-    LIC3D_TRY_ASSIGN(inputs.field, loadField(session.field, options.inputs.grid.given(),
-                                             &inputs.info, session.time));
-    inputs.fromFile = !analytic.has_value();
-    if (analytic && timePeriod(*analytic) > 0.0) inputs.sampled = analytic;
-  }
-  LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
-  LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, inputs.field.dims));
-  return inputs;
-}
-
-// The field at `time` on the host: sampled, or the series' two steps blended (--cpu, and the
-// RGBA volume's colours).
-Result<VectorField> hostFieldAt(const Session& session, Inputs& inputs, double time) {
-  if (inputs.sampled) return makeAnalyticField(*inputs.sampled, session.field.grid, time);
-  if (!inputs.series) return inputs.field;
-  const TimeBracket b = inputs.series->bracket(time);
-  for (auto it = inputs.hostSteps.begin(); it != inputs.hostSteps.end();)
-    it = it->first == b.first || it->first == b.second ? std::next(it) : inputs.hostSteps.erase(it);
-  for (const int k : {b.first, b.second})
-    if (!inputs.hostSteps.count(k)) {
-      if (inputs.fieldStep == k) {
-        inputs.hostSteps.emplace(k, inputs.field);
-        continue;
-      }
-      LIC3D_TRY_ASSIGN(VectorField step, loadSeriesStep(session, inputs, k));
-      inputs.hostSteps.emplace(k, std::move(step));
-    }
-  return interpolateFields(inputs.hostSteps.at(b.first), inputs.hostSteps.at(b.second), b.weight);
-}
-
-// Brings the renderer's field to `time`: a sampled field is made again when the time changed,
-// a series uploads the steps around `time` that are not resident and blends them on the GPU.
-// With --cpu the field is made on the host (the LIC volume too).
-Result<void> moveToTime(const Session& session, bool cpu, Inputs& inputs, double time,
-                        LicRenderer& renderer, bool first) {
-  if (!inputs.sampled && !inputs.series) {
-    if (first) return renderer.setInputs(inputs.field, inputs.noise);
-    return {};
-  }
-  if (!first && time == inputs.time) return {};
-  inputs.time = time;
-  if (inputs.sampled || cpu) {
-    LIC3D_TRY_ASSIGN(inputs.field, hostFieldAt(session, inputs, time));
-    inputs.fieldStep.reset();
-    return renderer.setInputs(inputs.field, inputs.noise);
-  }
-  if (first) LIC3D_TRY(renderer.setTimeNoise(inputs.noise));
-  const TimeBracket b = inputs.series->bracket(time);
-  for (const int k : {b.first, b.second})
-    if (!renderer.hasTimeStep(k)) {
-      const int keep = k == b.first ? b.second : b.first;
-      if (inputs.fieldStep == k) {
-        LIC3D_TRY(renderer.setTimeStep(k, inputs.field, keep));
-        continue;
-      }
-      LIC3D_TRY_ASSIGN(const VectorField step, loadSeriesStep(session, inputs, k));
-      LIC3D_TRY(renderer.setTimeStep(k, step, keep));
-    }
-  LIC3D_TRY(renderer.interpolateTime(b.first, b.second, b.weight));
-  inputs.blendMs.push_back(renderer.lastBlendMilliseconds());
-  return {};
+  return loadSessionInputs(
+      session, {.gridGiven = options.inputs.grid.given(), .analyticTimeSteps = session.timeSteps});
 }
 
 // What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.
-void reportFieldFile(const GlobalOptions& global, const FieldSource& source, const Inputs& inputs) {
+void reportFieldFile(const GlobalOptions& global, const FieldSource& source,
+                     const SessionInputs& inputs) {
   const FieldReadInfo& info = inputs.info;
   if (info.nonFiniteVectors > 0)
     std::fprintf(stderr,
@@ -209,7 +95,7 @@ void reportFieldFile(const GlobalOptions& global, const FieldSource& source, con
 }
 
 // "tornado 128x128x128", or for a file its array, grid, spacing and origin.
-std::string fieldText(const FieldSource& source, const Inputs& inputs) {
+std::string fieldText(const FieldSource& source, const SessionInputs& inputs) {
   const VectorField& field = inputs.field;
   if (!inputs.fromFile) return source.field + " " + gridText(field.dims);
   std::string text = inputs.series ? inputs.series->describe() : source.field;
@@ -218,7 +104,8 @@ std::string fieldText(const FieldSource& source, const Inputs& inputs) {
          ", origin " + tripleText(field.geometry.origin);
 }
 
-RunSummary makeSummary(const char* command, const FieldSource& source, const Inputs& inputs) {
+RunSummary makeSummary(const char* command, const FieldSource& source,
+                       const SessionInputs& inputs) {
   RunSummary summary;
   summary.command = command;
   summary.field = source.field;
@@ -236,7 +123,7 @@ void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_p
   std::fflush(stdout);
 }
 
-Result<ScalarVolume> computeOnCpu(const Inputs& inputs, const LicParams& lic, bool quiet) {
+Result<ScalarVolume> computeOnCpu(const SessionInputs& inputs, const LicParams& lic, bool quiet) {
   Progress progress("LIC " + gridText(inputs.field.dims) + " on the CPU", quiet);
   return computeLicReference(inputs.field, inputs.noise, lic, 0,
                              [&](double f) { progress.update(f); });
@@ -244,7 +131,7 @@ Result<ScalarVolume> computeOnCpu(const Inputs& inputs, const LicParams& lic, bo
 
 // Makes the renderer's LIC volume the one of `lic`, on the GPU or (with --cpu) the CPU, unless it
 // already is.
-Result<void> makeLicVolume(const ComputeOptions& options, const Inputs& inputs,
+Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& inputs,
                            const LicParams& lic, LicRenderer& renderer, bool quiet) {
   if (!renderer.needsLic(lic)) return {};
   if (options.cpu) {
@@ -267,12 +154,12 @@ Result<void> writeComputeOutput(const ComputeOptions& options, const BatchOption
 
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
 Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& options,
-                          const BatchOptions& batch, const FramePlan& plan, Inputs& inputs,
+                          const BatchOptions& batch, const FramePlan& plan, SessionInputs& inputs,
                           LicRenderer& renderer, std::vector<std::string>& outputs) {
   const Session& session = options.inputs.session;
   const bool animated = plan.animation != Animation::None;
   const double firstTime = frameSession(session, plan, plan.first).time;
-  LIC3D_TRY(moveToTime(session, options.cpu, inputs, firstTime, renderer, true));
+  LIC3D_TRY(moveToTime(inputs, session, firstTime, renderer, true, options.cpu));
   // Bias and time animations recompute the volume every frame: the frame lines report that
   // progress.
   if (plan.animation != Animation::Bias && plan.animation != Animation::Time)
@@ -281,7 +168,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
   for (int frame = plan.first; frame < plan.end; ++frame) {
     const Session frameParams = frameSession(session, plan, frame);
-    LIC3D_TRY(moveToTime(session, options.cpu, inputs, frameParams.time, renderer, false));
+    LIC3D_TRY(moveToTime(inputs, session, frameParams.time, renderer, false, options.cpu));
     LIC3D_TRY(makeLicVolume(options, inputs, frameParams.lic, renderer, true));
     LIC3D_TRY_ASSIGN(const RgbaImage image, renderer.render(frameParams.lic, frameParams.view));
     const std::string path = animated ? framePath(plan.output, frame) : plan.output;
@@ -302,7 +189,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
     // The field the volume was made from is inputs.field, except a series blended on the GPU.
     std::optional<VectorField> blend;
     if (inputs.series && !options.cpu) {
-      LIC3D_TRY_ASSIGN(VectorField host, hostFieldAt(session, inputs, inputs.time));
+      LIC3D_TRY_ASSIGN(VectorField host, hostFieldAt(inputs, session, inputs.time));
       blend = std::move(host);
     }
     const VectorField& field = blend ? *blend : inputs.field;
@@ -520,7 +407,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     const int status = reportError(error);
     return context ? finish(**context, status) : status;
   };
-  Result<Inputs> inputs = loadInputs(options);
+  Result<SessionInputs> inputs = loadInputs(options);
   if (!inputs) return fail(inputs.error());
   reportFieldFile(global, session.field, *inputs);
   if (batch.slice.given()) {
@@ -538,7 +425,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
 
   if (options.cpu) {
     if (inputs->series) {
-      Result<VectorField> field = hostFieldAt(session, *inputs, session.time);
+      Result<VectorField> field = hostFieldAt(*inputs, session, session.time);
       if (!field) return reportError(field.error());
       inputs->field = std::move(*field);
       inputs->fieldStep.reset();
@@ -565,9 +452,8 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   int status = kExitOk;
   {
     Result<LicRenderer> renderer = LicRenderer::create(device, {session.precision});
-    Result<void> done = renderer
-                            ? moveToTime(session, false, *inputs, session.time, *renderer, true)
-                            : Result<void>(renderer.error());
+    Result<void> done = renderer ? moveToTime(*inputs, session, session.time, *renderer, true)
+                                 : Result<void>(renderer.error());
     if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
     Result<ScalarVolume> volume =
         done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
@@ -608,7 +494,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
             {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});
         !r)
       return finish(*context, reportError(r.error()));
-  Result<Inputs> inputs = loadInputs(options);
+  Result<SessionInputs> inputs = loadInputs(options);
   if (!inputs) return finish(*context, reportError(inputs.error()));
   reportFieldFile(global, session.field, *inputs);
   if (inputs->fromFile || inputs->series)

@@ -52,16 +52,16 @@ Result<void> PlaneView::make(const Session& session) {
   const bool newField = !made_ || !sameField(*made_, session);
   const bool newInputs = !made_ || !sameInputs(*made_, session);
   if (newField) {
-    if (!made_ || !(made_->field == session.field)) source_ = cli::PlaneSource{};
-    LIC3D_TRY_ASSIGN(field_, cli::planeField(session, false, session.time, source_));
+    if (!made_ || !(made_->field == session.field)) source_ = PlaneSource{};
+    LIC3D_TRY_ASSIGN(field_, planeField(session, false, session.time, source_));
     minMagnitude_ = static_cast<float>(lic3d::minMagnitude(field_));
     maxMagnitude_ = static_cast<float>(lic3d::maxMagnitude(field_));
   }
   if (newInputs) {
-    const Dims size = cli::imageSize(field_.dims, session.plane);
+    const Dims size = imageSize(field_.dims, session.plane);
     // The noise depends on the image's size and the noise source only.
     if (!made_ || noise_.dims != size || !(made_->noise == session.noise)) {
-      LIC3D_TRY_ASSIGN(noise_, cli::loadNoise(session.noise, size));
+      LIC3D_TRY_ASSIGN(noise_, loadNoise(session.noise, size));
     }
     inputs_.reset();
     LIC3D_TRY_ASSIGN(inputs_, uploadLic2DInputs(*context_, field_, noise_, session.precision));

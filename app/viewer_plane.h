@@ -12,9 +12,9 @@
 #include "core/session.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
+#include "inputs/plane_inputs.h"
 #include "lic/colouring.h"
 #include "passes/lic2d_pass.h"
-#include "plane_inputs.h"
 
 namespace lic3d::viewer {
 
@@ -47,7 +47,7 @@ class PlaneView {
 
   const Context* context_ = nullptr;
   std::optional<Lic2DPass> pass_;
-  cli::PlaneSource source_;
+  PlaneSource source_;
   VectorField field_;
   NoiseVolume noise_;
   std::optional<Lic2DInputs> inputs_;

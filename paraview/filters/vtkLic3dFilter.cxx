@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -23,10 +24,11 @@
 #include "vtkUnsignedCharArray.h"
 
 // The lic3d engine.
+#include "core/enum_names.h"
 #include "gpu/vulkan_context.h"
+#include "inputs/session_inputs.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
-#include "lic/noise.h"
 #include "passes/lic_renderer.h"
 
 vtkStandardNewMacro(vtkLic3dFilter);
@@ -37,14 +39,41 @@ struct vtkLic3dFilter::Engine {
   std::optional<lic3d::Context> context;
   std::optional<lic3d::LicRenderer> renderer;  // destroyed before the context
   std::string device;
-  int precision = -1;
+  std::optional<lic3d::FieldPrecision> precision;
 
   lic3d::Result<lic3d::ScalarVolume> compute(const lic3d::VectorField& field,
                                              const lic3d::NoiseVolume& noise,
                                              const lic3d::LicParams& params,
-                                             const std::string& wanted, int wantedPrecision,
+                                             const std::string& wanted,
+                                             lic3d::FieldPrecision wantedPrecision,
                                              const lic3d::ProgressCallback& progress);
 };
+
+// The filter's parameters in lic3d's own structs, with their defaults.
+struct vtkLic3dFilter::Parameters {
+  lic3d::LicParams lic;
+  lic3d::NoiseSource noise;
+  lic3d::FieldPrecision precision = lic3d::FieldPrecision::Auto;
+};
+
+// Every parameter property: its name, the type ParaView sets it with, and its member of
+// Parameters. Enumerations are the positions of their lic3d names (core/enum_names.h).
+#define LIC3D_FILTER_PARAMETERS(X)                        \
+  X(Length, int, lic.length)                              \
+  X(Step, double, lic.step)                               \
+  X(Bias, int, lic.bias)                                  \
+  X(Integrator, int, lic.integrator)                      \
+  X(Scheme, int, lic.scheme)                              \
+  X(Kernel, int, lic.kernel)                              \
+  X(NoiseFilter, int, lic.noiseFilter)                    \
+  X(Direction, int, lic.direction)                        \
+  X(NoiseSeed, int, noise.seed)                           \
+  X(SparsityDistribution, int, lic.sparsity.distribution) \
+  X(SparsityPoints, int, lic.sparsity.points)             \
+  X(SparsityRadius, double, lic.sparsity.radius)          \
+  X(SparsityRatio, double, lic.sparsity.ratio)            \
+  X(SparsitySeed, int, lic.sparsity.seed)                 \
+  X(FieldPrecision, int, precision)
 
 namespace {
 using Extent = std::array<int, 6>;
@@ -132,9 +161,33 @@ int processCount() {
   return controller ? controller->GetNumberOfProcesses() : 1;
 }
 
+// A property's value as the member's type; an enumeration out of range becomes its nearest name.
+template <class T, class Value>
+T fromProperty(Value value) {
+  if constexpr (std::is_enum_v<T>) {
+    const int last = static_cast<int>(lic3d::enumNames<T>().size()) - 1;
+    return static_cast<T>(std::clamp(static_cast<int>(value), 0, last));
+  } else {
+    return static_cast<T>(value);
+  }
+}
+
 }  // namespace
 
-vtkLic3dFilter::vtkLic3dFilter() : Gpu(new Engine) {
+#define LIC3D_DEFINE_PARAMETER(Name, Type, member)                                   \
+  void vtkLic3dFilter::Set##Name(Type value) {                                       \
+    auto& field = this->Params->member;                                              \
+    const auto next = fromProperty<std::remove_reference_t<decltype(field)>>(value); \
+    if (field != next) {                                                             \
+      field = next;                                                                  \
+      this->Modified();                                                              \
+    }                                                                                \
+  }                                                                                  \
+  Type vtkLic3dFilter::Get##Name() const { return static_cast<Type>(this->Params->member); }
+LIC3D_FILTER_PARAMETERS(LIC3D_DEFINE_PARAMETER)
+#undef LIC3D_DEFINE_PARAMETER
+
+vtkLic3dFilter::vtkLic3dFilter() : Gpu(new Engine), Params(new Parameters) {
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
                                vtkDataSetAttributes::VECTORS);
 }
@@ -143,22 +196,12 @@ vtkLic3dFilter::~vtkLic3dFilter() = default;
 
 void vtkLic3dFilter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Length: " << this->Length << "\n"
-     << indent << "Step: " << this->Step << "\n"
-     << indent << "Bias: " << this->Bias << "\n"
-     << indent << "Integrator: " << this->Integrator << "\n"
-     << indent << "Scheme: " << this->Scheme << "\n"
-     << indent << "Kernel: " << this->Kernel << "\n"
-     << indent << "NoiseFilter: " << this->NoiseFilter << "\n"
-     << indent << "Direction: " << this->Direction << "\n"
-     << indent << "NoiseSeed: " << this->NoiseSeed << "\n"
-     << indent << "SparsityDistribution: " << this->SparsityDistribution << "\n"
-     << indent << "SparsityPoints: " << this->SparsityPoints << "\n"
-     << indent << "SparsityRadius: " << this->SparsityRadius << "\n"
-     << indent << "SparsityRatio: " << this->SparsityRatio << "\n"
-     << indent << "SparsitySeed: " << this->SparsitySeed << "\n"
-     << indent << "Device: " << this->Device << "\n"
-     << indent << "FieldPrecision: " << this->FieldPrecision << "\n";
+#define LIC3D_PRINT_PARAMETER(Name, Type, member) \
+  os << indent << #Name ": " << this->Get##Name() << "\n";
+  LIC3D_FILTER_PARAMETERS(LIC3D_PRINT_PARAMETER)
+#undef LIC3D_PRINT_PARAMETER
+  os << indent << "Device: " << this->Device << "\n"
+     << indent << "CpuReference: " << this->CpuReference << "\n";
 }
 
 int vtkLic3dFilter::FillInputPortInformation(int, vtkInformation* info) {
@@ -173,48 +216,22 @@ int vtkLic3dFilter::RequestInformation(vtkInformation*, vtkInformationVector**,
   return 1;
 }
 
-namespace {
-lic3d::LicParams licParams(int length, double step, int bias, int integrator, int scheme,
-                           int kernel, int noiseFilter, int direction, int distribution, int points,
-                           double radius, double ratio, int seed) {
-  lic3d::LicParams params;
-  params.length = length;
-  params.step = static_cast<float>(step);
-  params.bias = bias;
-  params.integrator = static_cast<lic3d::Integrator>(std::clamp(integrator, 0, 2));
-  params.scheme = static_cast<lic3d::StepScheme>(std::clamp(scheme, 0, 1));
-  params.kernel = static_cast<lic3d::Kernel>(std::clamp(kernel, 0, 2));
-  params.noiseFilter = static_cast<lic3d::NoiseFilter>(std::clamp(noiseFilter, 0, 1));
-  params.direction = static_cast<lic3d::DirectionMode>(std::clamp(direction, 0, 1));
-  params.sparsity.distribution =
-      static_cast<lic3d::SparsityDistribution>(std::clamp(distribution, 0, 6));
-  params.sparsity.points = points;
-  params.sparsity.radius = static_cast<float>(radius);
-  params.sparsity.ratio = static_cast<float>(ratio);
-  params.sparsity.seed = static_cast<std::uint64_t>(seed);
-  return params;
-}
-}  // namespace
-
 int vtkLic3dFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
                                         vtkInformationVector* outputVector) {
   // Ghost layers for the streamlines of the voxels this process keeps (and for those of the
   // ghost layers asked of this filter).
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const lic3d::LicParams params =
-      licParams(this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel,
-                this->NoiseFilter, this->Direction, 0, 0, 0.0, 0.05, 1);
   const int asked = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(),
-              asked + lic3d::licGhostLayers(params));
+              asked + lic3d::licGhostLayers(this->Params->lic));
   return 1;
 }
 
 lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
     const lic3d::VectorField& field, const lic3d::NoiseVolume& noise,
-    const lic3d::LicParams& params, const std::string& wanted, int wantedPrecision,
-    const lic3d::ProgressCallback& progress) {
+    const lic3d::LicParams& params, const std::string& wanted,
+    lic3d::FieldPrecision wantedPrecision, const lic3d::ProgressCallback& progress) {
   // The device and the renderer are kept between updates unless their settings changed.
   if (!this->context || this->device != wanted || this->precision != wantedPrecision) {
     this->renderer.reset();
@@ -224,8 +241,7 @@ lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
     LIC3D_TRY_ASSIGN(lic3d::Context made, lic3d::Context::create(options));
     this->context.emplace(std::move(made));
     lic3d::RendererOptions rendererOptions;
-    rendererOptions.fieldPrecision =
-        static_cast<lic3d::FieldPrecision>(std::clamp(wantedPrecision, 0, 3));
+    rendererOptions.fieldPrecision = wantedPrecision;
     lic3d::Result<lic3d::LicRenderer> created =
         lic3d::LicRenderer::create(*this->context, rendererOptions);
     if (!created) {
@@ -260,10 +276,7 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
 
-  const lic3d::LicParams params = licParams(
-      this->Length, this->Step, this->Bias, this->Integrator, this->Scheme, this->Kernel,
-      this->NoiseFilter, this->Direction, this->SparsityDistribution, this->SparsityPoints,
-      this->SparsityRadius, this->SparsityRatio, this->SparsitySeed);
+  const lic3d::LicParams& params = this->Params->lic;
   const int ghostLayers = lic3d::licGhostLayers(params);
   const int askedGhosts =
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
@@ -385,20 +398,21 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const lic3d::Dims dims = field.dims;
   const lic3d::Dims wholeDims = dimsOf(whole);
   const lic3d::Dims offset(extent[0] - whole[0], extent[2] - whole[2], extent[4] - whole[4]);
-  const auto seed = static_cast<std::uint64_t>(this->NoiseSeed);
-  lic3d::NoiseVolume noise;
-  if (dims == wholeDims) {
-    noise = lic3d::makeWhiteNoise(dims, seed);
-  } else {
+  if (dims != wholeDims) {
     field.piece = lic3d::FieldPiece{wholeDims, offset, all.maxVoxelSpeed};
-    noise = lic3d::makeWhiteNoisePiece(wholeDims, offset, dims, seed);
+  }
+  // The whole grid's noise, cut to this piece: the pieces agree with a serial run.
+  const lic3d::Result<lic3d::NoiseVolume> noise = lic3d::loadNoise(this->Params->noise, field);
+  if (!noise) {
+    vtkErrorMacro(<< noise.error().message);
+    return 0;
   }
 
   const lic3d::ProgressCallback progress = [this](double f) { this->UpdateProgress(f); };
   lic3d::Result<lic3d::ScalarVolume> lic =
-      this->CpuReference
-          ? lic3d::computeLicReference(field, noise, params, 0, progress)
-          : this->Gpu->compute(field, noise, params, this->Device, this->FieldPrecision, progress);
+      this->CpuReference ? lic3d::computeLicReference(field, *noise, params, 0, progress)
+                         : this->Gpu->compute(field, *noise, params, this->Device,
+                                              this->Params->precision, progress);
   if (!lic) {
     vtkErrorMacro(<< lic.error().message);
     return 0;

@@ -23,46 +23,48 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   vtkTypeMacro(vtkLic3dFilter, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  // The LIC parameters (lic3d::LicParams; `lic3d render --help` describes each).
-  vtkSetMacro(Length, int);
-  vtkGetMacro(Length, int);
-  vtkSetMacro(Step, double);
-  vtkGetMacro(Step, double);
-  vtkSetMacro(Bias, int);
-  vtkGetMacro(Bias, int);
-  vtkSetMacro(Integrator, int);  // 0 euler, 1 rk2, 2 rk4
-  vtkGetMacro(Integrator, int);
-  vtkSetMacro(Scheme, int);  // 0 exact, 1 ab2 (rk2 only)
-  vtkGetMacro(Scheme, int);
-  vtkSetMacro(Kernel, int);  // 0 box, 1 hann, 2 gauss
-  vtkGetMacro(Kernel, int);
-  vtkSetMacro(NoiseFilter, int);  // 0 nearest, 1 linear
-  vtkGetMacro(NoiseFilter, int);
-  vtkSetMacro(Direction, int);  // 0 normalized, 1 magnitude
-  vtkGetMacro(Direction, int);
-  vtkSetMacro(NoiseSeed, int);
-  vtkGetMacro(NoiseSeed, int);
-
-  // Sparsity (lic3d::SparsityParams): 0 none, 1 checkerboard, 2 poisson, 3 poisson-approx,
-  // 4 jitter, 5 halton, 6 hammersley.
-  vtkSetMacro(SparsityDistribution, int);
-  vtkGetMacro(SparsityDistribution, int);
-  vtkSetMacro(SparsityPoints, int);
-  vtkGetMacro(SparsityPoints, int);
-  vtkSetMacro(SparsityRadius, double);
-  vtkGetMacro(SparsityRadius, double);
-  vtkSetMacro(SparsityRatio, double);
-  vtkGetMacro(SparsityRatio, double);
-  vtkSetMacro(SparsitySeed, int);
-  vtkGetMacro(SparsitySeed, int);
+  // The parameters, stored in the engine's own structs (lic3d::LicParams, lic3d::NoiseSource),
+  // which give their defaults; Lic3dFilter.xml repeats those for ParaView's panel, and a test
+  // (tests/test_paraview_xml.cpp) holds the two together. `lic3d render --help` describes each.
+  // Enumerations are their lic3d names' positions: integrator 0 euler, 1 rk2, 2 rk4; scheme
+  // 0 exact, 1 ab2; kernel 0 box, 1 hann, 2 gauss; noise filter 0 nearest, 1 linear; direction
+  // 0 normalized, 1 magnitude; sparsity 0 none, 1 checkerboard, 2 poisson, 3 poisson-approx,
+  // 4 jitter, 5 halton, 6 hammersley; field precision 0 auto, 1 half, 2 float, 3 byte.
+  void SetLength(int value);
+  int GetLength() const;
+  void SetStep(double value);
+  double GetStep() const;
+  void SetBias(int value);
+  int GetBias() const;
+  void SetIntegrator(int value);
+  int GetIntegrator() const;
+  void SetScheme(int value);
+  int GetScheme() const;
+  void SetKernel(int value);
+  int GetKernel() const;
+  void SetNoiseFilter(int value);
+  int GetNoiseFilter() const;
+  void SetDirection(int value);
+  int GetDirection() const;
+  void SetNoiseSeed(int value);
+  int GetNoiseSeed() const;
+  void SetSparsityDistribution(int value);
+  int GetSparsityDistribution() const;
+  void SetSparsityPoints(int value);
+  int GetSparsityPoints() const;
+  void SetSparsityRadius(double value);
+  double GetSparsityRadius() const;
+  void SetSparsityRatio(double value);
+  double GetSparsityRatio() const;
+  void SetSparsitySeed(int value);
+  int GetSparsitySeed() const;
+  void SetFieldPrecision(int value);
+  int GetFieldPrecision() const;
 
   // The device: "" for lic3d's choice (discrete GPU, integrated, virtual, CPU), an index of
   // `lic3d devices`, or part of a device name.
   vtkSetStdStringFromCharMacro(Device);
   vtkGetCharFromStdStringMacro(Device);
-  // Field texture precision: 0 auto, 1 half, 2 float.
-  vtkSetMacro(FieldPrecision, int);
-  vtkGetMacro(FieldPrecision, int);
   // Compute with lic3d's CPU reference (double precision, every hardware thread) instead of the
   // device: slow, but the same numbers on every piece up to rounding, which the tests use.
   vtkSetMacro(CpuReference, bool);
@@ -80,22 +82,7 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
-  int Length = 20;
-  double Step = 0.5;
-  int Bias = 0;
-  int Integrator = 1;
-  int Scheme = 0;
-  int Kernel = 0;
-  int NoiseFilter = 1;
-  int Direction = 0;
-  int NoiseSeed = 1;
-  int SparsityDistribution = 0;
-  int SparsityPoints = 0;
-  double SparsityRadius = 0.0;
-  double SparsityRatio = 0.05;
-  int SparsitySeed = 1;
   std::string Device;
-  int FieldPrecision = 0;
   bool CpuReference = false;
 
  private:
@@ -104,6 +91,8 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
 
   struct Engine;
   std::unique_ptr<Engine> Gpu;
+  struct Parameters;  // lic3d's parameter structs
+  std::unique_ptr<Parameters> Params;
 };
 
 #endif

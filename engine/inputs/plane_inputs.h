@@ -12,7 +12,7 @@
 #include "io/volume_io.h"
 #include "lic/time_series.h"
 
-namespace lic3d::cli {
+namespace lic3d {
 
 // What stays between the times of one source: the series of files and the planes of its steps
 // in use (two at most: 2D steps are small, so they are blended on the host).
@@ -22,8 +22,9 @@ struct PlaneSource {
   FieldReadInfo info;  // of the last file read
 };
 
-// The plane of `session`'s field at `time` (see above). `gridGiven`: --grid was given, which a
-// file refuses. The first call finds out whether the field is a series and keeps it in `source`.
+// The plane of `session`'s field at `time` (see above). `gridGiven`: the grid was given
+// explicitly, which a file refuses. The first call finds out whether the field is a series and
+// keeps it in `source`.
 Result<VectorField> planeField(const Session& session, bool gridGiven, double time,
                                PlaneSource& source);
 
@@ -31,4 +32,4 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
 // grid's aspect).
 Dims imageSize(Dims plane, const PlaneParams& params);
 
-}  // namespace lic3d::cli
+}  // namespace lic3d

@@ -1,18 +1,17 @@
-#include "plane_inputs.h"
+#include "inputs/plane_inputs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "cli_options.h"
+#include "inputs/session_inputs.h"
 #include "lic/analytic_fields.h"
 #include "lic/field_plane.h"
-#include "passes/field_interpolation.h"
 
-namespace lic3d::cli {
+namespace lic3d {
 namespace {
 
-// The plane of a file's field: a 2D file is its own plane, a 3D one is cut by --slice.
+// The plane of a file's field: a 2D file is its own plane, a 3D one is cut across plane.axis.
 Result<VectorField> planeOfFile(const VectorField& field, const Session& session,
                                 const std::string& what) {
   const PlaneParams& p = session.plane;
@@ -20,7 +19,7 @@ Result<VectorField> planeOfFile(const VectorField& field, const Session& session
   if (flat && p.index < 0 && p.axis == 2) return planarField(field, what);
   Result<VectorField> plane =
       extractPlane(field, p.axis, p.index >= 0 ? p.index : field.dims[p.axis] / 2);
-  if (!plane) return inputError("--slice: " + what + ": " + plane.error().message);
+  if (!plane) return parameterError("plane.index", what + ": " + plane.error().message);
   return plane;
 }
 
@@ -32,22 +31,26 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
   const PlaneParams& p = session.plane;
   if (const auto field2D = parseEnum<AnalyticField2D>(source.field)) {
     if (!source.array.empty())
-      return inputError("--array: " + source.field + " is an analytic field");
+      return parameterError("field.array",
+                            "picks an array of a file; " + source.field + " is an analytic field");
     return makeAnalyticField2D(*field2D, {source.grid.x, source.grid.y}, time);
   }
   if (const auto field3D = parseEnum<AnalyticField>(source.field)) {
     if (!source.array.empty())
-      return inputError("--array: " + source.field + " is an analytic field");
+      return parameterError("field.array",
+                            "picks an array of a file; " + source.field + " is an analytic field");
     const int index = p.index >= 0 ? p.index : source.grid[p.axis] / 2;
     if (index >= source.grid[p.axis])
-      return inputError("--slice: the grid has " + std::to_string(source.grid[p.axis]) +
-                        " layers across " + std::string(1, static_cast<char>('x' + p.axis)) +
-                        " (0.." + std::to_string(source.grid[p.axis] - 1) + ")");
+      return parameterError("plane.index",
+                            "must be a layer of the grid: it has " +
+                                std::to_string(source.grid[p.axis]) + " layers across " +
+                                std::string(1, static_cast<char>('x' + p.axis)) + " (0.." +
+                                std::to_string(source.grid[p.axis] - 1) + ")");
     return makeAnalyticFieldPlane(*field3D, source.grid, p.axis, index, time);
   }
   if (gridGiven)
-    return inputError("--grid applies to analytic fields only; " + source.field +
-                      " has its own grid");
+    return parameterError("field.grid",
+                          "applies to analytic fields only; " + source.field + " has its own grid");
   if (!inputs.series && isFieldSeriesPattern(source.field)) {
     LIC3D_TRY_ASSIGN(inputs.series, fileSeries(source.field));
   }
@@ -84,4 +87,4 @@ Dims imageSize(Dims plane, const PlaneParams& p) {
   return plane;
 }
 
-}  // namespace lic3d::cli
+}  // namespace lic3d

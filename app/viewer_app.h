@@ -1,0 +1,116 @@
+#pragma once
+// The desktop app itself: one App owns the window, the device, the renderer and the frames, and
+// runs the frame loop (viewer.cpp) around the device's lifetime, the field's loading and the
+// recovery from lost devices (viewer_device.cpp). Input, frame presentation, field loading and
+// the endurance run are parts of their own (viewer_input.h, viewer_frames.h, viewer_loading.h,
+// viewer_soak.h).
+
+#include <vulkan/vulkan.h>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include "cli_options.h"
+#include "core/session.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/vulkan_context.h"
+#include "inputs/session_inputs.h"
+#include "passes/lic_renderer.h"
+#include "viewer.h"
+#include "viewer_frames.h"
+#include "viewer_input.h"
+#include "viewer_loading.h"
+#include "viewer_plane.h"
+#include "viewer_soak.h"
+#include "viewer_ui.h"
+
+struct GLFWwindow;
+
+namespace lic3d::viewer {
+
+// GPU time the frame-paced LIC may take per frame: the UI stays responsive while the volume is
+// recomputed in slabs, even on a CPU driver.
+inline constexpr double kLicBudgetMs = 12.0;
+// Where the session goes when the app stops on an error or loses its device.
+inline constexpr const char* kRecoveryFile = "lic3d-recovery.json";
+// A device lost more than kMaxLossStreak times with fewer than kLossStreakFrames frames between
+// the losses is given up on: the app exits with the error (the session is in the recovery file).
+inline constexpr int kMaxLossStreak = 3;
+inline constexpr std::uint64_t kLossStreakFrames = 100;
+// Steps of a time-dependent analytic field (the tornado) over its period when the session names
+// none: the app blends steps on the GPU as it does a series of files (docs/TIME.md).
+inline constexpr int kDefaultTimeSteps = 64;
+
+class App {
+ public:
+  App(const cli::GlobalOptions& global, cli::SessionOptions& inputs, const ViewerOptions& options)
+      : global_(global), inputs_(inputs), options_(options), session_(inputs.session) {}
+  ~App();
+  int run();
+
+ private:
+  Result<void> init();
+  Result<void> createGpu();
+  void destroyGpu();
+  Result<void> recoverDevice(const Error& error);
+  bool showStopped(const Error& error);
+  VkExtent2D windowExtent() const;
+  void startLoading(const FieldSource& field, const NoiseSource& noise);
+  Result<void> finishLoading();
+  Result<void> updateTime();
+  Result<bool> frame();
+  Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot);
+  void updateCamera(const Input& in);
+  void drawAxes() const;
+  void animate(double seconds);
+  Result<void> handleActions(const Actions& actions);
+  void updatePlane();
+  Result<void> saveScreenshot(const FramePresenter::Frame& f);
+  void saveRecovery() const;
+
+  const cli::GlobalOptions& global_;
+  cli::SessionOptions& inputs_;
+  ViewerOptions options_;
+  Session session_;
+  Session drawnSession_;  // what the frames were made with: changes are compared against it
+  UiState ui_;
+  Stats stats_;
+  Input input_;
+
+  GLFWwindow* window_ = nullptr;
+  std::optional<Context> context_;
+  // Made on the context, destroyed before it (destroyGpu).
+  std::optional<LicRenderer> renderer_;
+  std::optional<FramePresenter> presenter_;
+  DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> uiPool_;
+  bool imguiReady_ = false;        // Dear ImGui's context and GLFW backend
+  bool imguiVulkanReady_ = false;  // its Vulkan backend, made again with the device
+  std::uint64_t frameNumber_ = 0;
+  int slicesPerFrame_ = 4;
+  double licSumMs_ = 0.0;  // GPU time of the LIC slabs of the volume being computed
+  double biasPhase_ = 0.0;
+  int screenshots_ = 0;
+  FieldLoader loader_;
+  double timePhase_ = 0.0;
+  bool loadedOnce_ = false;   // a field load has completed (or the app started in 2D)
+  bool reloadField_ = false;  // the volume's field must be read again (a new device has none)
+  int deviceLosses_ = 0;
+  // Set when the app has stopped on an error it cannot carry on from: it then only shows the
+  // error in a dialog, on a fresh device, until the window is closed (see showStopped).
+  bool stopped_ = false;
+  std::size_t lostValidationMessages_ = 0;  // validation messages of devices made before this one
+  int lossStreak_ = 0;
+  std::uint64_t lastLossFrame_ = 0;
+  // The 2D mode's picture.
+  std::optional<PlaneView> planeView_;
+  std::optional<std::pair<FieldSource, TimeDomain>> planeDomain_;
+  FieldSource loadedField_;
+  NoiseSource loadedNoise_;
+  std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
+  int exitStatus_ = cli::kExitOk;
+  Soak soak_;
+};
+
+}  // namespace lic3d::viewer
