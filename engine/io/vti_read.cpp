@@ -1,61 +1,36 @@
-#include "io/vti.h"
+// The VTK XML ImageData readers: each array's data, ascii, base64 or raw appended, plain or in
+// zlib blocks, checked against the bytes present and decoded into the volume each reader makes.
 
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cmath>
 #include <cstring>
 #include <functional>
 #include <memory>
 #include <optional>
-#include <ostream>
-#include <pugixml.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "io/file_util.h"
+#include "io/volume_io.h"
+#include "io/vti.h"
+#include "io/vti_file.h"
 
 namespace lic3d {
 namespace {
 
-// A whole .vti is read into memory (pugixml parses it in place). The largest grid lic3d reads,
-// as base64 doubles, stays below this; a larger file is refused from its size.
-constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
+using vti::ArrayRef;
+using vti::chooseArray;
+using vti::describe;
+using vti::listArrays;
+using vti::NumberType;
+using vti::openVti;
+using vti::TypeInfo;
+using vti::VtiFile;
+
 // Values are converted in chunks of this many.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
-
-enum class NumberType {
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Int64,
-  UInt64,
-  Float32,
-  Float64
-};
-
-struct TypeInfo {
-  std::string_view name;
-  NumberType type;
-  std::size_t bytes;
-};
-
-constexpr TypeInfo kTypes[] = {
-    {"Int8", NumberType::Int8, 1},       {"UInt8", NumberType::UInt8, 1},
-    {"Int16", NumberType::Int16, 2},     {"UInt16", NumberType::UInt16, 2},
-    {"Int32", NumberType::Int32, 4},     {"UInt32", NumberType::UInt32, 4},
-    {"Int64", NumberType::Int64, 8},     {"UInt64", NumberType::UInt64, 8},
-    {"Float32", NumberType::Float32, 4}, {"Float64", NumberType::Float64, 8},
-};
-
-const TypeInfo* findType(std::string_view name) {
-  for (const TypeInfo& type : kTypes)
-    if (type.name == name) return &type;
-  return nullptr;
-}
 
 template <class T>
 double load(const unsigned char* data) {
@@ -253,278 +228,6 @@ class ValueDecoder {
   std::size_t carried_ = 0;
   std::vector<double> values_;
 };
-
-Result<std::int64_t> parseExtentNumber(std::string_view word) {
-  const bool negative = !word.empty() && word.front() == '-';
-  if (negative) word.remove_prefix(1);
-  std::uint64_t magnitude = 0;
-  // Extents beyond 2^40 cannot describe a grid lic3d reads, and keep the arithmetic exact.
-  if (!parseUnsigned(word, magnitude) || magnitude > (std::uint64_t{1} << 40)) return Error{};
-  return negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
-}
-
-struct Extent {
-  std::array<std::int64_t, 6> bounds{};
-  bool operator==(const Extent&) const = default;
-};
-
-// The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
-// (held by unique_ptr).
-struct VtiFile {
-  std::filesystem::path path;
-  std::string bytes;  // the whole file
-  std::string xml;    // the XML before the appended data, closed; empty when `bytes` is all XML
-  pugi::xml_document document;
-  std::string_view appended;  // the bytes after AppendedData's '_'
-  bool hasAppended = false;
-  bool appendedBase64 = false;
-  std::endian order = std::endian::little;
-  bool header64 = false;
-  bool zlib = false;
-  Dims dims{0};
-  GridGeometry geometry;
-  pugi::xml_node piece;
-
-  Error fail(const std::string& problem) const { return fileError(path, problem); }
-};
-
-// Appended raw data is binary, not XML: pugixml gets only what precedes it, closed by hand.
-Result<void> splitAppendedData(VtiFile& file) {
-  const std::string_view bytes = file.bytes;
-  const std::size_t tag = bytes.find("<AppendedData");
-  if (tag == std::string_view::npos) return {};
-  const std::size_t close = bytes.find('>', tag);
-  if (close == std::string_view::npos) return file.fail("the AppendedData tag is not closed");
-  if (bytes[close - 1] == '/') return {};  // <AppendedData .../>: empty
-  std::size_t underscore = close + 1;
-  while (underscore < bytes.size() && isAsciiSpace(bytes[underscore])) ++underscore;
-  if (underscore == bytes.size() || bytes[underscore] != '_')
-    return file.fail("AppendedData: expected '_' before the data, found " +
-                     quoteForMessage(bytes.substr(underscore, 16)));
-  file.hasAppended = true;
-  file.appended = bytes.substr(underscore + 1);
-  file.xml.assign(bytes.substr(0, close + 1));
-  file.xml += "</AppendedData></VTKFile>";
-  return {};
-}
-
-Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, const char* name,
-                               double fallback, bool positive) {
-  const pugi::xml_attribute attribute = node.attribute(name);
-  if (!attribute) return glm::dvec3(fallback);
-  const std::vector<std::string_view> words = splitWords(attribute.value());
-  glm::dvec3 value{0.0};
-  bool good = words.size() == 3;
-  for (glm::length_t axis = 0; good && axis < 3; ++axis)
-    good = parseDouble(words[static_cast<std::size_t>(axis)], value[axis]) &&
-           std::isfinite(value[axis]) && (!positive || value[axis] > 0.0);
-  if (!good)
-    return file.fail(std::string(node.name()) + " " + name + ": expected 3 " +
-                     (positive ? "positive" : "finite") + " numbers, found " +
-                     quoteForMessage(attribute.value()));
-  return value;
-}
-
-Result<Extent> parseExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
-  const pugi::xml_attribute attribute = node.attribute(name);
-  if (!attribute) return file.fail(std::string(node.name()) + ": missing " + name);
-  const std::vector<std::string_view> words = splitWords(attribute.value());
-  Extent extent;
-  bool good = words.size() == 6;
-  for (std::size_t i = 0; good && i < 6; ++i) {
-    Result<std::int64_t> number = parseExtentNumber(words[i]);
-    good = number.ok();
-    if (good) extent.bounds[i] = *number;
-  }
-  for (std::size_t axis = 0; good && axis < 3; ++axis)
-    good = extent.bounds[2 * axis] <= extent.bounds[2 * axis + 1];
-  if (!good)
-    return file.fail(
-        std::string(node.name()) + " " + name +
-        ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
-        quoteForMessage(attribute.value()));
-  return extent;
-}
-
-Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
-  auto file = std::make_unique<VtiFile>();
-  file->path = path;
-  LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
-  const std::size_t first = file->bytes.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos || file->bytes[first] != '<')
-    return file->fail(first == std::string::npos
-                          ? "empty file (expected a VTK XML ImageData file)"
-                          : "not an XML file: it starts with " +
-                                quoteForMessage(std::string_view(file->bytes).substr(first, 16)) +
-                                ", expected '<?xml' or '<VTKFile'");
-  LIC3D_TRY(splitAppendedData(*file));
-  std::string& xml = file->hasAppended ? file->xml : file->bytes;
-  const pugi::xml_parse_result parsed = file->document.load_buffer_inplace(
-      xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!parsed)
-    return file->fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
-                      parsed.description());
-
-  const pugi::xml_node root = file->document.child("VTKFile");
-  if (!root) return file->fail("not a VTK XML file: the root element is not VTKFile");
-  const std::string type = root.attribute("type").value();
-  if (type != "ImageData")
-    return file->fail("VTKFile type " + quoteForMessage(type) +
-                      " is not supported (expected ImageData)");
-  const std::string order = root.attribute("byte_order").value();
-  if (order == "BigEndian") {
-    file->order = std::endian::big;
-  } else if (!order.empty() && order != "LittleEndian") {
-    return file->fail("byte_order: expected LittleEndian or BigEndian, found " +
-                      quoteForMessage(order));
-  }
-  const std::string headerType = root.attribute("header_type").value();
-  if (headerType == "UInt64") {
-    file->header64 = true;
-  } else if (!headerType.empty() && headerType != "UInt32") {
-    return file->fail("header_type: expected UInt32 or UInt64, found " +
-                      quoteForMessage(headerType));
-  }
-  const std::string compressor = root.attribute("compressor").value();
-  if (compressor == "vtkZLibDataCompressor") {
-    file->zlib = true;
-  } else if (!compressor.empty()) {
-    return file->fail("compressor " + quoteForMessage(compressor) +
-                      " is not supported (expected vtkZLibDataCompressor or none)");
-  }
-  if (file->hasAppended) {
-    const std::string encoding = root.child("AppendedData").attribute("encoding").value();
-    if (encoding != "raw" && encoding != "base64")
-      return file->fail("AppendedData encoding: expected raw or base64, found " +
-                        quoteForMessage(encoding));
-    file->appendedBase64 = encoding == "base64";
-  }
-
-  const pugi::xml_node image = root.child("ImageData");
-  if (!image) return file->fail("VTKFile holds no ImageData element");
-  LIC3D_TRY_ASSIGN(const Extent whole, parseExtent(*file, image, "WholeExtent"));
-  std::array<std::uint64_t, 3> sizes{};
-  for (std::size_t axis = 0; axis < 3; ++axis)
-    sizes[axis] =
-        static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
-  if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]); !problem.empty())
-    return file->fail("WholeExtent: " + problem);
-  file->dims =
-      Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(*file, image, "Origin", 0.0, false));
-  LIC3D_TRY_ASSIGN(file->geometry.spacing, parseTriple(*file, image, "Spacing", 1.0, true));
-  // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
-  // start at 0 moves the first voxel.
-  for (glm::length_t axis = 0; axis < 3; ++axis)
-    file->geometry.origin[axis] =
-        origin[axis] + static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
-                           file->geometry.spacing[axis];
-  for (glm::length_t axis = 0; axis < 3; ++axis)
-    if (!std::isfinite(file->geometry.origin[axis]))
-      return file->fail("ImageData: Origin + WholeExtent * Spacing is not finite");
-
-  std::size_t pieces = 0;
-  for (const pugi::xml_node piece : image.children("Piece")) {
-    ++pieces;
-    file->piece = piece;
-  }
-  if (pieces != 1)
-    return file->fail("ImageData holds " + std::to_string(pieces) +
-                      " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
-                      "write them by default)");
-  if (file->piece.attribute("Extent")) {
-    LIC3D_TRY_ASSIGN(const Extent extent, parseExtent(*file, file->piece, "Extent"));
-    if (!(extent == whole))
-      return file->fail(
-          "the Piece's Extent " + quoteForMessage(file->piece.attribute("Extent").value()) +
-          " differs from WholeExtent " + quoteForMessage(image.attribute("WholeExtent").value()) +
-          " (lic3d reads one piece covering the whole grid)");
-  }
-  return file;
-}
-
-// A DataArray of PointData or CellData.
-struct ArrayRef {
-  pugi::xml_node node;
-  std::string name;
-  bool cellData = false;
-  std::uint64_t components = 1;
-  const TypeInfo* type = nullptr;  // null for a type lic3d does not read
-};
-
-std::string describe(const ArrayRef& array) {
-  return "DataArray " + quoteForMessage(array.name) + (array.cellData ? " (cell data)" : "");
-}
-
-Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {
-  std::vector<ArrayRef> arrays;
-  for (const bool cellData : {false, true}) {
-    const pugi::xml_node section = file.piece.child(cellData ? "CellData" : "PointData");
-    for (const pugi::xml_node node : section.children("DataArray")) {
-      ArrayRef array;
-      array.node = node;
-      array.name = node.attribute("Name").value();
-      array.cellData = cellData;
-      array.type = findType(node.attribute("type").value());
-      if (const pugi::xml_attribute components = node.attribute("NumberOfComponents")) {
-        if (!parseUnsigned(components.value(), array.components) || array.components < 1 ||
-            array.components > 64)
-          return file.fail(describe(array) + ": NumberOfComponents: expected 1 to 64, found " +
-                           quoteForMessage(components.value()));
-      }
-      arrays.push_back(std::move(array));
-    }
-  }
-  return arrays;
-}
-
-std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t components) {
-  std::string list;
-  for (const ArrayRef& array : arrays) {
-    if (array.components != components) continue;
-    list += (list.empty() ? "" : ", ") + quoteForMessage(array.name) +
-            (array.cellData ? " (cell data)" : "");
-  }
-  return list.empty() ? "none" : list;
-}
-
-// The array to read: by name, else the section's active attribute (`Vectors`, `Scalars`), else
-// the first with `components` components, else the first with `alternative` components (2D
-// vectors: 2); PointData before CellData.
-Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& arrays,
-                             std::string_view name, std::uint64_t components,
-                             const char* activeAttribute, std::uint64_t alternative = 0) {
-  const std::string kind = std::to_string(components) + "-component";
-  const auto fits = [&](const ArrayRef& array) {
-    return array.components == components || (alternative > 0 && array.components == alternative);
-  };
-  if (!name.empty()) {
-    for (const bool cellData : {false, true}) {
-      for (const ArrayRef& array : arrays) {
-        if (array.cellData != cellData || array.name != name) continue;
-        if (!fits(array))
-          return file.fail(describe(array) + " has " + std::to_string(array.components) +
-                           " components, expected " + std::to_string(components) + "; " + kind +
-                           " arrays: " + listNames(arrays, components));
-        return array;
-      }
-    }
-    return file.fail("no " + kind + " DataArray named " + quoteForMessage(name) +
-                     "; found: " + listNames(arrays, components));
-  }
-  for (const bool cellData : {false, true}) {
-    const std::string active =
-        file.piece.child(cellData ? "CellData" : "PointData").attribute(activeAttribute).value();
-    for (const ArrayRef& array : arrays)
-      if (array.cellData == cellData && !active.empty() && array.name == active && fits(array))
-        return array;
-    for (const ArrayRef& array : arrays)
-      if (array.cellData == cellData && array.components == components) return array;
-    for (const ArrayRef& array : arrays)
-      if (array.cellData == cellData && fits(array)) return array;
-  }
-  return file.fail("no " + kind + " DataArray in PointData or CellData");
-}
 
 // Reads one array of `tuples` tuples into `sink`, calling `allocate` once its size has been
 // checked against the data present and before any value is delivered.
@@ -746,61 +449,6 @@ CellCentredGrid gridOf(const VtiFile& file, const ArrayRef& array) {
   return {file.dims, file.geometry};
 }
 
-// XML attribute text: names come from the caller and may hold any character.
-Result<std::string> escapeXml(const std::filesystem::path& path, std::string_view text) {
-  if (text.empty())
-    return inputError("cannot write '" + path.string() + "': the array name is empty");
-  std::string escaped;
-  for (const char c : text) {
-    const unsigned char byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f)
-      return inputError("cannot write '" + path.string() + "': the array name " +
-                        quoteForMessage(text) + " holds a control character");
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
-}
-
-std::string tripleText(const glm::dvec3& v) {
-  return formatDouble(v.x) + " " + formatDouble(v.y) + " " + formatDouble(v.z);
-}
-
-// One point-data array, appended raw after a UInt64 byte count, in the host's byte order.
-Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGeometry& geometry,
-                      std::string_view typeName, int components, std::string_view arrayName,
-                      const void* data, std::size_t bytes) {
-  LIC3D_TRY_ASSIGN(const std::string name, escapeXml(path, arrayName));
-  const std::string extent = "0 " + std::to_string(dims.x - 1) + " 0 " +
-                             std::to_string(dims.y - 1) + " 0 " + std::to_string(dims.z - 1);
-  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
-  const std::string header =
-      std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
-      "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
-      "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
-      tripleText(geometry.origin) + "\" Spacing=\"" + tripleText(geometry.spacing) +
-      "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
-      "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
-      std::string(typeName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
-      std::to_string(components) +
-      "\" format=\"appended\" offset=\"0\"/>\n      </PointData>\n      <CellData>\n"
-      "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n   _";
-  const std::uint64_t size = bytes;
-  return writeFileAtomically(path, [&](std::ostream& out) {
-    out << header;
-    out.write(reinterpret_cast<const char*>(&size), sizeof size);
-    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
-    out << "\n  </AppendedData>\n</VTKFile>\n";
-    return static_cast<bool>(out);
-  });
-}
-
 }  // namespace
 
 Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
@@ -873,19 +521,6 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {
                           volume.rgba.push_back(static_cast<std::uint8_t>(values[i]));
                       }));
   return volume;
-}
-
-Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
-                            std::string_view arrayName) {
-  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, "Float32", 1, arrayName, volume.values.data(),
-                  volume.values.size() * sizeof(float));
-}
-
-Result<void> writeRgbaVti(const std::filesystem::path& path, const RgbaVolume& volume) {
-  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, "UInt8", 4, "rgba", volume.rgba.data(),
-                  volume.rgba.size());
 }
 
 }  // namespace lic3d

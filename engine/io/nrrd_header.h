@@ -1,0 +1,77 @@
+#pragma once
+// Internal to the NRRD reader and writer (nrrd_header.cpp, nrrd_read.cpp, nrrd_write.cpp): the
+// payload's layout as one checked description, so the payload readers never meet a raw header.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/volume.h"
+#include "io/file_util.h"
+
+namespace lic3d::nrrd {
+
+// A multiple of every value size, so chunks never split a value.
+inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+enum class ValueType {
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float,
+  Double,
+  Block
+};
+
+std::size_t valueBytes(ValueType type);
+
+enum class Encoding { Raw, Gzip };
+
+// What the header says about the payload, after every check.
+struct Layout {
+  ValueType type = ValueType::Float;
+  std::size_t components = 1;  // values per voxel: 3 for vector fields, 4 for RGBA, 1 for scalars
+  Dims dims{0};
+  std::uint64_t voxels = 0;
+  Encoding encoding = Encoding::Raw;
+  std::endian order = std::endian::little;
+  GridGeometry geometry;
+  // Detached headers name the file holding the data; empty when it follows the header.
+  std::filesystem::path dataFile;
+  std::uint64_t lineSkip = 0;
+  // Bytes skipped before the data (in the file for raw, in the decompressed stream for gzip);
+  // -1 (raw only) puts the data at the end of the file.
+  std::int64_t byteSkip = 0;
+
+  std::uint64_t payloadBytes() const { return voxels * components * valueBytes(type); }
+};
+
+// What one reader accepts.
+struct Expectation {
+  std::size_t dimension;   // 3, or 4 with the components on the first axis
+  std::size_t components;  // the size of that first axis
+  std::string_view dimensionMeaning;
+  std::string_view componentsMeaning;
+  std::vector<ValueType> types;
+  std::string_view typesText;
+  // Vector fields: also a 2D grid (one layer along z), `dimension` - 1 axes, whose first axis
+  // holds 2 or `components` values (2D vectors lie in the x-y plane).
+  bool planar = false;
+};
+
+// Reads the header from its magic line to the blank line that ends it (a detached header may end
+// with the file instead) and checks every field the payload depends on against `expected`, so
+// that nothing is allocated from a bad number. The reader is then at the first byte after the
+// header. An error names reader.path() and the field.
+Result<Layout> readLayout(FileReader& reader, const Expectation& expected);
+
+}  // namespace lic3d::nrrd

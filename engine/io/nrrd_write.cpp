@@ -1,0 +1,128 @@
+// The NRRD writers: lic3d's own volumes as headers that teem, 3D Slicer and ParaView read, with
+// little-endian raw data whatever the host's byte order.
+
+#include <algorithm>
+#include <cstring>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "io/file_util.h"
+#include "io/nrrd.h"
+#include "io/nrrd_header.h"
+#include "io/volume_io.h"
+
+namespace lic3d {
+namespace {
+
+using nrrd::kChunkBytes;
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are written as packed floats");
+
+// Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
+std::string formatVector(const glm::dvec3& v) {
+  std::string text = "(";
+  text += formatDouble(v.x);
+  text += ',';
+  text += formatDouble(v.y);
+  text += ',';
+  text += formatDouble(v.z);
+  text += ')';
+  return text;
+}
+
+// Writes `count` values of `bytesPerValue` bytes, stored in native order, as little endian.
+bool writeLittleEndian(std::ostream& out, const void* data, std::size_t count,
+                       std::size_t bytesPerValue) {
+  const char* bytes = static_cast<const char*>(data);
+  if (std::endian::native == std::endian::little || bytesPerValue < 2)
+    return static_cast<bool>(out.write(bytes, static_cast<std::streamsize>(count * bytesPerValue)));
+  std::vector<char> chunk(kChunkBytes);
+  const std::size_t perChunk = kChunkBytes / bytesPerValue;
+  for (std::size_t first = 0; first < count && out; first += perChunk) {
+    const std::size_t n = std::min(perChunk, count - first);
+    std::memcpy(chunk.data(), bytes + first * bytesPerValue, n * bytesPerValue);
+    toNativeOrder(chunk.data(), n, bytesPerValue, std::endian::big);
+    out.write(chunk.data(), static_cast<std::streamsize>(n * bytesPerValue));
+  }
+  return static_cast<bool>(out);
+}
+
+std::string sizesText(Dims dims) {
+  return std::to_string(dims.x) + " " + std::to_string(dims.y) + " " + std::to_string(dims.z);
+}
+
+std::string directionsText(const GridGeometry& geometry) {
+  return formatVector({geometry.spacing.x, 0.0, 0.0}) + " " +
+         formatVector({0.0, geometry.spacing.y, 0.0}) + " " +
+         formatVector({0.0, 0.0, geometry.spacing.z});
+}
+
+}  // namespace
+
+Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
+  const std::string header =
+      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nspace dimension: 3\n"
+      "sizes: " +
+      sizesText(volume.dims) + "\nspace directions: " + directionsText(volume.geometry) +
+      "\nkinds: domain domain domain\nendian: little\nencoding: raw\nspace origin: " +
+      formatVector(volume.geometry.origin) + "\n\n";
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    return writeLittleEndian(out, volume.values.data(), volume.values.size(), sizeof(float));
+  });
+}
+
+Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field) {
+  LIC3D_TRY(checkVolumeForWriting(path, field.dims, field.vectors.size(), 1, &field.geometry));
+  const std::string header =
+      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 4\nspace dimension: 3\n"
+      "sizes: 3 " +
+      sizesText(field.dims) + "\nspace directions: none " + directionsText(field.geometry) +
+      "\nkinds: vector domain domain domain\nendian: little\nencoding: raw\n"
+      "space origin: " +
+      formatVector(field.geometry.origin) + "\n\n";
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    return writeLittleEndian(out, field.vectors.data(), 3 * field.vectors.size(), sizeof(float));
+  });
+}
+
+Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume& noise) {
+  const std::size_t bytesPerValue = lic3d::bytesPerValue(noise.type);
+  if (noise.bytes.size() % bytesPerValue != 0)
+    return inputError("cannot write '" + path.string() + "': the noise holds " +
+                      std::to_string(noise.bytes.size()) + " bytes, not a whole number of values");
+  LIC3D_TRY(
+      checkVolumeForWriting(path, noise.dims, noise.bytes.size() / bytesPerValue, 1, nullptr));
+  const char* type = noise.type == NoiseType::UInt8    ? "uchar"
+                     : noise.type == NoiseType::UInt16 ? "ushort"
+                                                       : "float";
+  const std::string header = std::string("NRRD0004\n# written by lic3d\ntype: ") + type +
+                             "\ndimension: 3\nsizes: " + sizesText(noise.dims) +
+                             "\nkinds: domain domain domain\n" +
+                             (bytesPerValue > 1 ? "endian: little\n" : "") + "encoding: raw\n\n";
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    return writeLittleEndian(out, noise.bytes.data(), noise.bytes.size() / bytesPerValue,
+                             bytesPerValue);
+  });
+}
+
+Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& volume) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
+  const std::string header =
+      "NRRD0004\n# written by lic3d\ntype: uchar\ndimension: 4\nspace dimension: 3\n"
+      "sizes: 4 " +
+      sizesText(volume.dims) + "\nspace directions: none " + directionsText(volume.geometry) +
+      "\nkinds: RGBA-color domain domain domain\nencoding: raw\nspace origin: " +
+      formatVector(volume.geometry.origin) + "\n\n";
+  return writeFileAtomically(path, [&](std::ostream& out) {
+    out << header;
+    return static_cast<bool>(out.write(reinterpret_cast<const char*>(volume.rgba.data()),
+                                       static_cast<std::streamsize>(volume.rgba.size())));
+  });
+}
+
+}  // namespace lic3d

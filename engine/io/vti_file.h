@@ -1,0 +1,86 @@
+#pragma once
+// Internal to the VTK XML ImageData reader (vti_file.cpp, vti_read.cpp): the file's structure,
+// checked once, apart from the decoding of the arrays' data that it points to.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <pugixml.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/volume.h"
+#include "io/file_util.h"
+
+namespace lic3d::vti {
+
+enum class NumberType {
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float32,
+  Float64
+};
+
+struct TypeInfo {
+  std::string_view name;
+  NumberType type;
+  std::size_t bytes;
+};
+
+// The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
+// (held by unique_ptr).
+struct VtiFile {
+  std::filesystem::path path;
+  std::string bytes;  // the whole file
+  std::string xml;    // the XML before the appended data, closed; empty when `bytes` is all XML
+  pugi::xml_document document;
+  std::string_view appended;  // the bytes after AppendedData's '_'
+  bool hasAppended = false;
+  bool appendedBase64 = false;
+  std::endian order = std::endian::little;
+  bool header64 = false;
+  bool zlib = false;
+  Dims dims{0};
+  GridGeometry geometry;
+  pugi::xml_node piece;
+
+  Error fail(const std::string& problem) const { return fileError(path, problem); }
+};
+
+// A DataArray of PointData or CellData.
+struct ArrayRef {
+  pugi::xml_node node;
+  std::string name;
+  bool cellData = false;
+  std::uint64_t components = 1;
+  const TypeInfo* type = nullptr;  // null for a type lic3d does not read
+};
+
+// The whole file read and parsed, with its grid (WholeExtent, Origin, Spacing) and its one Piece
+// checked; the error names the file and the problem.
+Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path);
+
+// "DataArray 'name'", marked when it is cell data: how every error names an array.
+std::string describe(const ArrayRef& array);
+
+// Every DataArray of PointData, then of CellData, in file order.
+Result<std::vector<ArrayRef>> listArrays(const VtiFile& file);
+
+// The array to read: by name, else the section's active attribute (`Vectors`, `Scalars`), else
+// the first with `components` components, else the first with `alternative` components (2D
+// vectors: 2); PointData before CellData.
+Result<ArrayRef> chooseArray(const VtiFile& file, const std::vector<ArrayRef>& arrays,
+                             std::string_view name, std::uint64_t components,
+                             const char* activeAttribute, std::uint64_t alternative = 0);
+
+}  // namespace lic3d::vti

@@ -1,0 +1,314 @@
+// The VTK legacy tokenizer: lines and words within length limits, and data blocks of any VTK type,
+// ASCII or big-endian BINARY, refused when they cannot fit in what is left of the file.
+
+#include "io/vtk_legacy_parser.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/file_util.h"
+#include "io/volume_io.h"
+
+namespace lic3d::vtk_legacy {
+
+enum class NumberKind { Signed, Unsigned, Real };
+
+struct DataType {
+  std::string_view name;  // lower case, as VTK compares them
+  std::size_t binaryBytes;
+  NumberKind kind;
+};
+
+namespace {
+
+constexpr std::size_t kMaxLineBytes = 4096;
+constexpr std::size_t kMaxTokenBytes = 256;
+// A multiple of every value size, so chunks never split a value.
+constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+// The sizes in BINARY files. `long` is 8 bytes because VTK writes sizeof(long), and legacy files
+// come from LP64 systems; vtkIdType is always written as a 32-bit int.
+constexpr DataType kDataTypes[] = {
+    {"unsigned_char", 1, NumberKind::Unsigned},
+    {"char", 1, NumberKind::Signed},
+    {"unsigned_short", 2, NumberKind::Unsigned},
+    {"short", 2, NumberKind::Signed},
+    {"unsigned_int", 4, NumberKind::Unsigned},
+    {"int", 4, NumberKind::Signed},
+    {"unsigned_long", 8, NumberKind::Unsigned},
+    {"long", 8, NumberKind::Signed},
+    {"vtktypeint64", 8, NumberKind::Signed},
+    {"vtktypeuint64", 8, NumberKind::Unsigned},
+    {"float", 4, NumberKind::Real},
+    {"double", 8, NumberKind::Real},
+    {"vtkidtype", 4, NumberKind::Signed},
+};
+
+// One BINARY value in native byte order, as a double.
+double binaryValue(const char* data, const DataType& type) {
+  if (type.kind == NumberKind::Real) {
+    if (type.binaryBytes == 4) {
+      float value;
+      std::memcpy(&value, data, 4);
+      return value;
+    }
+    double value;
+    std::memcpy(&value, data, 8);
+    return value;
+  }
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, data, type.binaryBytes);
+  // On a big-endian host the value's bytes landed in the high end.
+  if (std::endian::native == std::endian::big) bits >>= 8 * (8 - type.binaryBytes);
+  if (type.kind == NumberKind::Unsigned) return static_cast<double>(bits);
+  const unsigned shift = static_cast<unsigned>(64 - 8 * type.binaryBytes);
+  return static_cast<double>(static_cast<std::int64_t>(bits << shift) >> shift);
+}
+
+int hexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+std::string upperCase(std::string_view text) {
+  std::string raised(text);
+  for (char& c : raised)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return raised;
+}
+
+std::string decodeName(std::string_view name) {
+  std::string decoded;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    if (name[i] == '%' && i + 2 < name.size() && hexDigit(name[i + 1]) >= 0 &&
+        hexDigit(name[i + 2]) >= 0) {
+      decoded += static_cast<char>(hexDigit(name[i + 1]) * 16 + hexDigit(name[i + 2]));
+      i += 2;
+    } else {
+      decoded += name[i];
+    }
+  }
+  return decoded;
+}
+
+Words wordsOf(std::string_view text) {
+  const std::vector<std::string_view> views = splitWords(text);
+  return Words(views.begin(), views.end());
+}
+
+Result<std::optional<std::string>> Parser::readLine() {
+  int c = reader_.get();
+  if (c < 0) return std::optional<std::string>();
+  std::string line;
+  for (; c >= 0 && c != '\n'; c = reader_.get()) {
+    if (line.size() == kMaxLineBytes)
+      return fail("a line near byte " + std::to_string(reader_.position()) + " is longer than " +
+                  std::to_string(kMaxLineBytes) + " characters");
+    line.push_back(static_cast<char>(c));
+  }
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return std::optional<std::string>(std::move(line));
+}
+
+Result<std::optional<Words>> Parser::nextKeywordLine() {
+  while (isAsciiSpace(reader_.peek())) reader_.get();
+  LIC3D_TRY_ASSIGN(std::optional<std::string> line, readLine());
+  if (!line) return std::optional<Words>();
+  return std::optional<Words>(wordsOf(*line));
+}
+
+Result<std::string> Parser::readToken() {
+  while (isAsciiSpace(reader_.peek())) reader_.get();
+  std::string token;
+  while (reader_.peek() >= 0 && !isAsciiSpace(reader_.peek())) {
+    if (token.size() == kMaxTokenBytes)
+      return fail("a value near byte " + std::to_string(reader_.position()) + " is longer than " +
+                  std::to_string(kMaxTokenBytes) + " characters");
+    token.push_back(static_cast<char>(reader_.get()));
+  }
+  return token;
+}
+
+Result<void> Parser::skipValues(std::uint64_t count, std::size_t binaryBytes,
+                                const std::string& what) {
+  if (format_ == Format::Binary) {
+    std::uint64_t bytes = 0;
+    if (__builtin_mul_overflow(count, binaryBytes, &bytes) || bytes > reader_.remaining())
+      return truncated(what, count, binaryBytes);
+    if (reader_.skip(bytes) != bytes)
+      return fail(what + ": cannot read: " + reader_.failureReason());
+    return {};
+  }
+  LIC3D_TRY(checkAsciiFits(count, what));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    double value = 0.0;
+    LIC3D_TRY(readAsciiNumber(value, count, i, what));
+  }
+  return {};
+}
+
+Result<void> Parser::skipTyped(std::uint64_t count, std::string_view typeName,
+                               const std::string& what) {
+  LIC3D_TRY_ASSIGN(const std::size_t bytes, binarySize(typeName, what));
+  return skipValues(count, bytes, what);
+}
+
+Result<std::size_t> Parser::binarySize(std::string_view typeName, const std::string& what) const {
+  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+  return type->binaryBytes;
+}
+
+Result<const DataType*> Parser::dataType(std::string_view typeName, const std::string& what) const {
+  const std::string key = asciiLowerCase(typeName);
+  if (key == "bit") return fail(what + ": bit arrays are not supported");
+  if (key == "string" || key == "utf8_string" || key == "variant")
+    return fail(what + ": " + quoteForMessage(typeName) + " arrays are not supported");
+  for (const DataType& type : kDataTypes)
+    if (type.name == key) return &type;
+  return fail(what + ": unknown data type " + quoteForMessage(typeName));
+}
+
+Result<std::vector<double>> Parser::readNumbers(std::uint64_t count, std::string_view typeName,
+                                                const std::string& what) {
+  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+  std::vector<double> numbers;
+  if (format_ == Format::Binary) {
+    const std::uint64_t bytes = count * type->binaryBytes;
+    if (bytes > reader_.remaining()) return truncated(what, count, type->binaryBytes);
+    std::vector<char> data(static_cast<std::size_t>(bytes));
+    if (reader_.read(data.data(), data.size()) != data.size())
+      return fail(what + ": cannot read: " + reader_.failureReason());
+    toNativeOrder(data.data(), static_cast<std::size_t>(count), type->binaryBytes,
+                  std::endian::big);
+    for (std::size_t i = 0; i < count; ++i)
+      numbers.push_back(binaryValue(data.data() + i * type->binaryBytes, *type));
+    return numbers;
+  }
+  LIC3D_TRY(checkAsciiFits(count, what));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    double value = 0.0;
+    LIC3D_TRY(readAsciiNumber(value, count, i, what));
+    numbers.push_back(value);
+  }
+  return numbers;
+}
+
+Result<void> Parser::readVectors(std::uint64_t count, std::string_view typeName,
+                                 const std::string& what, std::vector<glm::vec3>& vectors) {
+  const std::string key = asciiLowerCase(typeName);
+  if (key != "float" && key != "double")
+    return fail(what + ": type " + quoteForMessage(typeName) +
+                " is not supported (expected float or double)");
+  const bool isDouble = key == "double";
+  const std::size_t bytesPerValue = isDouble ? 8 : 4;
+  const std::uint64_t valueCount = 3 * count;
+  if (format_ == Format::Binary) {
+    if (valueCount * bytesPerValue > reader_.remaining())
+      return truncated(what, valueCount, bytesPerValue);
+  } else {
+    LIC3D_TRY(checkAsciiFits(valueCount, what));
+  }
+  vectors.assign(static_cast<std::size_t>(count), glm::vec3(0.0f));
+
+  std::uint64_t next = 0;
+  const auto store = [&](double value) {
+    vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
+        vectorComponent(value);
+    ++next;
+  };
+
+  if (format_ == Format::Binary) {
+    std::vector<char> chunk(
+        static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, valueCount * bytesPerValue)));
+    const std::size_t perChunk = chunk.size() / bytesPerValue;
+    while (next < valueCount) {
+      const std::size_t n =
+          static_cast<std::size_t>(std::min<std::uint64_t>(perChunk, valueCount - next));
+      if (reader_.read(chunk.data(), n * bytesPerValue) != n * bytesPerValue)
+        return fail(what + ": cannot read: " + reader_.failureReason());
+      toNativeOrder(chunk.data(), n, bytesPerValue, std::endian::big);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (isDouble) {
+          double value;
+          std::memcpy(&value, chunk.data() + 8 * i, 8);
+          store(value);
+        } else {
+          float value;
+          std::memcpy(&value, chunk.data() + 4 * i, 4);
+          store(value);
+        }
+      }
+    }
+  } else {
+    while (next < valueCount) {
+      double value = 0.0;
+      LIC3D_TRY(readAsciiNumber(value, valueCount, next, what, !isDouble));
+      store(value);
+    }
+  }
+  return {};
+}
+
+Error Parser::truncated(const std::string& what, std::uint64_t count,
+                        std::size_t bytesPerValue) const {
+  return fail(what + ": the data is truncated: " + std::to_string(count) + " values of " +
+              std::to_string(bytesPerValue) + " bytes do not fit in the " +
+              std::to_string(reader_.remaining()) + " bytes left in the file");
+}
+
+Result<void> Parser::checkAsciiFits(std::uint64_t count, const std::string& what) const {
+  if (count > reader_.remaining() / 2 + 1)
+    return fail(what + ": the data is truncated: " + std::to_string(count) +
+                " values do not fit in the " + std::to_string(reader_.remaining()) +
+                " bytes left in the file");
+  return {};
+}
+
+Result<void> Parser::readAsciiNumber(double& value, std::uint64_t count, std::uint64_t index,
+                                     const std::string& what, bool asFloat) {
+  LIC3D_TRY_ASSIGN(const std::string token, readToken());
+  if (token.empty())
+    return fail(what + ": the data is truncated: expected " + std::to_string(count) +
+                " values, found " + std::to_string(index));
+  bool parsed = false;
+  if (asFloat) {
+    float single = 0.0f;
+    parsed = parseFloat(token, single);
+    value = single;
+    if (!parsed) parsed = parseDouble(token, value);
+  } else {
+    parsed = parseDouble(token, value);
+  }
+  if (!parsed)
+    return fail(what + ": expected " + std::to_string(count) + " numbers, found " +
+                quoteForMessage(token) + " after " + std::to_string(index));
+  return {};
+}
+
+Result<std::uint64_t> parseCount(const Parser& parser, const std::string& word,
+                                 const std::string& what) {
+  std::uint64_t value = 0;
+  if (!parseUnsigned(word, value))
+    return parser.fail(what + ": " + quoteForMessage(word) + " is not a whole number");
+  return value;
+}
+
+Result<void> checkWords(const Parser& parser, const Words& words, std::size_t minWords,
+                        std::size_t maxWords, std::string_view form) {
+  if (words.size() < minWords || words.size() > maxWords) {
+    std::string found;
+    for (const std::string& word : words) found += (found.empty() ? "" : " ") + word;
+    return parser.fail("expected '" + std::string(form) + "', found " + quoteForMessage(found));
+  }
+  return {};
+}
+
+}  // namespace lic3d::vtk_legacy
