@@ -4,16 +4,9 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
-#include "lic/sparsity.h"
+#include "lic/point_sets.h"
 
 namespace lic3d {
-
-std::uint64_t noiseHash(std::uint64_t seed, std::uint64_t index) {
-  std::uint64_t z = seed * 0xD1B54A32D192ED03ull + index * 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
   NoiseVolume noise;

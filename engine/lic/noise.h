@@ -6,12 +6,9 @@
 #include <cstdint>
 
 #include "core/volume.h"
+#include "lic/random.h"  // noiseHash
 
 namespace lic3d {
-
-// SplitMix64 (Steele, Lea, Flood 2014) of the seed-offset voxel index: a counter-based generator
-// with full 64-bit avalanche, integer arithmetic only.
-std::uint64_t noiseHash(std::uint64_t seed, std::uint64_t index);
 
 // Uniform 8-bit white noise: the top byte of noiseHash, read as [0,1] by value()/255.
 NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed);
