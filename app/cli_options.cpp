@@ -383,6 +383,36 @@ Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session) {
   return {};
 }
 
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const char* program,
+                                    const char* hint,
+                                    std::initializer_list<SessionOptions*> sessions) {
+  try {
+    for (SessionOptions* options : sessions)
+      if (auto r = preloadSession(argc, argv, *options); !r) return reportError(r.error());
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "%s: error: %s\n%s\n", program, e.what(), hint);
+    return kExitBadInput;
+  }
+  return std::nullopt;
+}
+
+Result<glm::ivec2> parseSize(const std::string& text, const char* flag, int min, int max) {
+  int w = 0, h = 0;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < min || h < min || w > max ||
+      h > max)
+    return inputError(std::string(flag) + ": expected WxH between " + std::to_string(min) +
+                      " and " + std::to_string(max) + ", got '" + text + "'");
+  return glm::ivec2(w, h);
+}
+
 Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& options) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

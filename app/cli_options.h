@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,6 +88,16 @@ struct PlaneOptions {
 void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane);
 // Applies --slice to session.plane (InvalidInput naming the flag).
 Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session);
+
+// Parses the command line once the session files it names are read into `sessions` (flags
+// given then override them). Nothing when the program goes on; else its exit status: help and
+// the version are printed (0), a bad flag is named with `hint` (kExitBadInput).
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const char* program,
+                                    const char* hint,
+                                    std::initializer_list<SessionOptions*> sessions);
+
+// WxH with each side in [min, max] (InvalidInput naming `flag`).
+Result<glm::ivec2> parseSize(const std::string& text, const char* flag, int min, int max);
 
 // Looks for --session FILE among the arguments and loads it into `options.session` before
 // CLI11 parses them, so that explicit flags override the file.

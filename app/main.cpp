@@ -169,23 +169,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   benchCommand->footer(globalNote);
 
-  try {
-    // A session file is read before the flags, which then override it.
-    if (auto r = preloadSession(argc, argv, compute.inputs); !r) return reportError(r.error());
-    if (auto r = preloadSession(argc, argv, render.inputs); !r) return reportError(r.error());
-    if (auto r = preloadSession(argc, argv, render2d.inputs); !r) return reportError(r.error());
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "lic3d: error: %s\nRun `lic3d --help` or `lic3d <command> --help`.\n",
-                 e.what());
-    return kExitBadInput;
-  }
+  // A session file is read before the flags, which then override it.
+  if (const std::optional<int> status = parseCommandLine(
+          app, argc, argv, "lic3d", "Run `lic3d --help` or `lic3d <command> --help`.",
+          {&compute.inputs, &render.inputs, &render2d.inputs}))
+    return *status;
 
   try {
     if (devices->parsed()) return runDevices(global);

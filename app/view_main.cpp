@@ -67,33 +67,15 @@ int main(int argc, char** argv) {
                  "Save every parameter as a session JSON file on quit (for `lic3d render "
                  "--session`)");
 
-  try {
-    if (auto r = preloadSession(argc, argv, inputs); !r) return reportError(r.error());
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "lic3d-view: error: %s\nRun `lic3d-view --help`.\n", e.what());
-    return kExitBadInput;
-  }
+  if (const std::optional<int> status =
+          parseCommandLine(app, argc, argv, "lic3d-view", "Run `lic3d-view --help`.", {&inputs}))
+    return *status;
 
   if (!windowSize.empty()) {
-    int w = 0, h = 0;
-    char rest = 0;
-    if (std::sscanf(windowSize.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 64 || h < 64 ||
-        w > 16384 || h > 16384) {
-      std::fprintf(stderr,
-                   "lic3d-view: error: --window-size: expected WxH between 64 and 16384, "
-                   "got '%s'\n",
-                   windowSize.c_str());
-      return kExitBadInput;
-    }
-    options.windowWidth = w;
-    options.windowHeight = h;
+    const Result<glm::ivec2> size = parseSize(windowSize, "--window-size", 64, kMaxImageSize);
+    if (!size) return reportError(size.error());
+    options.windowWidth = size->x;
+    options.windowHeight = size->y;
   }
   if (!options.screenshot.empty()) {
     if (options.frames == 0) {
@@ -112,18 +94,10 @@ int main(int argc, char** argv) {
   if (app.count("--mode") > 0) inputs.session.twoD = mode == "2d";
   if (auto r = finishPlaneOptions(plane, inputs.session); !r) return reportError(r.error());
   if (!imageSize.empty()) {
-    int w = 0, h = 0;
-    char rest = 0;
-    if (std::sscanf(imageSize.c_str(), "%dx%d%c", &w, &h, &rest) != 2 || w < 1 || h < 1 ||
-        w > 16384 || h > 16384) {
-      std::fprintf(stderr,
-                   "lic3d-view: error: --image-size: expected WxH between 1 and 16384, "
-                   "got '%s'\n",
-                   imageSize.c_str());
-      return kExitBadInput;
-    }
-    inputs.session.plane.width = w;
-    inputs.session.plane.height = h;
+    const Result<glm::ivec2> size = parseSize(imageSize, "--image-size", 1, kMaxImageSize);
+    if (!size) return reportError(size.error());
+    inputs.session.plane.width = size->x;
+    inputs.session.plane.height = size->y;
   }
 
   try {

@@ -245,7 +245,7 @@ Result<bool> App::frame() {
     });
   }
   if (auto r = validate(session_.view); !r) {
-    stats_.message = r.error().message;
+    stats_.message = uiMessage(r.error());
     session_.view = drawnSession_.view;
   }
   if (stopped_) {
@@ -260,7 +260,7 @@ Result<bool> App::frame() {
     LIC3D_TRY(updateTime());
     if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
       if (auto r = renderer_->requestLic(session_.lic); !r) {
-        stats_.message = r.error().message;
+        stats_.message = uiMessage(r.error());
         session_.lic = drawnSession_.lic;
       }
     }

@@ -219,7 +219,7 @@ Result<void> App::finishLoading() {
   const bool firstLoad = !renderer_->hasVolume() && !loadedOnce_;
   loadedOnce_ = true;
   if (!loaded) {
-    stats_.message = loaded.error().message;
+    stats_.message = uiMessage(loaded.error());
     if (firstLoad) return std::move(loaded).error();  // nothing to show at all
     loadedField_ = session_.field;                    // not read again until the field changes
     loadedNoise_ = session_.noise;
@@ -244,7 +244,7 @@ Result<void> App::finishLoading() {
   }
   if (auto r = validate(session_.lic.sparsity, grid.dims); !r) {
     session_.lic.sparsity = SparsityParams{};
-    stats_.message = r.error().message + " (sparsity turned off)";
+    stats_.message = uiMessage(r.error()) + " (sparsity turned off)";
   }
   LIC3D_TRY(loader_.show(*loaded, *renderer_));
   if (series) {
@@ -285,7 +285,7 @@ void App::updatePlane() {
     planeView_.emplace(std::move(*created));
   }
   if (auto r = planeView_->update(session_); !r) {
-    stats_.message = r.error().message;
+    stats_.message = uiMessage(r.error());
     return;
   }
   // A series' files are listed once per field, not every frame.

@@ -6,9 +6,12 @@
 #include <array>
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <string_view>
 
 #include "core/colormap.h"
 #include "core/enum_names.h"
+#include "core/parameter_ranges.h"
 #include "lic/analytic_fields.h"
 
 namespace lic3d::viewer {
@@ -16,6 +19,44 @@ namespace {
 
 void tip(const char* text) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+// The session keys the engine names parameters by, and the widgets that set them: uiMessage shows
+// the widget where an error message has the key. Filled as the widgets are drawn.
+std::map<std::string, std::string, std::less<>>& widgetNames() {
+  static std::map<std::string, std::string, std::less<>> names;
+  return names;
+}
+
+void nameWidget(std::string_view key, const char* label) {
+  widgetNames().try_emplace(std::string(key), std::string("'") + label + "'");
+}
+
+// Sliders over a parameter's slider range (core/parameter_ranges.h); ctrl+click types a value
+// outside it, which validate() then checks against the accepted range.
+bool slider(const char* label, float& value, const ParameterRange& range,
+            const char* format = "%.3f") {
+  nameWidget(range.key, label);
+  return ImGui::SliderFloat(label, &value, static_cast<float>(range.sliderMin),
+                            static_cast<float>(range.sliderMax), format);
+}
+bool slider(const char* label, int& value, const ParameterRange& range) {
+  nameWidget(range.key, label);
+  return ImGui::SliderInt(label, &value, static_cast<int>(range.sliderMin),
+                          static_cast<int>(range.sliderMax));
+}
+bool slider3(const char* label, glm::vec3& value, const ParameterRange& range,
+             const char* format = "%.3f") {
+  nameWidget(range.key, label);
+  return ImGui::SliderFloat3(label, &value.x, static_cast<float>(range.sliderMin),
+                             static_cast<float>(range.sliderMax), format);
+}
+// Two ends of an interval of one parameter (a window, a clip range) over its slider range.
+bool interval(const char* label, float& low, float& high, float speed,
+              const ParameterRange& range) {
+  nameWidget(range.key, label);
+  return ImGui::DragFloatRange2(label, &low, &high, speed, static_cast<float>(range.sliderMin),
+                                static_cast<float>(range.sliderMax));
 }
 
 bool text(const char* label, std::string& value, const char* help) {
@@ -87,6 +128,7 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   if (ImGui::InputInt("noise seed", &seed)) n.seed = static_cast<std::uint64_t>(std::max(seed, 0));
   tip("Seed of the white noise (and of the seed noise's spots)");
   ImGui::InputInt("seed spots", &n.seedSpots);
+  nameWidget(ranges::kSeedSpots.key, "seed spots");
   n.seedSpots = std::max(n.seedSpots, 0);
   tip("Sparse seed noise: this many bright spots on black instead of white noise (0: white "
       "noise)");
@@ -129,11 +171,12 @@ void timePanel(Session& session, UiState& ui, const Stats& stats) {
 void licPanel(Session& s) {
   if (!ImGui::CollapsingHeader("LIC", ImGuiTreeNodeFlags_DefaultOpen)) return;
   LicParams& l = s.lic;
-  ImGui::SliderInt("length L", &l.length, 0, 100);
+  slider("length L", l.length, ranges::kLength);
   tip("Streamline steps each way: longer streaks, more blur (thesis 4.4.3)");
-  ImGui::SliderFloat("step h", &l.step, 0.1f, 2.0f, "%.2f voxels");
+  slider("step h", l.step, ranges::kStep, "%.2f voxels");
   tip("Step length in voxels");
   ImGui::SliderInt("bias", &l.bias, -l.length, l.length);
+  nameWidget("lic.bias", "bias");
   l.bias = std::clamp(l.bias, -l.length, l.length);
   tip("L - bias steps backward, L + bias forward: moving it animates the flow (thesis 3.3.3)");
   combo("integrator", l.integrator, "Euler, midpoint RK2 or classical RK4");
@@ -156,11 +199,12 @@ void sparsityPanel(Session& s) {
         "Black points of the mask (thesis 5.1.4): a voxel whose streamline touches one is not "
         "drawn");
   ImGui::InputInt("points", &p.points, 1000, 10000);
+  nameWidget(ranges::kSparsityPoints.key, "points");
   p.points = std::max(p.points, 0);
   tip("Black points for poisson, poisson-approx, halton, hammersley (0: automatic)");
-  ImGui::SliderFloat("radius", &p.radius, 0.0f, 8.0f, "%.2f voxels");
+  slider("radius", p.radius, ranges::kSparsityRadius, "%.2f voxels");
   tip("Minimum distance between black points for poisson and jitter (0: automatic)");
-  ImGui::SliderFloat("ratio", &p.ratio, 0.01f, 0.99f);
+  slider("ratio", p.ratio, ranges::kSparsityRatio);
   tip("Fraction of black voxels of the checkerboard");
   int seed = static_cast<int>(p.seed);
   if (ImGui::InputInt("mask seed", &seed)) p.seed = static_cast<std::uint64_t>(std::max(seed, 0));
@@ -169,7 +213,7 @@ void sparsityPanel(Session& s) {
 
 void colourPanel(ViewParams& v, const Stats& stats) {
   if (!ImGui::CollapsingHeader("Colour and opacity", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::SliderFloat("alpha", &v.alpha, 0.0f, 1.0f);
+  slider("alpha", v.alpha, ranges::kAlpha);
   tip("Opacity per voxel of depth, corrected for the slice spacing (thesis 5.1.1)");
   combo("opacity", v.opacityMode, "constant alpha, or alpha x grey (dark gaps turn clear)");
   combo("color", v.color, "Colour by |v|, modulated by the LIC intensity (thesis 5.1.2)");
@@ -186,21 +230,21 @@ void colourPanel(ViewParams& v, const Stats& stats) {
   tip("Show the colour legend");
   ImGui::Checkbox("axes", &v.axes);
   tip("The box's edges, each axis labelled with its physical range (origin, spacing)");
-  ImGui::SliderFloat("magnitude opacity", &v.magnitudeOpacity, 0.0f, 4.0f);
+  slider("magnitude opacity", v.magnitudeOpacity, ranges::kMagnitudeOpacity);
   tip("Opacity x (normalised |v|)^E: slow regions fade (thesis 5.1.3); 0 is off");
-  ImGui::SliderFloat("threshold", &v.magnitudeThreshold, 0.0f, 1.0f);
+  slider("threshold", v.magnitudeThreshold, ranges::kMagnitudeThreshold);
   tip("Voxels whose normalised |v| is below this vanish");
   ImGui::Checkbox("contrast stretch", &v.contrast);
   tip("Stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25");
   ImGui::Checkbox("manual window", &v.manualWindow);
   if (v.manualWindow) {
-    ImGui::DragFloatRange2("window", &v.windowLow, &v.windowHigh, 0.002f, 0.0f, 1.0f);
+    interval("window", v.windowLow, v.windowHigh, 0.002f, ranges::kWindow);
     if (v.windowHigh <= v.windowLow) v.windowHigh = v.windowLow + 1e-3f;
   }
   tip("LIC values mapped to black..white instead of the stretch");
-  ImGui::SliderFloat("gain", &v.gain, 0.0f, 4.0f);
+  slider("gain", v.gain, ranges::kGain);
   tip("Scales grey values around mid-grey");
-  ImGui::SliderFloat("brightness", &v.brightness, -1.0f, 1.0f);
+  slider("brightness", v.brightness, ranges::kBrightness);
   tip("Added to grey values");
   ImGui::ColorEdit3("background", &v.background.x);
   tip("Background colour");
@@ -210,18 +254,18 @@ void localPanel(ViewParams& v) {
   if (!ImGui::CollapsingHeader("Clip planes and region")) return;
   const char* axes[3] = {"clip x", "clip y", "clip z"};
   for (int a = 0; a < 3; ++a) {
-    ImGui::DragFloatRange2(axes[a], &v.clipMin[a], &v.clipMax[a], 0.005f, 0.0f, 1.0f);
+    interval(axes[a], v.clipMin[a], v.clipMax[a], 0.005f, ranges::kClipMin);
     if (v.clipMax[a] <= v.clipMin[a]) v.clipMax[a] = std::min(1.0f, v.clipMin[a] + 0.01f);
     if (v.clipMax[a] <= v.clipMin[a]) v.clipMin[a] = v.clipMax[a] - 0.01f;
     tip("The part of the box kept along this axis (thesis 5.2.1)");
   }
   combo("region", v.roi, "A region of interest: only its inside (or outside) is drawn (5.2.2)");
   if (v.roi != RoiShape::None) {
-    ImGui::SliderFloat3("centre", &v.roiCenter.x, 0.0f, 1.0f);
+    slider3("centre", v.roiCenter, ranges::kRoiCenter);
     tip("Centre as fractions of the box");
-    ImGui::SliderFloat("size", &v.roiSize, 0.01f, 1.5f);
+    slider("size", v.roiSize, ranges::kRoiSize);
     tip("Diameter or side as a fraction of the longest box side");
-    ImGui::SliderFloat3("rotate", &v.roiRotation.x, -180.0f, 180.0f, "%.0f deg");
+    slider3("rotate", v.roiRotation, ranges::kRoiRotation, "%.0f deg");
     tip("The region turns with its own frame (x, then y, then z)");
     ImGui::Checkbox("outside", &v.roiOutside);
     tip("Keep the outside of the region instead");
@@ -233,7 +277,7 @@ void depthPanel(ViewParams& v) {
   ImGui::Checkbox("fog", &v.fog);
   tip("Intensity depth cueing (thesis 5.3.1)");
   if (v.fog) {
-    ImGui::DragFloatRange2("fog range", &v.fogStart, &v.fogEnd, 0.005f, -0.5f, 1.5f);
+    interval("fog range", v.fogStart, v.fogEnd, 0.005f, ranges::kFogRange);
     if (v.fogEnd <= v.fogStart) v.fogEnd = v.fogStart + 0.01f;
     tip("Start and end, as fractions of the depth from the nearest to the farthest point");
     ImGui::Checkbox("fog = background", &v.fogColorFromBackground);
@@ -242,18 +286,19 @@ void depthPanel(ViewParams& v) {
   combo("lighting", v.lighting,
         "phong: normals from the streamline's TNB frame (5.3.3); lines: lit from the tangent");
   if (v.lighting != Lighting::None) {
-    ImGui::SliderFloat("ambient", &v.light.ambient, 0.0f, 1.0f);
-    ImGui::SliderFloat("diffuse", &v.light.diffuse, 0.0f, 1.5f);
-    ImGui::SliderFloat("specular", &v.light.specular, 0.0f, 1.5f);
-    ImGui::SliderFloat("shininess", &v.light.shininess, 1.0f, 128.0f);
+    slider("ambient", v.light.ambient, ranges::kAmbient);
+    slider("diffuse", v.light.diffuse, ranges::kDiffuse);
+    slider("specular", v.light.specular, ranges::kSpecular);
+    slider("shininess", v.light.shininess, ranges::kShininess);
   }
+  nameWidget("view.stereo", "stereo");
   combo("stereo", v.stereo,
         "Off-axis stereo (5.3.2): red/cyan anaglyph or side by side; quad-buffered stereo is not "
         "offered by Vulkan surfaces here");
   if (v.stereo != StereoMode::None) {
-    ImGui::SliderFloat("eye separation", &v.eyeSeparation, 0.0f, 0.3f, "%.3f");
+    slider("eye separation", v.eyeSeparation, ranges::kEyeSeparation);
     tip("Box units; 0 is a thirtieth of the zero-parallax distance");
-    ImGui::SliderFloat("zero parallax", &v.zeroParallax, 0.0f, 10.0f, "%.2f");
+    slider("zero parallax", v.zeroParallax, ranges::kZeroParallax, "%.2f");
     tip("Distance of the plane without disparity; 0 is the volume centre");
   }
 }
@@ -261,13 +306,14 @@ void depthPanel(ViewParams& v) {
 void renderingPanel(ViewParams& v, UiState& ui, Actions& actions) {
   if (!ImGui::CollapsingHeader("Slices and camera")) return;
   combo("slicing", v.slicing, "view-aligned planes, or the thesis' axis-aligned planes (4.1.2)");
-  ImGui::SliderInt("slices", &v.slices, 0, 1024);
+  slider("slices", v.slices, ranges::kSlices);
   tip("Number of slices (0: one per voxel along the view direction)");
   combo("filter", v.filter, "Nearest keeps neighbouring streamlines apart, linear smooths (6.4)");
   ImGui::Checkbox("orthographic", &v.camera.orthographic);
-  ImGui::SliderFloat("field of view", &v.camera.fovY, 5.0f, 120.0f, "%.0f deg");
-  ImGui::SliderFloat("azimuth", &v.camera.azimuth, -180.0f, 180.0f, "%.1f deg");
-  ImGui::SliderFloat("elevation", &v.camera.elevation, -89.0f, 89.0f, "%.1f deg");
+  nameWidget("view.camera.orthographic", "orthographic");
+  slider("field of view", v.camera.fovY, ranges::kFov, "%.0f deg");
+  slider("azimuth", v.camera.azimuth, ranges::kAzimuth, "%.1f deg");
+  slider("elevation", v.camera.elevation, ranges::kElevation, "%.1f deg");
   if (ImGui::Button("Reset view (R)")) actions.resetView = true;
   ImGui::Checkbox("play bias (Space)", &ui.playing);
   tip("Cycle the bias so the texture flows along the streamlines (thesis 3.3.3)");
@@ -420,6 +466,15 @@ Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
   }
   ImGui::End();
   return actions;
+}
+
+std::string uiMessage(const Error& error) {
+  std::string text = error.message;
+  if (error.parameter.empty()) return text;
+  const auto named = widgetNames().find(error.parameter);
+  if (named != widgetNames().end() && text.starts_with(error.parameter))
+    text.replace(0, error.parameter.size(), named->second);
+  return text;
 }
 
 }  // namespace lic3d::viewer

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/error.h"
 #include "core/session.h"
 
 namespace lic3d::viewer {
@@ -57,6 +58,10 @@ struct UiState {
   bool playingTime = false;   // time animation
   float timeSeconds = 20.0f;  // seconds for the whole time range
 };
+
+// An error for the panels: the widget's label in place of the parameter's session key
+// (Error::parameter), e.g. "'step h' must be in [0.001, 8], got 9".
+std::string uiMessage(const Error& error);
 
 // Draws every panel for this frame (between ImGui::NewFrame and ImGui::Render).
 Actions drawUi(Session& session, UiState& ui, const Stats& stats);
