@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "core/volume.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {
@@ -98,6 +99,12 @@ class Buffer {
   DeviceMemory memory_;
   VkDeviceSize size_ = 0;
 };
+
+// The extent of an image of a grid (NX x NY x NZ; a 2D image has NZ = 1).
+inline VkExtent3D extentOf(Dims dims) {
+  return {static_cast<std::uint32_t>(dims.x), static_cast<std::uint32_t>(dims.y),
+          static_cast<std::uint32_t>(dims.z)};
+}
 
 struct ImageDesc {
   VkImageType type = VK_IMAGE_TYPE_3D;

@@ -42,11 +42,6 @@ VkFormat stepFormat(FieldPrecision precision) {
                                             : VK_FORMAT_R16G16B16A16_SFLOAT;
 }
 
-VkExtent3D extentOf(Dims d) {
-  return {static_cast<std::uint32_t>(d.x), static_cast<std::uint32_t>(d.y),
-          static_cast<std::uint32_t>(d.z)};
-}
-
 // Every precision but Half and Float is resolved by the caller; a Float texture must be filterable.
 Result<FieldPrecision> checkPrecision(const Context& context, FieldPrecision precision) {
   const FieldPrecision resolved = resolvePrecision(context, precision);

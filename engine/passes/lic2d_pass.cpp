@@ -20,7 +20,7 @@ Result<Image> uploadImage2D(const Context& context, VkFormat format, Dims size, 
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
   desc.format = format;
-  desc.extent = {static_cast<std::uint32_t>(size.x), static_cast<std::uint32_t>(size.y), 1};
+  desc.extent = extentOf(size);
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = name;
   LIC3D_TRY_ASSIGN(Image image, Image::create(context, desc));
@@ -159,8 +159,7 @@ Result<ScalarVolume> Lic2DPass::compute(const Lic2DInputs& inputs, const LicPara
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
   desc.format = kLic2DImageFormat;
-  desc.extent = {static_cast<std::uint32_t>(inputs.imageDims.x),
-                 static_cast<std::uint32_t>(inputs.imageDims.y), 1};
+  desc.extent = extentOf(inputs.imageDims);
   desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   desc.name = "2d lic image";
   LIC3D_TRY_ASSIGN(const Image output, Image::create(*context_, desc));

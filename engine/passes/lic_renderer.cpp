@@ -86,9 +86,7 @@ Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume&
     separateNoise_ = Image();
     ImageDesc desc;
     desc.format = VK_FORMAT_R8_UNORM;
-    desc.extent = {static_cast<std::uint32_t>(field.dims.x),
-                   static_cast<std::uint32_t>(field.dims.y),
-                   static_cast<std::uint32_t>(field.dims.z)};
+    desc.extent = extentOf(field.dims);
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     desc.name = "separate noise (naive kernel)";
     std::vector<std::uint8_t> bytes(voxelCount(field.dims));
@@ -106,9 +104,7 @@ Result<void> LicRenderer::ensureVolumes() {
     if (volumes_[i]) continue;
     ImageDesc desc;
     desc.format = kLicVolumeFormat;
-    desc.extent = {static_cast<std::uint32_t>(field_.dims.x),
-                   static_cast<std::uint32_t>(field_.dims.y),
-                   static_cast<std::uint32_t>(field_.dims.z)};
+    desc.extent = extentOf(field_.dims);
     desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     desc.name = i == 0 ? "lic volume A" : "lic volume B";
@@ -287,9 +283,7 @@ Result<void> LicRenderer::requestLic(const LicParams& params) {
 Result<void> LicRenderer::uploadMask(const SparsityMask& mask) {
   ImageDesc desc;
   desc.format = kSparsityMaskFormat;
-  desc.extent = {static_cast<std::uint32_t>(field_.dims.x),
-                 static_cast<std::uint32_t>(field_.dims.y),
-                 static_cast<std::uint32_t>(field_.dims.z)};
+  desc.extent = extentOf(field_.dims);
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "sparsity mask";
   // Slabs of an earlier job recorded into frames still in flight may read the old mask.
@@ -371,7 +365,6 @@ void LicRenderer::collectStatistics(std::uint32_t slot) {
 }
 
 Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
-  LIC3D_TRY(validate(params));
   if (!job_ && shownParams_ && *shownParams_ == params && !fieldChanged_) return false;
   LIC3D_TRY(startJob(params, fieldChanged_));
   const int slab = progress ? (field_.dims.z + kProgressSlabs - 1) / kProgressSlabs : field_.dims.z;

@@ -100,8 +100,7 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   texture.texelToPhysical = speed / unit;
 
   ImageDesc desc;
-  desc.extent = {static_cast<std::uint32_t>(field.dims.x), static_cast<std::uint32_t>(field.dims.y),
-                 static_cast<std::uint32_t>(field.dims.z)};
+  desc.extent = extentOf(field.dims);
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "field and noise texture";
   if (texture.precision == FieldPrecision::Half) {
