@@ -474,12 +474,14 @@ std::string summaryLine(const RunSummary& summary) {
   field["spacing"] = {g.spacing.x, g.spacing.y, g.spacing.z};
   field["origin"] = {g.origin.x, g.origin.y, g.origin.z};
   field["non_finite_vectors"] = summary.nonFiniteVectors;
-  const Json line = {{"command", summary.command},
-                     {"frames", summary.frames},
-                     {"seconds", std::round(summary.seconds * 1000.0) / 1000.0},
-                     {"outputs", summary.outputs},
-                     {"device", summary.device},
-                     {"field", field}};
+  Json line = {{"command", summary.command},
+               {"frames", summary.frames},
+               {"seconds", std::round(summary.seconds * 1000.0) / 1000.0},
+               {"outputs", summary.outputs},
+               {"device", summary.device},
+               {"field", field}};
+  if (summary.hiddenFraction)
+    line["hidden_fraction"] = std::round(*summary.hiddenFraction * 10000.0) / 10000.0;
   // File names need not be UTF-8: invalid bytes become U+FFFD rather than failing the run.
   return "lic3d-summary " + line.dump(-1, ' ', false, Json::error_handler_t::replace);
 }

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,8 @@ struct RunSummary {
   Dims grid{0};
   GridGeometry geometry;
   std::size_t nonFiniteVectors = 0;
+  // With a sparsity mask: the fraction of the LIC voxels it hid (the last frame's volume).
+  std::optional<double> hiddenFraction;
 };
 std::string summaryLine(const RunSummary& summary);
 

@@ -50,8 +50,13 @@ struct SessionOptions {
   TextOption grid;
   CLI::Option* time = nullptr;  // --time, to tell a given time from the session's
   bool planar = false;          // 2D LIC is possible: --grid also takes NX,NY
+  bool looks = false;           // --look is offered (render, the app)
+  std::string lookName;         // applied before the other flags (preloadSession)
   // view flags (render and the viewer only)
   TextOption background, window, contrast, colorRange, clip, roiCenter, roiRotate, fog, fogColor;
+  TextOption colormap, transferFunction, clipPlane, windowPercentiles;
+  CLI::Option* colorBy = nullptr;  // to tell a given --color-by from the session's
+  CLI::Option* opacityBy = nullptr;
 };
 
 struct ComputeOptions {
@@ -74,16 +79,21 @@ CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
 // --session, the field and noise flags, the LIC flags, --field-precision, --time and
-// --time-steps. `planar`: the command makes 2D LIC (render2d), whose --field also takes the 2D
-// fields.
-void addInputOptions(CLI::App& app, SessionOptions& options, bool planar = false);
+// --time-steps. `planar`: the command makes 2D LIC (render2d, the app), whose --field also
+// takes the 2D fields; `volume`: it makes LIC volumes (not render2d), so --resolution applies.
+void addInputOptions(CLI::App& app, SessionOptions& options, bool planar = false,
+                     bool volume = true);
 void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defaultOutput);
+// --look NAME (core/look.h): applied by preloadSession before the other flags; the default
+// look when neither --look nor --session is given.
+void addLookOption(CLI::App& app, SessionOptions& options);
 // Every ViewParams flag.
 void addViewOptions(CLI::App& app, SessionOptions& options);
 // The picture flags of 2D LIC (render2d): the image size (into session.plane), the plane of a 3D
 // field, and the grey and colour flags of ViewParams.
 struct PlaneOptions {
-  TextOption slice;  // AXIS[:INDEX]
+  TextOption slice;    // AXIS[:INDEX]
+  TextOption oblique;  // --plane PX,PY,PZ,NX,NY,NZ
 };
 void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane);
 // Applies --slice to session.plane (InvalidInput naming the flag).

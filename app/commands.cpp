@@ -11,6 +11,7 @@
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
 #include "inputs/plane_inputs.h"
+#include "inputs/scalars.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
 #include "lic/analytic_fields.h"
@@ -116,6 +117,25 @@ RunSummary makeSummary(const char* command, const FieldSource& source,
   return summary;
 }
 
+// The fraction of the voxels that sparsity hid, reported on stderr and in the summary.
+void noteHiddenFraction(const GlobalOptions& global, const LicParams& lic,
+                        std::optional<double> hidden, RunSummary& summary) {
+  if (lic.sparsity.distribution == SparsityDistribution::None || !hidden) return;
+  summary.hiddenFraction = hidden;
+  if (global.quiet) return;
+  std::fprintf(
+      stderr, "lic3d: sparsity (%s%s) hid %.1f %% of the voxels\n",
+      std::string(enumName(lic.sparsity.distribution)).c_str(),
+      lic.sparsity.amount > 0.0f ? (", amount " + formatNumber(lic.sparsity.amount)).c_str() : "",
+      100.0 * *hidden);
+}
+
+std::optional<double> hiddenFractionOf(const ScalarVolume& volume) {
+  if (volume.drawn.empty()) return std::nullopt;
+  const auto drawn = std::count(volume.drawn.begin(), volume.drawn.end(), 1);
+  return 1.0 - static_cast<double>(drawn) / static_cast<double>(volume.drawn.size());
+}
+
 void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_point start) {
   if (global.quiet) return;
   summary.seconds = secondsSince(start);
@@ -152,6 +172,38 @@ Result<void> writeComputeOutput(const ComputeOptions& options, const BatchOption
   return writeLicSlicePng(options.output, volume, slice, options.inputs.session);
 }
 
+// The scalars colour and opacity follow, when they are not the speed (inputs/scalars.h): loaded
+// only where the view uses them, once when both name the same one.
+struct ViewScalars {
+  std::optional<PointScalars> color;
+  std::optional<PointScalars> opacity;
+  VolumeScalars pointers() const {
+    return {color ? &*color : nullptr, opacity ? &*opacity : nullptr};
+  }
+};
+
+Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs) {
+  const ViewParams& view = session.view;
+  ViewScalars scalars;
+  if (view.color == ColorMode::Magnitude) {
+    LIC3D_TRY_ASSIGN(scalars.color, loadScalars(view.colorBy, "view.color_by", session, inputs));
+  }
+  const bool weighted = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
+                        !view.transfer.opacities.empty();
+  if (weighted && view.opacityBy == view.colorBy && view.color == ColorMode::Magnitude) {
+    scalars.opacity = scalars.color;
+  } else if (weighted) {
+    LIC3D_TRY_ASSIGN(scalars.opacity,
+                     loadScalars(view.opacityBy, "view.opacity_by", session, inputs));
+  }
+  return scalars;
+}
+
+Result<void> setViewScalars(LicRenderer& renderer, const ViewScalars& scalars) {
+  return renderer.setScalars(scalars.color ? &*scalars.color : nullptr,
+                             scalars.opacity ? &*scalars.opacity : nullptr);
+}
+
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
 Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& options,
                           const BatchOptions& batch, const FramePlan& plan, SessionInputs& inputs,
@@ -165,10 +217,20 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   if (plan.animation != Animation::Bias && plan.animation != Animation::Time)
     LIC3D_TRY(makeLicVolume(options, inputs, session.lic, renderer, global.quiet));
 
+  LIC3D_TRY_ASSIGN(ViewScalars scalars, loadViewScalars(session, inputs));
+  LIC3D_TRY(setViewScalars(renderer, scalars));
+  const bool derivedPerFrame =
+      inputs.sampled && (scalars.color || scalars.opacity) && plan.animation == Animation::Time;
+
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
   for (int frame = plan.first; frame < plan.end; ++frame) {
     const Session frameParams = frameSession(session, plan, frame);
     LIC3D_TRY(moveToTime(inputs, session, frameParams.time, renderer, false, options.cpu));
+    if (derivedPerFrame && frame > plan.first) {
+      // An analytic field sampled at each time: its vorticity or helicity changes with it.
+      LIC3D_TRY_ASSIGN(scalars, loadViewScalars(session, inputs));
+      LIC3D_TRY(setViewScalars(renderer, scalars));
+    }
     LIC3D_TRY(makeLicVolume(options, inputs, frameParams.lic, renderer, true));
     LIC3D_TRY_ASSIGN(const RgbaImage image, renderer.render(frameParams.lic, frameParams.view));
     const std::string path = animated ? framePath(plan.output, frame) : plan.output;
@@ -193,8 +255,8 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       blend = std::move(host);
     }
     const VectorField& field = blend ? *blend : inputs.field;
-    const RgbaVolume rgba =
-        colourLicVolume(lic, field, session.view, renderer.volumeFacts().transfer());
+    const RgbaVolume rgba = colourLicVolume(lic, field, session.view,
+                                            renderer.volumeFacts().transfer(), scalars.pointers());
     LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
     outputs.push_back(batch.rgbaVolume);
   }
@@ -323,7 +385,8 @@ int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
                                                     0, [&](double f) { cpu.update(f); }));
       }
       lic.geometry = imageGeometry(inputs->field, inputs->noise.dims);
-      const RgbaImage image = colourLic2D(lic, inputs->field, frameParams.view);
+      const RgbaImage image =
+          colourLic2D(lic, inputs->field, frameParams.view, inputs->source.outside);
       const std::string path = animated ? framePath(plan->output, frame) : plan->output;
       LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams));
       LIC3D_TRY(writePng(path, image, text));
@@ -436,6 +499,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
                    fieldText(session.field, *inputs).c_str());
+    noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
     summary.device = "CPU reference";
     printSummary(global, summary, start);
     return kExitOk;
@@ -457,10 +521,12 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
     Result<ScalarVolume> volume =
         done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
-    if (volume)
+    if (volume) {
       done = writeComputeOutput(options, batch, *volume);
-    else
+      if (done) noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
+    } else {
       done = volume.error();
+    }
     if (!done)
       status = reportError(done.error());
     else if (!global.quiet)
@@ -524,6 +590,8 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
                    session.view.height, fieldText(session.field, *inputs).c_str(),
                    context->deviceInfo().name.c_str());
     }
+    if (done && renderer->volumeFacts().sparsity)
+      noteHiddenFraction(global, session.lic, 1.0 - renderer->volumeFacts().drawnFraction, summary);
   }
   status = finish(*context, status);
   if (status == kExitOk) {

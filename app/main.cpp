@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   CLI::App* renderCommand = app.add_subcommand(
       "render", "Compute a LIC volume and render it to a PNG image, or the frames of an animation");
   addComputeOptions(*renderCommand, render, "lic3d.png");
+  addLookOption(*renderCommand, render.inputs);
   addViewOptions(*renderCommand, render.inputs);
   addRenderBatchOptions(*renderCommand, renderBatch);
   renderCommand->footer(globalNote + summaryNote);
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
       "2D LIC (thesis chapter 3): a 2D field (circle, saddle, the time-varying wave, a 2D file) or "
       "a plane of a 3D field, white noise at the image's resolution, a PNG out; or the frames "
       "of a bias or time animation");
-  addInputOptions(*render2dCommand, render2d.inputs, true);
+  addInputOptions(*render2dCommand, render2d.inputs, true, false);
   render2dCommand->add_flag("--cpu", render2d.cpu,
                             "Compute the LIC image with the CPU reference instead of the GPU");
   render2d.output = "lic2d.png";

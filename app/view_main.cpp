@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   addGlobalOptions(app, global);
   SessionOptions inputs;
   addInputOptions(app, inputs, true);
+  addLookOption(app, inputs);
   addViewOptions(app, inputs);
 
   std::string mode = "3d";

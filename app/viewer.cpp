@@ -47,30 +47,73 @@ void App::updateCamera(const Input& in) {
     camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
 }
 
-// The box's edges and axis ranges (--axes) over the volume, in ImGui's background layer.
-void App::drawAxes() const {
+std::optional<LegendSpec> App::legendSpec() const {
+  const ViewParams& v = session_.view;
+  if (!session_.twoD) return renderer_->hasVolume() ? renderer_->legendFor(v) : std::nullopt;
+  if (!v.legend || v.color != ColorMode::Magnitude) return std::nullopt;
+  const float low = v.autoColorRange ? stats_.minMagnitude : v.colorLow;
+  const float high = v.autoColorRange ? stats_.maxMagnitude : v.colorHigh;
+  return LegendSpec{[v](float t) { return viewColor(v, t); }, low, high, legendTitle("speed", "")};
+}
+
+PictureLayout App::viewLayout() const {
+  const VkExtent2D extent = presenter_->extent();
+  const int width = static_cast<int>(extent.width) -
+                    static_cast<int>(panelWidth(ui_, static_cast<float>(extent.width)));
+  const std::optional<LegendSpec> legend = stopped_ ? std::nullopt : legendSpec();
+  return pictureLayout(std::max(width, 1), static_cast<int>(extent.height),
+                       legend ? &*legend : nullptr, session_.view.title);
+}
+
+// The box's edges and axis ticks (--axes) around the volume, in ImGui's background layer.
+void App::drawAxes(const PictureLayout& layout) const {
   if (!session_.view.axes || !renderer_->hasVolume() ||
       session_.view.stereo == StereoMode::SideBySide)
     return;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  if (display.x < 1.0f || display.y < 1.0f) return;
+  const glm::ivec4 area = layout.picture;
   const VolumeFacts facts = renderer_->volumeFacts();
-  const SliceFrame frame = makeSliceFrame(session_.view, facts, Eye::Mono, display.x / display.y);
-  const BoxAxes axes =
-      projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims, facts.geometry,
-                     static_cast<int>(display.x), static_cast<int>(display.y));
+  const SliceFrame frame = makeSliceFrame(session_.view, facts, Eye::Mono,
+                                          static_cast<float>(area.z) / static_cast<float>(area.w));
+  const BoxAxes axes = projectBoxAxes(frame.camera, session_.view.camera.orthographic,
+                                      frame.halfExtent, facts.dims, facts.geometry, area);
   const glm::vec3 bg = session_.view.background;
   const bool dark = 0.2126f * bg.r + 0.7152f * bg.g + 0.0722f * bg.b > 0.5f;
   const ImU32 line = dark ? IM_COL32(0, 0, 0, 160) : IM_COL32(255, 255, 255, 160);
   const ImU32 ink = dark ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float font = ImGui::GetFontSize();
   for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
+  for (const AxisTick& tick : axes.ticks) {
+    const glm::vec2 end = tick.at + 5.0f * tick.outward;
+    const ImVec2 size = ImGui::CalcTextSize(tick.text.c_str());
+    // The label's centre beyond the tick, far enough along the outward direction to clear it;
+    // a label that would leave the view (a close camera) is left out with its tick.
+    const glm::vec2 centre = end + (0.5f * std::abs(tick.outward.x) * size.x +
+                                    0.5f * std::abs(tick.outward.y) * size.y + 3.0f) *
+                                       tick.outward;
+    const glm::vec2 low = centre - 0.5f * glm::vec2(size.x, size.y);
+    if (low.x < static_cast<float>(area.x) || low.y < static_cast<float>(area.y) ||
+        low.x + size.x > static_cast<float>(area.x + area.z) ||
+        low.y + size.y > static_cast<float>(area.y + area.w))
+      continue;
+    draw->AddLine(ImVec2(tick.at.x, tick.at.y), ImVec2(end.x, end.y), ink);
+    draw->AddText(ImVec2(low.x, low.y), ink, tick.text.c_str());
+  }
   for (const AxisLabel& label : axes.labels) {
     const float width = ImGui::CalcTextSize(label.text.c_str()).x;
     const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f,
-                               2.0f, std::max(2.0f, display.x - width - 2.0f));
-    draw->AddText(ImVec2(x, label.at.y - 0.5f * ImGui::GetFontSize()), ink, label.text.c_str());
+                               static_cast<float>(area.x) + 2.0f,
+                               std::max(2.0f, static_cast<float>(area.x + area.z) - width - 2.0f));
+    draw->AddText(ImVec2(x, label.at.y - 0.5f * font), ink, label.text.c_str());
   }
+}
+
+void App::drawAnnotations(const PictureLayout& layout) const {
+  if (stopped_) return;
+  if (const std::optional<LegendSpec> legend = legendSpec())
+    drawLegend(*legend, layout.legend, session_.view.background);
+  drawTitle(session_.view.title, layout.title, session_.view.background);
+  if (!session_.twoD) drawAxes(layout);
 }
 
 void App::animate(double seconds) {
@@ -220,7 +263,15 @@ Result<bool> App::frame() {
   stats_.computeFraction = status.fraction;
   stats_.waitingForMask = status.waitingForMask;
   stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
-  if (!session_.twoD && !stopped_) drawAxes();
+  const VolumeFacts facts = renderer_->volumeFacts();
+  stats_.colorValues = facts.colorValues;
+  stats_.opacityValues = facts.opacityValues;
+  stats_.hiddenFraction =
+      facts.sparsity && renderer_->hasVolume()
+          ? static_cast<double>(renderer_->intensityStatistics().maskedVoxels) /
+                static_cast<double>(std::max<std::size_t>(voxelCount(facts.dims), 1))
+          : -1.0;
+  drawAnnotations(viewLayout());
   Actions actions = drawUi(session_, ui_, stats_);
   if (stopped_ && actions.dismissAlert) return false;  // the dialog's OK quits
   ImGui::Render();
@@ -258,6 +309,7 @@ Result<bool> App::frame() {
         (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
       startLoading(session_.field, session_.noise);
     LIC3D_TRY(updateTime());
+    LIC3D_TRY(updateScalars());
     if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
       if (auto r = renderer_->requestLic(session_.lic); !r) {
         stats_.message = uiMessage(r.error());
@@ -316,16 +368,20 @@ Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot) {
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
   if (f.timed) f.timer.begin(cmd, 1);
   beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
+  const glm::ivec4 picture = viewLayout().picture;
+  const VkRect2D area{
+      {picture.x, picture.y},
+      {static_cast<std::uint32_t>(picture.z), static_cast<std::uint32_t>(picture.w)}};
   const Result<void> drawn = session_.twoD || stopped_
                                  ? Result<void>()
                                  : renderer_->recordDraw(cmd, FramePresenter::kOffscreenFormat,
-                                                         extent, session_.view, 2 * slot);
+                                                         area, session_.view, 2 * slot);
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);
 
   if (session_.twoD && planeView_ && !stopped_) {
-    planeView_->record(cmd, offscreen.handle(), extent);  // leaves it ready for the blit
+    planeView_->record(cmd, offscreen.handle(), area);  // leaves it ready for the blit
   } else {
     imageBarrier(cmd, offscreen.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,

@@ -63,7 +63,13 @@ class App {
   Result<bool> frame();
   Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot);
   void updateCamera(const Input& in);
-  void drawAxes() const;
+  // Where the picture, its legend and its title go in the window: the part left of the panels.
+  PictureLayout viewLayout() const;
+  std::optional<LegendSpec> legendSpec() const;
+  void drawAxes(const PictureLayout& layout) const;
+  void drawAnnotations(const PictureLayout& layout) const;
+  // Colour and opacity follow the session's colorBy and opacityBy (loaded when they change).
+  Result<void> updateScalars();
   void animate(double seconds);
   Result<void> handleActions(const Actions& actions);
   void updatePlane();
@@ -108,6 +114,9 @@ class App {
   std::optional<std::pair<FieldSource, TimeDomain>> planeDomain_;
   FieldSource loadedField_;
   NoiseSource loadedNoise_;
+  // The inputs of the field shown (without the noise): colour-by scalars are made from them.
+  std::optional<SessionInputs> shownInputs_;
+  std::optional<std::pair<std::string, std::string>> shownScalars_;  // colour, opacity
   std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
   int exitStatus_ = cli::kExitOk;
   Soak soak_;

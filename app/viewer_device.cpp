@@ -18,6 +18,7 @@
 #include "core/slice_geometry.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/vk_check.h"
+#include "inputs/scalars.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"
 #include "lic/legend.h"
@@ -260,8 +261,40 @@ Result<void> App::finishLoading() {
   stats_.dims = grid.dims;
   stats_.minMagnitude = static_cast<float>(minMagnitude(grid));
   stats_.maxMagnitude = static_cast<float>(maxMagnitude(grid));
+  // Kept for the colour-by scalars, which the new field's are made from again.
+  shownInputs_ = std::move(loaded->inputs);
+  shownInputs_->noise = NoiseVolume();
+  stats_.scalarChoices = scalarChoices(*shownInputs_);
+  shownScalars_.reset();
+  LIC3D_TRY(updateScalars());
   if (series) return updateTime();
   return renderer_->requestLic(session_.lic);
+}
+
+Result<void> App::updateScalars() {
+  if (!shownInputs_ || stats_.loading) return {};
+  ViewParams& v = session_.view;
+  if (shownScalars_ && shownScalars_->first == v.colorBy && shownScalars_->second == v.opacityBy)
+    return {};
+  Result<std::optional<PointScalars>> color =
+      loadScalars(v.colorBy, "view.color_by", session_, *shownInputs_);
+  Result<std::optional<PointScalars>> opacity =
+      v.opacityBy == v.colorBy
+          ? color
+          : loadScalars(v.opacityBy, "view.opacity_by", session_, *shownInputs_);
+  if (!color || !opacity) {
+    stats_.message = uiMessage(!color ? color.error() : opacity.error());
+    // Back to what is shown (speed for a new field).
+    v.colorBy = shownScalars_ ? shownScalars_->first : "speed";
+    v.opacityBy = shownScalars_ ? shownScalars_->second : "speed";
+    if (shownScalars_) return {};
+  }
+  const auto pointer = [](const Result<std::optional<PointScalars>>& s) {
+    return s && s->has_value() ? &**s : nullptr;
+  };
+  LIC3D_TRY(renderer_->setScalars(pointer(color), pointer(opacity)));
+  shownScalars_.emplace(v.colorBy, v.opacityBy);
+  return {};
 }
 
 // Blends the field at the session's time (the loader reads missing steps on a worker thread);

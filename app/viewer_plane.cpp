@@ -76,7 +76,7 @@ Result<void> PlaneView::make(const Session& session) {
   // The app draws its own legend over the window.
   ViewParams view = session.view;
   view.legend = false;
-  const RgbaImage rgba = colourLic2D(lic_, field_, view);
+  const RgbaImage rgba = colourLic2D(lic_, field_, view, source_.outside);
 
   vkQueueWaitIdle(context_->queue());  // frames in flight read the old picture
   picture_ = Image();
@@ -102,19 +102,20 @@ Result<void> PlaneView::make(const Session& session) {
   return {};
 }
 
-void PlaneView::record(VkCommandBuffer cmd, VkImage target, VkExtent2D extent) const {
+void PlaneView::record(VkCommandBuffer cmd, VkImage target, VkRect2D area) const {
   imageBarrier(
       cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
       VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
       VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   if (picture_) {
     const VkExtent3D size = picture_.extent();
+    const VkExtent2D extent = area.extent;
     const double scale = std::min(static_cast<double>(extent.width) / size.width,
                                   static_cast<double>(extent.height) / size.height);
     const int width = std::max(1, static_cast<int>(size.width * scale));
     const int height = std::max(1, static_cast<int>(size.height * scale));
-    const int x0 = (static_cast<int>(extent.width) - width) / 2;
-    const int y0 = (static_cast<int>(extent.height) - height) / 2;
+    const int x0 = area.offset.x + (static_cast<int>(extent.width) - width) / 2;
+    const int y0 = area.offset.y + (static_cast<int>(extent.height) - height) / 2;
     VkImageBlit blit{};
     blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = {static_cast<std::int32_t>(size.width),

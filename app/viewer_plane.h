@@ -31,11 +31,13 @@ class PlaneView {
 
   // Records the picture over `target`, which holds the cleared background in
   // COLOR_ATTACHMENT_OPTIMAL and is left in TRANSFER_SRC_OPTIMAL.
-  void record(VkCommandBuffer cmd, VkImage target, VkExtent2D extent) const;
+  void record(VkCommandBuffer cmd, VkImage target, VkRect2D area) const;
 
   bool hasPicture() const { return static_cast<bool>(picture_); }
   // The picture as `lic3d render2d` writes it for `view` (with its legend), at the image's size.
-  RgbaImage image(const ViewParams& view) const { return colourLic2D(lic_, field_, view); }
+  RgbaImage image(const ViewParams& view) const {
+    return colourLic2D(lic_, field_, view, source_.outside);
+  }
   Dims fieldDims() const { return field_.dims; }
   Dims imageDims() const { return noise_.dims; }
   float minMagnitude() const { return minMagnitude_; }

@@ -4,13 +4,16 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/common.hpp>
 #include <map>
 #include <string_view>
 
 #include "core/colormap.h"
 #include "core/enum_names.h"
+#include "core/look.h"
 #include "core/parameter_ranges.h"
 #include "lic/analytic_fields.h"
 
@@ -192,12 +195,17 @@ void licPanel(Session& s) {
         "8-bit direction and noise, a quarter of the memory of float");
 }
 
-void sparsityPanel(Session& s) {
+void sparsityPanel(Session& s, const Stats& stats) {
   if (!ImGui::CollapsingHeader("Sparsity")) return;
   SparsityParams& p = s.lic.sparsity;
   combo("distribution", p.distribution,
         "Black points of the mask (thesis 5.1.4): a voxel whose streamline touches one is not "
         "drawn");
+  slider("amount", p.amount, ranges::kSparsityAmount, "%.2f");
+  tip("The fraction of voxels to hide, mapped to the distribution's points, radius or ratio "
+      "(0: the distribution's own parameters below)");
+  if (stats.hiddenFraction >= 0.0)
+    ImGui::Text("the mask hides %.1f %% of the voxels", 100.0 * stats.hiddenFraction);
   ImGui::InputInt("points", &p.points, 1000, 10000);
   nameWidget(ranges::kSparsityPoints.key, "points");
   p.points = std::max(p.points, 0);
@@ -211,12 +219,47 @@ void sparsityPanel(Session& s) {
   tip("Seed of the random distributions");
 }
 
+// A look sets many parameters at once (core/look.h); a look that changes the noise reads it
+// again.
+void lookPanel(Session& session, UiState& ui, Actions& actions) {
+  Look look = session.look;
+  if (!combo("look", look,
+             "dense: the thesis' opaque block; see-through: colour and opacity by speed, empty "
+             "space clear; streamlines: seed noise, lit lines; sparse: a Poisson-disk mask "
+             "hides half of the streamlines"))
+    return;
+  applyLook(look, session);
+  if (!(ui.pendingNoise == session.noise)) {
+    ui.pendingNoise = session.noise;
+    actions.reloadField = true;
+  }
+}
+
+// Colour or opacity by speed, a derived quantity or a point scalar of the field's file.
+void scalarCombo(const char* label, std::string& value, const Stats& stats, const char* help) {
+  if (ImGui::BeginCombo(label, value.c_str())) {
+    for (const std::string& name : stats.scalarChoices)
+      if (ImGui::Selectable(name.c_str(), name == value)) value = name;
+    ImGui::EndCombo();
+  }
+  tip(help);
+}
+
 void colourPanel(ViewParams& v, const Stats& stats) {
   if (!ImGui::CollapsingHeader("Colour and opacity", ImGuiTreeNodeFlags_DefaultOpen)) return;
   slider("alpha", v.alpha, ranges::kAlpha);
   tip("Opacity per voxel of depth, corrected for the slice spacing (thesis 5.1.1)");
+  slider("optical depth", v.opticalDepth, ranges::kOpticalDepth, "%.2f");
+  tip("Chooses alpha from the data so that a ray through the volume meets this optical depth "
+      "(0: alpha above)");
   combo("opacity", v.opacityMode, "constant alpha, or alpha x grey (dark gaps turn clear)");
-  combo("color", v.color, "Colour by |v|, modulated by the LIC intensity (thesis 5.1.2)");
+  combo("color", v.color, "Colour by a scalar, modulated by the LIC intensity (thesis 5.1.2)");
+  nameWidget("view.color_by", "color by");
+  scalarCombo("color by", v.colorBy, stats,
+              "speed |v|, vorticity |curl v|, helicity v . curl v, or a scalar of the file");
+  nameWidget("view.opacity_by", "opacity by");
+  scalarCombo("opacity by", v.opacityBy, stats,
+              "The scalar the magnitude opacity and the opacity transfer function follow");
   combo("colormap", v.colormap, "The thesis' blue-yellow-red, viridis, or cool-warm");
   ImGui::Checkbox("auto range", &v.autoColorRange);
   tip("Colour range from the field's min and max |v|");
@@ -227,13 +270,19 @@ void colourPanel(ViewParams& v, const Stats& stats) {
     tip("|v| at the two ends of the colour map");
   }
   ImGui::Checkbox("legend", &v.legend);
-  tip("Show the colour legend");
+  tip("Show the colour legend beside the volume");
   ImGui::Checkbox("axes", &v.axes);
   tip("The box's edges, each axis labelled with its physical range (origin, spacing)");
   slider("magnitude opacity", v.magnitudeOpacity, ranges::kMagnitudeOpacity);
   tip("Opacity x (normalised |v|)^E: slow regions fade (thesis 5.1.3); 0 is off");
   slider("threshold", v.magnitudeThreshold, ranges::kMagnitudeThreshold);
   tip("Voxels whose normalised |v| is below this vanish");
+  ImGui::Checkbox("percentile window", &v.percentileWindow);
+  tip("LIC values mapped to black..white between two percentiles of the drawn voxels' values "
+      "(sparse volumes, seed noise)");
+  if (v.percentileWindow)
+    interval("percentiles", v.windowPercentiles.x, v.windowPercentiles.y, 0.002f,
+             ranges::kWindowPercentiles);
   ImGui::Checkbox("contrast stretch", &v.contrast);
   tip("Stretch the drawn voxels' LIC values to mean 0.5 and deviation 0.25");
   ImGui::Checkbox("manual window", &v.manualWindow);
@@ -248,6 +297,7 @@ void colourPanel(ViewParams& v, const Stats& stats) {
   tip("Added to grey values");
   ImGui::ColorEdit3("background", &v.background.x);
   tip("Background colour");
+  text("title", v.title, "A title above the picture (empty: none)");
 }
 
 void localPanel(ViewParams& v) {
@@ -336,63 +386,28 @@ void filesPanel(UiState& ui, Actions& actions) {
   tip("The volume alone at this size, as `lic3d render` would make it");
 }
 
-void statsOverlay(const Stats& stats) {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
-  // Wide enough from the first frame: an auto-sized window trails its text by a frame.
-  ImGui::SetNextWindowSizeConstraints(ImVec2(ImGui::GetFontSize() * 30.0f, 0.0f),
-                                      ImVec2(10000.0f, 10000.0f));
-  ImGui::SetNextWindowBgAlpha(0.5f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings |
-                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
-                                 ImGuiWindowFlags_NoMove;
-  if (ImGui::Begin("stats", nullptr, flags)) {
-    ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
-                stats.licMs, stats.frameMs);
-    ImGui::Text("%dx%dx%d volume, %.1f MiB on the device", stats.dims.x, stats.dims.y, stats.dims.z,
-                stats.volumeMiB);
-    ImGui::Text("%s", stats.device.c_str());
-    if (stats.loading) ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "loading the field...");
-    if (stats.waitingForMask)
-      ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "making the sparsity mask...");
-    else if (stats.computing)
-      ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "computing LIC %3.0f %%",
-                         100.0 * stats.computeFraction);
-    if (!stats.message.empty()) {
-      // A fixed wrap width: TextWrapped would wrap at the auto-sized window's previous width.
-      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
-      ImGui::TextUnformatted(stats.message.c_str());
-      ImGui::PopTextWrapPos();
-    }
-  }
-  ImGui::End();
+// The app's state at the top of the panel: speed, the volume, the device, work in progress and
+// the last message.
+void statusSection(const Stats& stats) {
+  ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
+              stats.licMs, stats.frameMs);
+  ImGui::Text("%dx%dx%d volume, %.1f MiB on the device", stats.dims.x, stats.dims.y, stats.dims.z,
+              stats.volumeMiB);
+  ImGui::TextUnformatted(stats.device.c_str());
+  if (stats.loading) ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "loading the field...");
+  if (stats.waitingForMask)
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "making the sparsity mask...");
+  else if (stats.computing)
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "computing LIC %3.0f %%",
+                       100.0 * stats.computeFraction);
+  if (!stats.message.empty()) ImGui::TextWrapped("%s", stats.message.c_str());
+  ImGui::Separator();
 }
 
-void legend(const ViewParams& v, const Stats& stats) {
-  if (!v.legend || v.color != ColorMode::Magnitude) return;
-  const float low = v.autoColorRange ? stats.minMagnitude : v.colorLow;
-  const float high = v.autoColorRange ? stats.maxMagnitude : v.colorHigh;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImDrawList* draw = ImGui::GetForegroundDrawList();
-  // At the left edge, below the stats: the panels take the right edge.
-  const float x0 = 24.0f, x1 = x0 + 18.0f;
-  const float y0 = std::max(display.y * 0.3f, 130.0f), y1 = std::max(display.y * 0.8f, y0 + 40.0f);
-  const int steps = 64;
-  for (int i = 0; i < steps; ++i) {
-    const float t0 = static_cast<float>(i) / steps, t1 = static_cast<float>(i + 1) / steps;
-    const glm::vec3 c = sampleColormap(v.colormap, 1.0f - 0.5f * (t0 + t1));
-    draw->AddRectFilled(ImVec2(x0, y0 + t0 * (y1 - y0)), ImVec2(x1, y0 + t1 * (y1 - y0)),
-                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
-  }
-  draw->AddRect(ImVec2(x0, y0), ImVec2(x1, y1), IM_COL32_WHITE);
-  char label[32];
-  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(high));
-  draw->AddText(ImVec2(x1 + 4, y0 - 7), IM_COL32_WHITE, label);
-  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(0.5f * (low + high)));
-  draw->AddText(ImVec2(x1 + 4, 0.5f * (y0 + y1) - 7), IM_COL32_WHITE, label);
-  std::snprintf(label, sizeof label, "%.3g", static_cast<double>(low));
-  draw->AddText(ImVec2(x1 + 4, y1 - 7), IM_COL32_WHITE, label);
-  draw->AddText(ImVec2(x0, y0 - 24), IM_COL32_WHITE, "|v|");
+ImU32 inkFor(glm::vec3 background) {
+  const bool light =
+      0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b > 0.5f;
+  return light ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
 }
 
 void helpPanel(UiState& ui) {
@@ -438,23 +453,77 @@ void alertDialog(const Stats& stats, Actions& actions) {
   ImGui::End();
 }
 
+float panelWidth(const UiState& ui, float displayWidth) {
+  if (!ui.visible) return 0.0f;
+  return std::floor(std::min(380.0f, 0.45f * displayWidth));
+}
+
+void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background) {
+  if (area.z <= 0 || area.w <= 0) return;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImU32 ink = inkFor(background);
+  const float font = ImGui::GetFontSize();
+  const float x0 = static_cast<float>(area.x) + 0.5f * font, x1 = x0 + font;
+  const float y0 = static_cast<float>(area.y) + static_cast<float>(area.w) / 6.0f + 2.0f * font;
+  const float y1 = static_cast<float>(area.y + area.w) - static_cast<float>(area.w) / 6.0f;
+  if (y1 - y0 < 8.0f) return;
+  const int steps = 64;
+  for (int i = 0; i < steps; ++i) {
+    const float t0 = static_cast<float>(i) / steps, t1 = static_cast<float>(i + 1) / steps;
+    const glm::vec3 c = glm::clamp(legend.color(1.0f - 0.5f * (t0 + t1)), 0.0f, 1.0f);
+    draw->AddRectFilled(ImVec2(x0, y0 + t0 * (y1 - y0)), ImVec2(x1, y0 + t1 * (y1 - y0)),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+  }
+  draw->AddRect(ImVec2(x0 - 1, y0 - 1), ImVec2(x1 + 1, y1 + 1), ink);
+  const float right = static_cast<float>(area.x + area.z) - 2.0f;
+  char label[32];
+  for (const double tick : niceTicks(legend.low, legend.high, 6)) {
+    const float t = legend.high > legend.low
+                        ? static_cast<float>((tick - legend.low) / (legend.high - legend.low))
+                        : 0.0f;
+    const float y = y1 - t * (y1 - y0);
+    std::snprintf(label, sizeof label, "%.4g", tick);
+    draw->AddLine(ImVec2(x1, y), ImVec2(x1 + 4, y), ink);
+    const float width = ImGui::CalcTextSize(label).x;
+    draw->AddText(ImVec2(std::min(x1 + 6, right - width), y - 0.5f * font), ink, label);
+  }
+  const float width = ImGui::CalcTextSize(legend.title.c_str()).x;
+  draw->AddText(
+      ImVec2(std::max(static_cast<float>(area.x), std::min(x0, right - width)), y0 - 2.0f * font),
+      ink, legend.title.c_str());
+}
+
+void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background) {
+  if (title.empty() || area.z <= 0) return;
+  const ImVec2 size = ImGui::CalcTextSize(title.c_str());
+  ImGui::GetBackgroundDrawList()->AddText(
+      ImVec2(static_cast<float>(area.x) + 0.5f * (static_cast<float>(area.z) - size.x),
+             static_cast<float>(area.y) + 0.5f * (static_cast<float>(area.w) - size.y)),
+      inkFor(background), title.c_str());
+}
+
 Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
   Actions actions;
-  legend(session.view, stats);
   alertDialog(stats, actions);
   if (!ui.visible) return actions;
-  statsOverlay(stats);
   helpPanel(ui);
+  // Docked at the right, the full height: the volume is drawn in what is left (viewer.cpp).
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 380.0f, 10.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(370.0f, display.y - 20.0f), ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("lic3d")) {
-    ImGui::PushItemWidth(180.0f);
+  const float width = panelWidth(ui, display.x);
+  ImGui::SetNextWindowPos(ImVec2(display.x - width, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, display.y), ImGuiCond_Always);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                 ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
+  if (ImGui::Begin("lic3d", nullptr, flags)) {
+    ImGui::PushItemWidth(std::min(180.0f, 0.45f * width));
+    statusSection(stats);
+    if (!session.twoD) lookPanel(session, ui, actions);
     fieldPanel(session, ui, actions);
     timePanel(session, ui, stats);
     licPanel(session);
-    if (!session.twoD) sparsityPanel(session);
+    if (!session.twoD) sparsityPanel(session, stats);
     colourPanel(session.view, stats);
+    if (!session.twoD) transferFunctionPanel(session.view, ui, stats);
     if (!session.twoD) {
       localPanel(session.view);
       depthPanel(session.view);

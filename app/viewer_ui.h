@@ -3,10 +3,15 @@
 // stats overlay, the colour legend and the help panel. Panels edit the session in place; the
 // caller compares sessions to decide between reloading, recomputing and redrawing.
 
+#include <glm/vec4.hpp>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/session.h"
+#include "core/value_histogram.h"
+#include "lic/legend.h"
 
 namespace lic3d::viewer {
 
@@ -26,6 +31,12 @@ struct Stats {
   std::string alert;    // a refused request or a lost device, shown in a dialog until dismissed
   std::string alertTitle;
   float minMagnitude = 0.0f, maxMagnitude = 1.0f;
+  // What colour and opacity can follow (inputs/scalars.h), and the values of the ones they
+  // follow (the transfer function editor's histograms).
+  std::vector<std::string> scalarChoices;
+  std::shared_ptr<const ValueHistogram> colorValues;
+  std::shared_ptr<const ValueHistogram> opacityValues;
+  double hiddenFraction = -1.0;  // of the voxels, by the sparsity mask (< 0: no mask)
   // The field's time (docs/TIME.md): the slider runs over [0, timeEnd].
   bool timeDependent = false;
   bool timePeriodic = false;  // an analytic field: timeEnd is its period
@@ -57,7 +68,24 @@ struct UiState {
   int pendingTimeSteps = 0;   // steps of a time-dependent analytic field (0: the default)
   bool playingTime = false;   // time animation
   float timeSeconds = 20.0f;  // seconds for the whole time range
+  std::string transferPath = "lic3d-transfer.json";  // a ParaView colour-map preset
+  int selectedColorPoint = -1;                       // of the transfer function editor
+  std::string transferMessage;                       // the preset last loaded or saved
 };
+
+// The panels are docked at the right, the full height of the window; the picture takes the
+// rest. Their width in pixels for a window `displayWidth` wide (0 while hidden).
+float panelWidth(const UiState& ui, float displayWidth);
+
+// The legend (its colour bar, ticks and title) and the title drawn by ImGui into the rectangles
+// of a PictureLayout (x, y, width, height in pixels), in the ink that stands out from
+// `background`.
+void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background);
+void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background);
+
+// The transfer function editor (viewer_transfer.cpp): colour and opacity control points over a
+// histogram of their scalar, a preset file to load or save.
+void transferFunctionPanel(ViewParams& view, UiState& ui, const Stats& stats);
 
 // An error for the panels: the widget's label in place of the parameter's session key
 // (Error::parameter), e.g. "'step h' must be in [0.001, 8], got 9".

@@ -4,15 +4,16 @@
 // the noise along it with the kernel's weights. Integrator, kernel, noise filter and direction
 // mode are specialization constants, so each variant compiles to a branch-free loop.
 #extension GL_GOOGLE_include_directive : require
+#include "lic_kernel.h"
 #include "shared_layout.h"
 
 layout(local_size_x_id = kLicConstLocalSizeX, local_size_y_id = kLicConstLocalSizeY,
        local_size_z_id = kLicConstLocalSizeZ) in;
 
-layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2, 2 rk4
-layout(constant_id = kLicConstKernel) const uint KERNEL = 0;            // 0 box, 1 hann, 2 gauss
-layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nearest, 1 trilinear
-layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
+layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = 1;     // 0 euler, 1 rk2, 2 rk4
+layout(constant_id = kLicConstKernel) const uint KERNEL = 0;             // 0 box, 1 hann, 2 gauss
+layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1;  // 0 nearest, 1 trilinear
+layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;       // 0 u/|u|, 1 u/max|u|
 // Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
 layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
 // 0 exact: every RK2 step of h fetches its midpoint and its end (two fetches per sample).
@@ -77,13 +78,28 @@ float noiseAt(vec3 x, vec4 texel) {
   return texel.w;
 }
 
-// Whether the sample at x lies in a black voxel of the mask (the voxel nearest to x).
+// Whether the sample at x lies in a black voxel of the mask (the voxel nearest to x); beyond the
+// grid, the mask's random continuation (lic_kernel.h).
 bool touchesBlack(vec3 x) {
-  return SPARSITY != 0 && texelFetch(sparsityMask, ivec3(floor(x + 0.5)), 0).r != 0u;
+  if (SPARSITY == 0) return false;
+  ivec3 v = ivec3(floor(x + 0.5));
+  if (all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, pc.dims.xyz)))
+    return texelFetch(sparsityMask, v, 0).r != 0u;
+  uvec3 w = uvec3(v) + pc.maskBeyond.xyz;
+  return licBlackBeyondGrid(w.x, w.y, w.z, pc.maskSeed, pc.maskBeyond.w);
 }
 
 #define LIC_VEC vec3
 #include "lic_streamline.glsl"
+
+// For the mask alone, a streamline that left the grid at `outside` goes on straight by `step`
+// for the steps it had left (lic_reference.h, StreamlineExit): boundary streamlines then touch as
+// many mask voxels as interior ones.
+bool exitTouchesBlack(vec3 outside, vec3 step, int stepsLeft) {
+  for (int k = 0; k <= stepsLeft; ++k)
+    if (touchesBlack(outside + float(k) * step)) return true;
+  return false;
+}
 
 bool outsideGrid(vec3 x) {
   return any(lessThan(x, vec3(0.0))) || any(greaterThan(x, vec3(pc.dims.xyz - 1)));
@@ -118,6 +134,7 @@ void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
   }
   // Outside the grid the streamline ends; outside samples are never clamped back in.
   if (outsideGrid(x)) {
+    if (SPARSITY != 0 && exitTouchesBlack(x, w.sh * w.d, w.steps - i)) masked = true;
     w.alive = false;
     return;
   }

@@ -1,5 +1,6 @@
-// The LIC kernel weights, one formula for GLSL and C++: lic.comp and lic2d.comp include it, and
-// so does the CPU reference (core/lic_params.h, kernelWeight), in double precision there.
+// The LIC kernel weights and the sparsity mask beyond the grid, one formula for GLSL and C++:
+// lic.comp and lic2d.comp include it, and so do the CPU reference (core/lic_params.h,
+// kernelWeight, in double precision there) and lic/sparsity.h.
 #ifndef LIC3D_LIC_KERNEL_H
 #define LIC3D_LIC_KERNEL_H
 
@@ -30,6 +31,29 @@ LIC3D_INLINE LIC3D_REAL licKernelWeight(LIC3D_UINT kernel, int i, LIC3D_REAL han
     return exp(-0.5 * t * t);
   }
   return 1.0;
+}
+
+// Beyond the grid the sparsity mask goes on with voxels black at random with the mask's own black
+// fraction, so that streamlines that leave the grid are hidden as often as interior ones
+// (docs/LIC_SEMANTICS.md, Sparsity). lowbias32 (C. Wellons, 2018): a 32-bit integer hash whose
+// bits are close to independent.
+LIC3D_INLINE LIC3D_UINT licHashMix(LIC3D_UINT h) {
+  h ^= h >> 16u;
+  h *= 0x7feb352du;
+  h ^= h >> 15u;
+  h *= 0x846ca68bu;
+  h ^= h >> 16u;
+  return h;
+}
+// Whether voxel (x, y, z) of the whole grid's coordinates (the bit patterns of the signed
+// indices), outside the grid, is black: its hash with the mask's seed falls below threshold =
+// black fraction * 2^32.
+LIC3D_INLINE bool licBlackBeyondGrid(LIC3D_UINT x, LIC3D_UINT y, LIC3D_UINT z, LIC3D_UINT seed,
+                                     LIC3D_UINT threshold) {
+  LIC3D_UINT h = licHashMix(seed ^ x);
+  h = licHashMix(h ^ y);
+  h = licHashMix(h ^ z);
+  return h < threshold;
 }
 
 #undef LIC3D_REAL

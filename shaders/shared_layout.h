@@ -50,16 +50,26 @@ struct LicPushConstants {
   float gaussScale;       // 1 / (0.5 L), 0 when L = 0
   float pad0;
   float pad1;
+  // The sparsity mask beyond the grid (lic_kernel.h): xyz the grid's offset in the whole grid
+  // (a piece's; the bit patterns of signed ints), w the black threshold; maskSeed below.
+  uvec4 maskBeyond;
+  uint maskSeed;
+  uint pad2;
+  uint pad3;
+  uint pad4;
 };
 
 // ---- LIC histogram (auto contrast window) ------------------------------------------------------
 LIC3D_CONST kHistogramBindingVolume = 0;  // sampler3D: the LIC volume
-LIC3D_CONST kHistogramBindingCounts = 1;  // buffer of kHistogramBins uints
+LIC3D_CONST kHistogramBindingCounts = 1;  // kHistogramBins uints, then the masked voxels
+LIC3D_CONST kHistogramBindingField = 2;   // sampler3D: the field texture (volume_textures.h)
 LIC3D_CONST kHistogramBins = 1024;
 LIC3D_CONST kHistogramLocalSize = 256;
 
 struct HistogramPushConstants {
-  ivec4 dims;
+  ivec4 dims;            // xyz: the grid; w: the field texture's packing (kLicConstPacking)
+  vec4 texelToPhysical;  // xyz: a field texel's xyz times this is the physical vector;
+                         // w: voxels slower than this (physical |v|) are empty, not counted
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
@@ -67,13 +77,15 @@ LIC3D_CONST kSliceBindingVolume = 0;      // sampler3D: the LIC volume (r = LIC,
 LIC3D_CONST kSliceBindingField = 1;       // sampler3D: the field texture (volume_textures.h)
 LIC3D_CONST kSliceBindingColormap = 2;    // sampler2D: one row per colour map
 LIC3D_CONST kSliceBindingUniforms = 3;    // uniform SliceUniforms
+LIC3D_CONST kSliceBindingScalars = 4;     // sampler3D RG16F: colour and opacity scalars
 LIC3D_CONST kSliceVerticesPerSlice = 12;  // a convex polygon of up to 6 corners as 4 triangles
 
 // Specialization constant ids of the slice pipeline (see SliceSpecialization in slice_pass.h).
 LIC3D_CONST kSliceConstOpacityMode = 0;       // 0 constant alpha, 1 alpha * grey
 LIC3D_CONST kSliceConstOrthographic = 1;      // 0 perspective, 1 orthographic
 LIC3D_CONST kSliceConstColorMode = 2;         // 0 grey, 1 colour by magnitude
-LIC3D_CONST kSliceConstColormap = 3;          // row of the colour map table
+LIC3D_CONST kSliceConstColormap = 3;          // row of the colour map table (core/colormap.h)
+LIC3D_CONST kSliceCustomColormapRow = 3;      // the transfer function's row: kCustomColormapRow
 LIC3D_CONST kSliceConstMagnitudeOpacity = 4;  // 0 off, 1 alpha * normalised magnitude ^ exponent
 LIC3D_CONST kSliceConstSparsity = 5;          // 0 off, 1 alpha * the LIC volume's mask channel
 LIC3D_CONST kSliceConstRoiShape = 6;          // 0 none, 1 sphere, 2 cube, 3 cylinder
@@ -83,6 +95,10 @@ LIC3D_CONST kSliceConstLighting = 9;          // 0 none, 1 Phong with TNB normal
 LIC3D_CONST kSliceConstFilter = 10;           // 0 nearest voxel, 1 trilinear
 LIC3D_CONST kSliceConstAnaglyph = 11;         // 0 colour, 1 left eye (red), 2 right eye (cyan)
 LIC3D_CONST kSliceConstFieldPacking = 12;     // the field texture's packing (kLicConstPacking)
+LIC3D_CONST kSliceConstOpacityTable = 13;     // 0 magnitude opacity, 1 the custom table row's alpha
+LIC3D_CONST kSliceConstClipPlane = 14;        // 0 off, 1 discard where dot(p - point, n) > 0
+LIC3D_CONST kSliceConstColorSource = 15;      // colour scalar: 0 |v| (field texture), 1 scalars.r
+LIC3D_CONST kSliceConstOpacitySource = 16;    // opacity scalar: 0 |v|, 1 scalars.g
 
 // One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
 struct SliceUniforms {
@@ -99,7 +115,10 @@ struct SliceUniforms {
   vec4 transfer;          // grey = clamp(x * intensity + y); z: reference distance; w: unused
   vec4 magnitude;         // x: low end of the colour range (physical |v|), y: 1 / (high - low),
                           // zw: unused
-  vec4 magnitudeOpacity;  // x: exponent, y: threshold (normalised magnitude), zw: unused
+  vec4 magnitudeOpacity;  // x: exponent, y: threshold (normalised magnitude), z: low end of the
+                          // opacity range, w: 1 / its width
+  vec4 clipPlane;         // xyz: unit normal in world units, w: its offset (kept: dot(n, p) <= w)
+  vec4 scalarRange;       // value = min + t * span of the scalar texture: x, y colour; z, w opacity
   vec4 fog;               // x: distance where fog starts, y: 1 / (end - start), zw: unused
   vec4 fogColor;          // rgb
   vec4 light;             // xyz: unit direction towards the light; w: specular exponent
@@ -107,7 +126,7 @@ struct SliceUniforms {
   vec4 voxelSize;         // xyz: one voxel in world units (texel xyz, in voxel units, times this
                           // points along the flow in world space); w: unused
   vec4 texelToPhysical;   // xyz: a field texel's xyz times this is the physical vector; w: unused
-  uvec4 modes[3];         // the 12 display-mode specialization constants in order, read only by the
+  uvec4 modes[4];         // the display-mode specialization constants in order, read only by the
                           // benchmark's runtime-mode build of slice.frag
 };
 
@@ -160,10 +179,10 @@ struct LerpPushConstants {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(LicPushConstants) == 64);
+static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(LerpPushConstants) == 48);
-static_assert(sizeof(SliceUniforms) == 2 * 64 + 18 * 16);
+static_assert(sizeof(SliceUniforms) == 2 * 64 + 21 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif

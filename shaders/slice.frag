@@ -9,6 +9,7 @@ layout(set = 0, binding = kSliceBindingVolume) uniform sampler3D licVolume;
 layout(set = 0, binding = kSliceBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kSliceBindingColormap) uniform sampler2D colormaps;
 layout(set = 0, binding = kSliceBindingUniforms, std140) uniform Uniforms { SliceUniforms u; };
+layout(set = 0, binding = kSliceBindingScalars) uniform sampler3D scalars;
 
 #ifdef LIC3D_RUNTIME_MODES
 // Built only for `lic3d bench --variants`: the same shader deciding every mode at run time, the
@@ -25,6 +26,10 @@ layout(set = 0, binding = kSliceBindingUniforms, std140) uniform Uniforms { Slic
 #define LIGHTING u.modes[2].y
 #define FILTER u.modes[2].z
 #define ANAGLYPH u.modes[2].w
+#define OPACITY_TABLE u.modes[3].x
+#define CLIP_PLANE u.modes[3].y
+#define COLOR_SOURCE u.modes[3].z
+#define OPACITY_SOURCE u.modes[3].w
 #else
 layout(constant_id = kSliceConstOpacityMode) const uint OPACITY_MODE = 1;
 layout(constant_id = kSliceConstOrthographic) const uint ORTHOGRAPHIC = 0;
@@ -38,6 +43,12 @@ layout(constant_id = kSliceConstFog) const uint FOG = 0;
 layout(constant_id = kSliceConstLighting) const uint LIGHTING = 0;
 layout(constant_id = kSliceConstFilter) const uint FILTER = 1;
 layout(constant_id = kSliceConstAnaglyph) const uint ANAGLYPH = 0;
+// Opacity from the transfer function's table (the custom row's alpha) instead of t^E.
+layout(constant_id = kSliceConstOpacityTable) const uint OPACITY_TABLE = 0;
+layout(constant_id = kSliceConstClipPlane) const uint CLIP_PLANE = 0;
+// What colour and opacity follow: 0 the speed |v| from the field texture, 1 the scalar texture.
+layout(constant_id = kSliceConstColorSource) const uint COLOR_SOURCE = 0;
+layout(constant_id = kSliceConstOpacitySource) const uint OPACITY_SOURCE = 0;
 #endif
 
 // Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
@@ -107,7 +118,15 @@ vec3 applyLighting(vec3 base, vec3 toEye) {
   return base * (ambient + diffuse * sinL) + vec3(specular * highlight);
 }
 
+// The colour table at t in [0,1]: texel centres at i / 255 of the range, so that t = 0 and 1
+// are the first and the last entry and the legend (core/colormap.h) matches.
+vec4 tableAt(float t, uint row) {
+  float v = (float(row) + 0.5) / float(textureSize(colormaps, 0).y);
+  return texture(colormaps, vec2((t * 255.0 + 0.5) / 256.0, v));
+}
+
 void main() {
+  if (CLIP_PLANE == 1 && dot(u.clipPlane.xyz, world) > u.clipPlane.w) discard;
   if (ROI_SHAPE != 0) {
     vec3 p = (u.roiFromTexture * vec4(texCoord, 1.0)).xyz;
     if (insideRegion(p) == (ROI_OUTSIDE == 1)) discard;
@@ -119,19 +138,33 @@ void main() {
   if (SPARSITY == 1) alpha *= lic.g;
 
   vec3 rgb = vec3(grey);
-  if (COLOR_MODE == 1 || MAGNITUDE_OPACITY == 1) {
-    // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
-    vec3 texel = texture(fieldTexture, texCoord).xyz;
-    if (FIELD_PACKING == 1) texel *= length(texel);  // e |e| = u / max|u|
-    float speed = length(texel * u.texelToPhysical.xyz);
-    float t = clamp((speed - u.magnitude.x) * u.magnitude.y, 0.0, 1.0);
+  if (COLOR_MODE == 1 || MAGNITUDE_OPACITY == 1 || OPACITY_TABLE == 1) {
+    float speed = 0.0;
+    if (COLOR_SOURCE == 0 || OPACITY_SOURCE == 0) {
+      // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
+      vec3 texel = texture(fieldTexture, texCoord).xyz;
+      if (FIELD_PACKING == 1) texel *= length(texel);  // e |e| = u / max|u|
+      speed = length(texel * u.texelToPhysical.xyz);
+    }
+    vec2 scalar = vec2(0.0);
+    if (COLOR_SOURCE == 1 || OPACITY_SOURCE == 1)
+      scalar = u.scalarRange.xz + texture(scalars, texCoord).rg * u.scalarRange.yw;
+    float colorValue = COLOR_SOURCE == 1 ? scalar.r : speed;
+    float opacityValue = OPACITY_SOURCE == 1 ? scalar.g : speed;
     if (COLOR_MODE == 1) {
       // The LIC intensity modulates the colour (thesis 5.1.2).
-      float row = (float(COLORMAP) + 0.5) / float(textureSize(colormaps, 0).y);
-      rgb = texture(colormaps, vec2(t, row)).rgb * grey;
+      float t = clamp((colorValue - u.magnitude.x) * u.magnitude.y, 0.0, 1.0);
+      rgb = tableAt(t, COLORMAP).rgb * grey;
     }
+    float o = clamp((opacityValue - u.magnitudeOpacity.z) * u.magnitudeOpacity.w, 0.0, 1.0);
     // Thesis 5.1.3: slow regions fade; below the threshold they vanish.
-    if (MAGNITUDE_OPACITY == 1) alpha *= t < u.magnitudeOpacity.y ? 0.0 : pow(t, u.magnitudeOpacity.x);
+    if (OPACITY_TABLE == 1) {
+      alpha *= tableAt(o, kSliceCustomColormapRow).a;
+    } else if (MAGNITUDE_OPACITY == 1) {
+      alpha *= o < u.magnitudeOpacity.y ? 0.0 : pow(o, u.magnitudeOpacity.x);
+    }
+    // A scalar with no value there (NaN in the file) is empty space.
+    if (isnan(colorValue) || isnan(opacityValue)) alpha = 0.0;
   }
 
   vec3 toEye = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : normalize(u.eyePosition.xyz - world);

@@ -128,37 +128,66 @@ ViewParams frontView(int size) {
   return view;
 }
 
-TEST_F(GpuTest, ColourByMagnitudeFollowsTheThesisRampWithALegend) {
+TEST_F(GpuTest, ColourByMagnitudeFollowsTheThesisRampWithALegendBesideTheVolume) {
   const Dims dims{16, 16, 16};
   const VectorField field = speedRamp(dims);
   LicRenderer renderer = rendererWithVolume(
       context(), dims, [](int, int, int) { return 1.0f; }, &field);
   ViewParams view = frontView(128);
-  view.width = 256;  // room for the legend beside the volume
+  view.width = 256;
   view.color = ColorMode::Magnitude;
   view.legend = true;
+  view.title = "ramp";
   const RgbaImage image = *renderer.render(LicParams{}, view);
-  int left = image.width, right = -1;
-  for (int x = 0; x < image.width / 2 + 40; ++x)
-    if (!isBackground(image.at(x, 64))) {
-      left = std::min(left, x);
-      right = std::max(right, x);
-    }
+  const PictureLayout layout = renderer.pictureLayoutFor(view);
+  // The legend has a column of its own right of the volume, the title a band above it.
+  ASSERT_GT(layout.legend.z, 0);
+  ASSERT_GT(layout.title.w, 0);
+  EXPECT_EQ(layout.picture.x + layout.picture.z, layout.legend.x);
+  int left = image.width, right = -1, top = image.height, bottom = -1;
+  for (int y = layout.picture.y; y < image.height; ++y)
+    for (int x = 0; x < layout.legend.x; ++x)
+      if (!isBackground(image.at(x, y))) {
+        left = std::min(left, x);
+        right = std::max(right, x);
+        top = std::min(top, y);
+        bottom = std::max(bottom, y);
+      }
   ASSERT_LT(left + 20, right);
-  const glm::u8vec4 slow = image.at(left + 4, 64), fast = image.at(right - 4, 64);
+  // Nothing of the volume under the title band.
+  for (int y = 0; y < layout.title.w; ++y)
+    for (int x = left; x <= right; ++x)
+      EXPECT_TRUE(isBackground(image.at(x, y)) || image.at(x, y).r == image.at(x, y).g)
+          << "a coloured pixel in the title band at " << x << "," << y;
+  const int row = (top + bottom) / 2;
+  const glm::u8vec4 slow = image.at(left + 4, row), fast = image.at(right - 4, row);
   EXPECT_GT(slow.b, 150) << "slow flow is blue";
   EXPECT_LT(slow.r, 100);
   EXPECT_GT(fast.r, 150) << "fast flow is red";
   EXPECT_LT(fast.b, 100);
-  // The legend bar right of the volume: red at its top (y = 32), blue at its bottom (y = 95).
+  // In the legend column: a bar red at its top and blue at its bottom, and white label text
+  // that stays inside the image.
+  int barTop = image.height, barBottom = -1, inkRight = -1;
+  for (int y = layout.legend.y; y < image.height; ++y)
+    for (int x = layout.legend.x; x < image.width; ++x) {
+      const glm::u8vec4 p = image.at(x, y);
+      if (p.r == 255 && p.g == 255 && p.b == 255) inkRight = std::max(inkRight, x);
+      if (std::max({p.r, p.g, p.b}) - std::min({p.r, p.g, p.b}) > 120) {
+        barTop = std::min(barTop, y);
+        barBottom = std::max(barBottom, y);
+      }
+    }
+  ASSERT_LT(barTop + 20, barBottom);
   bool redTop = false, blueBottom = false;
-  for (int x = right + 8; x < image.width; ++x) {
-    const glm::u8vec4 top = image.at(x, 34), bottom = image.at(x, 93);
-    redTop = redTop || (top.r > 200 && top.b < 60);
-    blueBottom = blueBottom || (bottom.b > 200 && bottom.r < 60);
+  for (int x = layout.legend.x; x < image.width; ++x) {
+    const glm::u8vec4 t = image.at(x, barTop + 1), b = image.at(x, barBottom - 1);
+    redTop = redTop || (t.r > 200 && t.b < 60);
+    blueBottom = blueBottom || (b.b > 200 && b.r < 60);
   }
   EXPECT_TRUE(redTop);
   EXPECT_TRUE(blueBottom);
+  EXPECT_GT(inkRight, layout.legend.x) << "no label text";
+  EXPECT_LT(inkRight, image.width - 2) << "a label reaches the image's edge";
 }
 
 TEST_F(GpuTest, MagnitudeOpacityFadesSlowRegions) {

@@ -271,7 +271,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --colormap jet",
       "render --color-range 1",
       "render --color-range 0.5,0.2",
-      "render --legend",  // a legend needs --color magnitude
+      "render --look dense --legend",  // a legend needs --color magnitude
       "render --magnitude-opacity -1",
       "render --magnitude-threshold 2",
       "render --clip 0,1,0,1",
@@ -405,8 +405,9 @@ TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
            "clip_min": [0.1, 0, 0], "fog": true, "background": [0.2, 0.1, 0]}
 })");
   const std::string flags =
-      "--field abc --grid 12,10,14 --seed 5 --length 6 --step 0.75 --bias 2 --kernel hann "
-      "--sparsity halton --sparsity-points 40 --sparsity-seed 3 --width 48 --height 40 "
+      "--look dense --field abc --grid 12,10,14 --seed 5 --length 6 --step 0.75 --bias 2 "
+      "--kernel hann --sparsity halton --sparsity-points 40 --sparsity-seed 3 --width 48 --height "
+      "40 "
       "--azimuth 70 --elevation -10 --alpha 0.5 --color magnitude --colormap viridis "
       "--clip 0.1,1,0,1,0,1 --fog 0,1 --background 0.2,0.1,0";
   ASSERT_EQ(run("render -q --session s.json -o from_session.png").status, 0);

@@ -200,7 +200,8 @@ TEST_F(CliTest, ComputeSliceWritesASixteenBitGreyPngWithTheParameters) {
 
 TEST_F(CliTest, EveryPngCarriesTheSessionThatMadeIt) {
   const CommandRun r =
-      run("render -q --field abc --grid 12,10,8 --seed 5 --length 6 --kernel hann --width 40 "
+      run("render -q --look dense --field abc --grid 12,10,8 --seed 5 --length 6 --kernel hann "
+          "--width 40 "
           "--height 32 --azimuth 70 --elevation -10 --color magnitude --colormap viridis "
           "--background 0.2,0.1,0 -o picture.png");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -233,7 +234,8 @@ TEST_F(CliTest, EveryPngCarriesTheSessionThatMadeIt) {
 TEST_F(CliTest, RgbaVolumeHoldsTheColourAndOpacityOfEachVoxel) {
   // --cpu: the LIC volume is the reference itself; --window 0,1: grey = the LIC value.
   const std::string flags =
-      "render -q --cpu --field abc --grid 10 --length 4 --width 16 --height 16 --window 0,1 "
+      "render -q --look dense --cpu --field abc --grid 10 --length 4 --width 16 --height 16 "
+      "--window 0,1 "
       "--alpha 0.5 --color magnitude ";
   ASSERT_EQ(run(flags + "--rgba-volume rgba.vti -o a.png").status, 0);
   ASSERT_EQ(run(flags + "--rgba-volume rgba.nrrd -o b.png").status, 0);
@@ -266,7 +268,7 @@ TEST_F(CliTest, RgbaVolumeHoldsTheColourAndOpacityOfEachVoxel) {
   // Grey without colour; with constant opacity A is alpha, or 0 where sparsity hides the voxel,
   // exactly where compute writes NaN.
   const std::string sparse = "--grid 10 --length 4 --sparsity hammersley --sparsity-points 30 ";
-  ASSERT_EQ(run("render -q " + sparse +
+  ASSERT_EQ(run("render -q --look dense " + sparse +
                 "--width 16 --height 16 --opacity constant --alpha 0.5 --rgba-volume grey.vti "
                 "-o c.png")
                 .status,

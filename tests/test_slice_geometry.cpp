@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <glm/glm.hpp>
+#include <string>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/slice_geometry.h"
@@ -76,16 +78,19 @@ TEST(Camera, ZUpAndVulkanClipSpace) {
   EXPECT_GT(right.x / right.w, 0.0f);
 }
 
-// --axes: the box's 12 edges on screen, each axis labelled with its physical range.
-TEST(BoxAxes, TwelveEdgesInsideTheFittedViewAndPhysicalRanges) {
+// --axes: the box's edges on screen but those behind the volume, each axis with ticks at round
+// values of its physical coordinate.
+TEST(BoxAxes, FrontEdgesInsideTheFittedViewAndTicksInThePhysicalRanges) {
   const Dims dims{47, 47, 47};
   GridGeometry geometry;
   geometry.spacing = {0.05, 0.05, 0.125};
   geometry.origin = {-1.15, -1.15, -0.375};
   const glm::vec3 half = boxHalfExtent(dims, geometry);
   const CameraMatrices camera = computeCamera(CameraParams{}, half, 1.0f);
-  const BoxAxes axes = projectBoxAxes(camera.viewProjection, half, dims, geometry, 400, 400);
-  ASSERT_EQ(axes.edges.size(), 12u);
+  const BoxAxes axes = projectBoxAxes(camera, false, half, dims, geometry, {0, 0, 400, 400});
+  // Seen from above a corner, three faces face the camera: the three edges that meet at the far
+  // corner lie behind the volume.
+  ASSERT_EQ(axes.edges.size(), 9u);
   for (const auto& [a, b] : axes.edges)
     for (glm::vec2 p : {a, b}) {
       EXPECT_GE(p.x, 0.0f);
@@ -94,11 +99,44 @@ TEST(BoxAxes, TwelveEdgesInsideTheFittedViewAndPhysicalRanges) {
       EXPECT_LE(p.y, 400.0f);
     }
   ASSERT_EQ(axes.labels.size(), 3u);
-  EXPECT_EQ(axes.labels[0].text, "x -1.15 .. 1.15");
-  EXPECT_EQ(axes.labels[1].text, "y -1.15 .. 1.15");
-  EXPECT_EQ(axes.labels[2].text, "z -0.375 .. 5.375");
-  // The z edge is tall: its label sits beside the box, away from the centre.
-  EXPECT_GT(std::abs(axes.labels[2].at.x - 200.0f), 20.0f);
+  EXPECT_EQ(axes.labels[0].text, "x");
+  EXPECT_EQ(axes.labels[2].text, "z");
+  const double first[3] = {-1.15, -1.15, -0.375}, last[3] = {1.15, 1.15, 5.375};
+  int perAxis[3] = {0, 0, 0};
+  for (const AxisTick& tick : axes.ticks) {
+    const double value = std::stod(tick.text);
+    ++perAxis[tick.axis];
+    EXPECT_GE(value, first[tick.axis] - 1e-9) << tick.text;
+    EXPECT_LE(value, last[tick.axis] + 1e-9) << tick.text;
+  }
+  for (const int n : perAxis) EXPECT_GE(n, 2);
+  EXPECT_GE(axes.ticks.size(), 6u);  // at least two per axis
+}
+
+// Every stroke of every character is drawn, however many strokes a label has: an 8 is a 3 with
+// its two left strokes (at x 0..1, y 1..3 and 4..6 of its cell), the last strokes stb emits.
+TEST(Legend, TextDrawsEveryStrokeOfALongLabel) {
+  RgbaImage image;
+  image.width = 200;
+  image.height = 20;
+  image.pixels.assign(4 * static_cast<std::size_t>(image.width) * image.height, 0);
+  const std::string label = "0.008888";
+  drawText(image, 0, 0, label, glm::u8vec4(255), 1);
+  // The last 8 starts where the text without it ends.
+  const int last = textWidth(label.substr(0, label.size() - 1), 1);
+  for (const int y : {1, 2, 4, 5})
+    EXPECT_EQ(image.at(last, y).r, 255) << "the last 8's left stroke at y " << y;
+}
+
+TEST(BoxAxes, NiceTicksAreRoundValuesInTheRange) {
+  EXPECT_EQ(niceTicks(0.0, 1.0, 6), (std::vector<double>{0.0, 0.2, 0.4, 0.6, 0.8, 1.0}));
+  EXPECT_EQ(niceTicks(-1.15, 1.15, 5), (std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}));
+  EXPECT_EQ(niceTicks(-1.15, 1.15, 2), (std::vector<double>{-1.0, 0.0, 1.0}));
+  EXPECT_EQ(niceTicks(0.0092, 0.0092, 5), (std::vector<double>{0.0092}));
+  for (const double v : niceTicks(3.7e-4, 9.1e-3, 6)) {
+    EXPECT_GE(v, 3.7e-4);
+    EXPECT_LE(v, 9.1e-3);
+  }
 }
 
 }  // namespace

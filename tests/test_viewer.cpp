@@ -81,26 +81,53 @@ bool lit(int r, int g, int b) { return r + g + b > 30; }
 // Dear ImGui's dark style: headers and the title bar are a saturated blue no LIC grey reaches.
 bool imguiBlue(int r, int g, int b) { return b > 100 && b > r + 50 && b > g + 20; }
 
-// Where the panels go (the right edge) and where the volume projects (the window's middle).
+// Where the panels go (docked at the right edge, 380 pixels wide in a 1024 window), where the
+// volume projects (the middle of what is left; the window's middle with the panels hidden), and
+// the stats at the top of the panel.
+constexpr int kPanelWidth = 380;
 const Box kPanel{kWidth - 300, 0, kWidth, kHeight / 2};
 const Box kVolume{kWidth / 2 - 60, kHeight / 2 - 60, kWidth / 2 + 60, kHeight / 2 + 60};
-const Box kStats{0, 0, 220, 50};
+constexpr int kViewCentre = (kWidth - kPanelWidth) / 2;
+const Box kDockedVolume{kViewCentre - 60, kHeight / 2 - 60, kViewCentre + 60, kHeight / 2 + 60};
+const Box kStats{kWidth - kPanelWidth, 20, kWidth, 70};
+
+// The columns [first, last] of the box that hold a lit pixel.
+std::pair<int, int> litColumns(const test::RgbaPixels& image, Box box) {
+  int first = box.x1, last = box.x0 - 1;
+  for (int y = box.y0; y < box.y1; ++y)
+    for (int x = box.x0; x < box.x1; ++x) {
+      const std::uint8_t* p = &image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)];
+      if (lit(p[0], p[1], p[2])) {
+        first = std::min(first, x);
+        last = std::max(last, x);
+      }
+    }
+  return {first, last};
+}
 
 TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
-  const CommandRun r = view("--grid 32 --frames 4 --screenshot shot.png");
+  // The dense look: an opaque block whose outline is easy to find.
+  const CommandRun r = view("--look dense --grid 32 --frames 4 --screenshot shot.png");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
   ASSERT_EQ(shot.height, kHeight);
 
-  EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9)
-      << "the volume should cover the window's middle";
+  EXPECT_GT(fraction(shot, kDockedVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9)
+      << "the volume should cover the middle of the view left of the panels";
+  // The panels are docked beside the volume, not over it: the volume is centred in what is left
+  // (within 20 pixels: the perspective box is not symmetric), not in the window (512).
+  const auto [first, last] =
+      litColumns(shot, {0, kHeight / 4, kWidth - kPanelWidth, kHeight * 3 / 4});
+  EXPECT_GT(first, 0);
+  EXPECT_LT(last, kWidth - kPanelWidth - 1);
+  EXPECT_NEAR(0.5 * (first + last), kViewCentre, 20.0) << first << ".." << last;
   // LIC, not a flat block: the grey values spread.
   double sum = 0, sum2 = 0;
   int n = 0;
-  for (int y = kVolume.y0; y < kVolume.y1; ++y)
-    for (int x = kVolume.x0; x < kVolume.x1; ++x, ++n) {
+  for (int y = kDockedVolume.y0; y < kDockedVolume.y1; ++y)
+    for (int x = kDockedVolume.x0; x < kDockedVolume.x1; ++x, ++n) {
       const double v = shot.rgba[4 * (static_cast<std::size_t>(y) * kWidth + x)];
       sum += v;
       sum2 += v * v;
@@ -108,13 +135,14 @@ TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
   const double deviation = std::sqrt(sum2 / n - (sum / n) * (sum / n));
   EXPECT_GT(deviation, 10.0) << "the volume looks flat: is the LIC texture there?";
   // Contrast stretch in effect: the volume is grey texture, not saturated white.
-  EXPECT_LT(fraction(shot, kVolume, [](int r_, int g, int b) { return r_ + g + b > 735; }), 0.2);
+  EXPECT_LT(fraction(shot, kDockedVolume, [](int r_, int g, int b) { return r_ + g + b > 735; }),
+            0.2);
 
   EXPECT_GT(fraction(shot, kPanel, imguiBlue), 0.02) << "the parameter panels are missing";
   EXPECT_GT(
       fraction(shot, kStats, [](int r_, int g, int b) { return r_ > 200 && g > 200 && b > 200; }),
       0.02)
-      << "the stats overlay's text is missing";
+      << "the stats' text is missing from the top of the panel";
 }
 
 TEST_F(ViewerTest, HiddenUiLeavesOnlyTheVolume) {
@@ -158,7 +186,7 @@ TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
 // centred, keeping its aspect; the panels switch to the plane's controls.
 TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlane) {
   const CommandRun r = view(
-      "--mode 2d --field circle --grid 64 --image-size 256x256 --frames 3 --hide-ui "
+      "--look dense --mode 2d --field circle --grid 64 --image-size 256x256 --frames 3 --hide-ui "
       "--save-session out.json --screenshot shot.png");
   ASSERT_EQ(r.status, 0) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
@@ -182,16 +210,43 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlane) {
   EXPECT_EQ(saved->plane.width, 256);
 }
 
+// Colour by a derived quantity with its legend: the legend has a column of its own between the
+// volume and the panels, and the session keeps the choice.
+TEST_F(ViewerTest, TheLegendStandsBesideTheVolumeAndColourFollowsTheChosenScalar) {
+  const CommandRun r = view(
+      "--field abc --grid 24 --color-by helicity --legend --frames 3 --save-session out.json "
+      "--screenshot shot.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(shot.width, kWidth) << r.output;
+  // The colour bar: saturated colours in a narrow column just left of the panels.
+  const auto saturated = [](int r_, int g, int b) {
+    return std::max({r_, g, b}) - std::min({r_, g, b}) > 80;
+  };
+  int barColumn = -1;
+  for (int x = kWidth - kPanelWidth - 1; x > kWidth - kPanelWidth - 200 && barColumn < 0; --x)
+    if (fraction(shot, {x, kHeight / 3, x + 1, kHeight * 2 / 3}, saturated) > 0.95) barColumn = x;
+  ASSERT_GE(barColumn, 0) << "no colour bar beside the panels";
+  const auto [first, last] = litColumns(shot, {0, kHeight / 4, barColumn - 40, kHeight * 3 / 4});
+  EXPECT_GT(last, first) << "no volume left of the legend";
+  // Nothing of the volume reaches the legend's column.
+  EXPECT_EQ(fraction(shot, {barColumn - 30, 0, barColumn - 20, kHeight}, saturated), 0.0);
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(saved->view.colorBy, "helicity");
+}
+
 // An unsteady field (docs/TIME.md): the tornado at a time between two of its steps, blended on
 // the GPU; the time is part of the session the app saves, with the steps it used.
 TEST_F(ViewerTest, TheTimeOfAnUnsteadyFieldIsShownAndSaved) {
   const CommandRun r = view(
-      "--grid 24 --time 100 --frames 3 --save-session out.json "
+      "--look dense --grid 24 --time 100 --frames 3 --save-session out.json "
       "--screenshot shot.png");
   ASSERT_EQ(r.status, 0) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
-  EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
+  EXPECT_GT(fraction(shot, kDockedVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
   Result<Session> saved = readSession(path("out.json"));
   ASSERT_TRUE(saved) << saved.error().message;
   EXPECT_EQ(saved->time, 100.0);

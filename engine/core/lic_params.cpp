@@ -17,6 +17,7 @@ Result<void> validate(const LicParams& params) {
                                           std::to_string(params.bias));
   LIC3D_TRY(checkRange(ranges::kSparsityPoints, params.sparsity.points));
   LIC3D_TRY(checkRange(ranges::kSparsityRadius, params.sparsity.radius));
+  LIC3D_TRY(checkRange(ranges::kSparsityAmount, params.sparsity.amount));
   return checkRange(ranges::kSparsityRatio, params.sparsity.ratio);
 }
 
@@ -37,6 +38,35 @@ int biasInCycle(int length, double phase) {
   const double bias =
       phase <= 0.5 ? -length + 4.0 * length * phase : 3.0 * length - 4.0 * length * phase;
   return std::clamp(static_cast<int>(std::lround(bias)), -length, length);
+}
+
+double streamlineVoxels(const LicParams& params) {
+  return kVoxelsPerStreamlineVoxel * 2.0 * params.length * static_cast<double>(params.step) + 1.0;
+}
+
+SparsityParams maskParams(const LicParams& params) {
+  SparsityParams sparsity = params.sparsity;
+  const bool given = sparsity.amount > 0.0f;
+  // Whether the mask is made from the black fraction at all: with its points or radius given it
+  // is not, and a change of the streamline length must not make it again.
+  bool automatic = given;
+  switch (sparsity.distribution) {
+    case SparsityDistribution::None:
+    case SparsityDistribution::Checkerboard: break;
+    case SparsityDistribution::Halton:
+    case SparsityDistribution::Hammersley:
+    case SparsityDistribution::PoissonApprox: automatic = sparsity.points <= 0; break;
+    case SparsityDistribution::Poisson:
+      automatic = sparsity.points <= 0 && sparsity.radius <= 0.0f;
+      break;
+    case SparsityDistribution::Jitter: automatic = sparsity.radius <= 0.0f; break;
+  }
+  if (!automatic) return sparsity;
+  const double keep = 1.0 - static_cast<double>(given ? sparsity.amount : kDefaultSparsityAmount);
+  sparsity.blackFraction = 1.0 - std::pow(keep, 1.0 / streamlineVoxels(params));
+  if (given && sparsity.distribution == SparsityDistribution::Checkerboard)
+    sparsity.ratio = static_cast<float>(sparsity.blackFraction);
+  return sparsity;
 }
 
 }  // namespace lic3d

@@ -92,6 +92,10 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
     add("sparsity mask (R8)", voxels, device);
     add("sparsity mask (host)", voxels, host);
   }
+  if (r.scalars) {
+    add("colour and opacity scalars (RG16F)", voxels * 4, device);
+    add("colour and opacity scalars (host, float32)", voxels * 8, host);
+  }
   if (r.volumeReadback) {
     add("LIC volume readback", voxels * 4, staging);
     add("LIC volume as float32 (host)", voxels * 4, host);

@@ -17,6 +17,7 @@ struct MemoryRequest {
   Dims dims{0};
   FieldPrecision precision = FieldPrecision::Half;  // resolved: not Auto
   bool sparsity = false;                            // a mask volume (R8) besides the field
+  bool scalars = false;         // colour or opacity by a scalar other than speed (ScalarTexture)
   bool doubleBuffered = false;  // two LIC volumes (the desktop app recomputes into the second)
   bool volumeReadback = false;  // the LIC volume is read back to the host (`lic3d compute`)
   // An unsteady field (docs/TIME.md): two resident time steps and the noise as R32F, from which

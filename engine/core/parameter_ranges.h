@@ -63,15 +63,20 @@ inline constexpr ParameterRange kSparsityPoints{"lic.sparsity.points", 0, 1 << 3
 inline constexpr ParameterRange kSparsityRadius{"lic.sparsity.radius", 0, 4096, 0, 8};
 inline constexpr ParameterRange kSparsityRatio{"lic.sparsity.ratio", 0, 1, 0.01, 0.99, true, true};
 inline constexpr ParameterRange kSeedSpots{"noise.seed_spots", 0, 1 << 30, 0, 1 << 20};
+inline constexpr ParameterRange kSeedFraction{"noise.seed_fraction", 0, 0.5, 0, 0.02};
+inline constexpr ParameterRange kSparsityAmount{"lic.sparsity.amount", 0, 0.99, 0, 0.95};
 
 // ---- The session -------------------------------------------------------------------------------
 inline constexpr ParameterRange kGrid{"field.grid", 1, kMaxGridSize, 1, 512};
+inline constexpr ParameterRange kResolution{"field.resolution", 2, kMaxGridSize, 2, 512};
 inline constexpr ParameterRange kTime{"time", -1e12, 1e12, 0, 1};
 // 0 (sampled exactly) or 2.. steps; 1 is refused separately.
 inline constexpr ParameterRange kTimeSteps{"time_steps", 0, 100000, 0, 1024};
 inline constexpr ParameterRange kPlaneIndex{"plane.index", -1, kMaxGridSize * 8, -1, 2048};
 inline constexpr ParameterRange kPlaneWidth{"plane.width", 0, kMaxImageSize, 0, 4096};
 inline constexpr ParameterRange kPlaneHeight = kPlaneWidth.named("plane.height");
+inline constexpr ParameterRange kPlanePoint{"plane.point", -10, 10, 0, 1};
+inline constexpr ParameterRange kPlaneNormal{"plane.normal", -1, 1, -1, 1};
 
 // ---- ViewParams --------------------------------------------------------------------------------
 inline constexpr ParameterRange kImageWidth{"view.width", 1, kMaxImageSize, 1, 4096};
@@ -82,6 +87,9 @@ inline constexpr ParameterRange kElevation{"view.camera.elevation", -90, 90, -89
 inline constexpr ParameterRange kDistance{"view.camera.distance", 0, 1000, 0, 10};
 inline constexpr ParameterRange kFov{"view.camera.fov", 1, 170, 5, 120};
 inline constexpr ParameterRange kAlpha{"view.alpha", 0, 1, 0, 1};
+inline constexpr ParameterRange kOpticalDepth{"view.optical_depth", 0, 20, 0, 4};
+inline constexpr ParameterRange kRangeTail{"view.range_tail", 0, 0.25, 0, 0.05};
+inline constexpr ParameterRange kWindowPercentiles{"view.window_percentiles", 0, 1, 0, 1};
 inline constexpr ParameterRange kWindow{"view.window", 0, 1, 0, 1};
 inline constexpr ParameterRange kGain{"view.gain", 0, 100, 0, 4};
 inline constexpr ParameterRange kBrightness{"view.brightness", -1, 1, -1, 1};
@@ -91,6 +99,8 @@ inline constexpr ParameterRange kMagnitudeThreshold{"view.magnitude_threshold", 
 inline constexpr ParameterRange kClipMin{"view.clip_min", 0, 1, 0, 1};
 inline constexpr ParameterRange kClipMax = kClipMin.named("view.clip_max");
 inline constexpr ParameterRange kRoiCenter{"view.roi_center", -10, 10, 0, 1};
+inline constexpr ParameterRange kClipPlanePoint = kRoiCenter.named("view.clip_plane_point");
+inline constexpr ParameterRange kClipPlaneNormal{"view.clip_plane_normal", -1, 1, -1, 1};
 inline constexpr ParameterRange kRoiSize{"view.roi_size", 1e-3, 10, 0.01, 1.5};
 inline constexpr ParameterRange kRoiRotation{"view.roi_rotation", -3600, 3600, -180, 180};
 inline constexpr ParameterRange kFogRange{"view.fog_range", -10, 10, -0.5, 1.5};

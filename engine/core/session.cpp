@@ -1,12 +1,15 @@
 #include "core/session.h"
 
+#include <glm/geometric.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "core/enum_names.h"
 #include "core/parameter_ranges.h"
+#include "core/resolution.h"
 
 namespace lic3d {
 namespace {
@@ -20,15 +23,18 @@ using Json = nlohmann::ordered_json;
 template <class Fields, class S>
 void visitSession(Fields& f, S& s) {
   f.version("lic3d_session");
+  f.value("look", s.look);
   f.object("field", [&](Fields& o) {
     o.value("source", s.field.field);
     o.value("grid", s.field.grid);
     o.value("array", s.field.array);
+    o.value("resolution", s.field.resolution);
   });
   f.object("noise", [&](Fields& o) {
     o.value("file", s.noise.file);
     o.value("seed", s.noise.seed);
     o.value("seed_spots", s.noise.seedSpots);
+    o.value("seed_fraction", s.noise.seedFraction);
   });
   f.value("precision", s.precision);
   f.mode("mode", s.twoD);
@@ -39,6 +45,9 @@ void visitSession(Fields& f, S& s) {
     o.value("index", s.plane.index);
     o.value("width", s.plane.width);
     o.value("height", s.plane.height);
+    o.value("oblique", s.plane.oblique);
+    o.value("point", s.plane.point);
+    o.value("normal", s.plane.normal);
   });
   auto& l = s.lic;
   f.object("lic", [&](Fields& o) {
@@ -56,6 +65,7 @@ void visitSession(Fields& f, S& s) {
       p.value("radius", l.sparsity.radius);
       p.value("ratio", l.sparsity.ratio);
       p.value("seed", l.sparsity.seed);
+      p.value("amount", l.sparsity.amount);
     });
   });
   auto& v = s.view;
@@ -74,23 +84,34 @@ void visitSession(Fields& f, S& s) {
     });
     o.value("background", v.background);
     o.value("alpha", v.alpha);
+    o.value("optical_depth", v.opticalDepth);
     o.value("opacity", v.opacityMode);
     o.value("filter", v.filter);
     o.value("contrast", v.contrast);
+    o.value("percentile_window", v.percentileWindow);
+    o.value("window_percentiles", v.windowPercentiles);
     o.value("manual_window", v.manualWindow);
     o.pair("window", v.windowLow, v.windowHigh);
     o.value("gain", v.gain);
     o.value("brightness", v.brightness);
     o.value("color", v.color);
     o.value("colormap", v.colormap);
+    o.value("color_by", v.colorBy);
+    o.value("opacity_by", v.opacityBy);
+    o.value("range_tail", v.rangeTail);
+    o.transfer("transfer_function", v.transfer);
     o.value("auto_color_range", v.autoColorRange);
     o.pair("color_range", v.colorLow, v.colorHigh);
     o.value("legend", v.legend);
     o.value("axes", v.axes);
+    o.value("title", v.title);
     o.value("magnitude_opacity", v.magnitudeOpacity);
     o.value("magnitude_threshold", v.magnitudeThreshold);
     o.value("clip_min", v.clipMin);
     o.value("clip_max", v.clipMax);
+    o.value("clip_plane", v.clipPlane);
+    o.value("clip_plane_point", v.clipPlanePoint);
+    o.value("clip_plane_normal", v.clipPlaneNormal);
     o.value("roi", v.roi);
     o.value("roi_center", v.roiCenter);
     o.value("roi_size", v.roiSize);
@@ -138,6 +159,15 @@ class Writer {
   }
   void pair(const char* key, float first, float second) {
     object_[key] = Json::array({first, second});
+  }
+  void transfer(const char* key, const TransferFunction& tf) {
+    Json rgb = Json::array(), points = Json::array();
+    for (const ColorPoint& p : tf.colors)
+      for (const double x : {p.x, double(p.rgb.r), double(p.rgb.g), double(p.rgb.b)})
+        rgb.push_back(x);
+    for (const OpacityPoint& p : tf.opacities)
+      for (const double x : {p.x, p.alpha, 0.5, 0.0}) points.push_back(x);
+    object_[key] = {{"Name", tf.name}, {"RGBPoints", rgb}, {"Points", points}};
   }
   void axis(const char* key, int axis) {
     object_[key] = std::string(1, static_cast<char>('x' + axis));
@@ -206,6 +236,34 @@ class Reader {
       value = j->get<T>();
     }
   }
+  void numbers(const char* key, std::vector<double>& values, std::size_t stride) {
+    const Json* j = find(key);
+    if (!j) return;
+    if (!j->is_array() || j->size() % stride != 0)
+      return fail(join(key), "an array of " + std::to_string(stride) + "-tuples of numbers");
+    values.clear();
+    for (const Json& v : *j) {
+      if (!v.is_number()) return fail(join(key), "an array of numbers");
+      values.push_back(v.get<double>());
+    }
+  }
+  // A transfer function as the Writer stores it: relative x, ParaView's RGBPoints and Points.
+  void transfer(const char* key, TransferFunction& tf) {
+    object(key, [&](Reader& r) {
+      r.value("Name", tf.name);
+      std::vector<double> rgb, points;
+      r.numbers("RGBPoints", rgb, 4);
+      r.numbers("Points", points, 4);
+      tf.colors.clear();
+      tf.opacities.clear();
+      for (std::size_t i = 0; i < rgb.size(); i += 4)
+        tf.colors.push_back(
+            {rgb[i], glm::vec3(static_cast<float>(rgb[i + 1]), static_cast<float>(rgb[i + 2]),
+                               static_cast<float>(rgb[i + 3]))});
+      for (std::size_t i = 0; i < points.size(); i += 4)
+        tf.opacities.push_back({points[i], points[i + 1]});
+    });
+  }
   void pair(const char* key, float& first, float& second) {
     glm::vec2 both(first, second);
     value(key, both);
@@ -256,8 +314,16 @@ class Reader {
 }  // namespace
 
 Result<void> validate(const Session& s) {
-  for (int a = 0; a < 3; ++a) LIC3D_TRY(checkRange(ranges::kGrid, s.field.grid[a]));
+  for (int a = 0; a < 3; ++a) {
+    LIC3D_TRY(checkRange(ranges::kGrid, s.field.grid[a]));
+    LIC3D_TRY(checkRange(ranges::kPlanePoint, s.plane.point[a]));
+    LIC3D_TRY(checkRange(ranges::kPlaneNormal, s.plane.normal[a]));
+  }
+  LIC3D_TRY(parseResolution(s.field.resolution));
+  if (s.plane.oblique && !(glm::length(s.plane.normal) > 1e-6f))
+    return parameterError(ranges::kPlaneNormal.key, "must not be zero");
   LIC3D_TRY(checkRange(ranges::kSeedSpots, s.noise.seedSpots));
+  LIC3D_TRY(checkRange(ranges::kSeedFraction, s.noise.seedFraction));
   LIC3D_TRY(checkRange(ranges::kTime, s.time));
   LIC3D_TRY(checkRange(ranges::kTimeSteps, s.timeSteps));
   if (s.timeSteps == 1) return parameterError(ranges::kTimeSteps.key, "must be 0 or at least 2");

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/field_precision.h"
 #include "core/lic_params.h"
+#include "core/look.h"
 #include "core/view_params.h"
 #include "core/volume.h"
 
@@ -18,14 +19,19 @@ struct FieldSource {
   std::string field = "tornado";  // an analytic field's name or a file path
   Dims grid{128};                 // the analytic field's grid
   std::string array;              // the vector array in a file with several ("" = the first)
+  // The LIC grid of a file's field, finer (or coarser) than the file's: "N", "NX,NY,NZ" or a
+  // factor "Fx" (core/resolution.h); the field is sampled trilinearly on it and the noise made
+  // at it. Empty: the file's own grid.
+  std::string resolution;
 
   bool operator==(const FieldSource&) const = default;
 };
 
 struct NoiseSource {
-  std::string file;        // a noise volume file, or "" for generated noise
-  std::uint64_t seed = 1;  // of the white noise (and of the seed noise's spots)
-  int seedSpots = 0;       // > 0: sparse seed noise with this many spots
+  std::string file;           // a noise volume file, or "" for generated noise
+  std::uint64_t seed = 1;     // of the white noise (and of the seed noise's spots)
+  int seedSpots = 0;          // > 0: sparse seed noise with this many spots
+  float seedFraction = 0.0f;  // > 0 (and no seedSpots): seed noise with this fraction of voxels
 
   bool operator==(const NoiseSource&) const = default;
 };
@@ -37,11 +43,17 @@ struct PlaneParams {
   int index = -1;  // at this voxel layer; -1: the middle one
   int width = 0;   // the LIC image; 0: the field's grid (the other side given: keeping its aspect)
   int height = 0;
+  // A plane at any orientation instead of a voxel layer: through `point` (fractions of the box)
+  // with `normal` (box axes), sampled at width x height (0: the field's finest spacing).
+  bool oblique = false;
+  glm::vec3 point{0.5f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
 
   bool operator==(const PlaneParams&) const = default;
 };
 
 struct Session {
+  Look look = Look::Dense;  // the look the parameters came from (core/look.h)
   FieldSource field;
   NoiseSource noise;
   FieldPrecision precision = FieldPrecision::Auto;

@@ -1,6 +1,8 @@
 #include "core/view_params.h"
 
 #include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <string>
 
 #include "core/parameter_ranges.h"
@@ -8,10 +10,20 @@
 namespace lic3d {
 glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts) {
   float scale = 1.0f, offset = 0.0f;  // grey before gain and brightness
-  if (view.manualWindow) {
-    const float width = std::max(view.windowHigh - view.windowLow, 1e-6f);
+  auto window = [&](float low, float high) {
+    const float width = std::max(high - low, 1e-6f);
     scale = 1.0f / width;
-    offset = -view.windowLow / width;
+    offset = -low / width;
+  };
+  if (view.manualWindow) {
+    window(view.windowLow, view.windowHigh);
+  } else if (view.percentileWindow && facts.intensities && facts.intensities->total() > 0) {
+    window(static_cast<float>(facts.intensities->percentile(view.windowPercentiles.x)),
+           static_cast<float>(facts.intensities->percentile(view.windowPercentiles.y)));
+  } else if (view.contrast && facts.intensityMean < kSparseIntensityMean && facts.intensities &&
+             facts.intensities->total() > 0) {
+    window(static_cast<float>(facts.intensities->percentile(kSparseWindowPercentiles.x)),
+           static_cast<float>(facts.intensities->percentile(kSparseWindowPercentiles.y)));
   } else if (view.contrast) {
     // Histogram stretch: the drawn voxels' mean goes to 0.5, their deviation to the target.
     scale = kContrastTargetDeviation / std::max(facts.intensityDeviation, 1e-4f);
@@ -21,9 +33,69 @@ glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts) {
   return {view.gain * scale, 0.5f + view.gain * (offset - 0.5f) + view.brightness};
 }
 
+namespace {
+
+ColorRange automaticRange(const ViewParams& view, const ValueHistogram* values, float min,
+                          float max) {
+  if (view.rangeTail > 0.0f && values && values->total() > 0) {
+    const auto low = static_cast<float>(values->percentile(view.rangeTail));
+    const auto high = static_cast<float>(values->percentile(1.0 - view.rangeTail));
+    if (high > low) return {low, high};
+  }
+  return {min, max};
+}
+
+}  // namespace
+
 ColorRange colorRange(const ViewParams& view, const TransferFacts& facts) {
-  return view.autoColorRange ? ColorRange{facts.minMagnitude, facts.maxMagnitude}
-                             : ColorRange{view.colorLow, view.colorHigh};
+  if (!view.autoColorRange) return {view.colorLow, view.colorHigh};
+  return automaticRange(view, facts.colorValues.get(), facts.minMagnitude, facts.maxMagnitude);
+}
+
+ColorRange opacityRange(const ViewParams& view, const TransferFacts& facts) {
+  if (view.opacityBy == view.colorBy || !facts.opacityValues) return colorRange(view, facts);
+  const ValueHistogram& values = *facts.opacityValues;
+  return automaticRange(view, &values, static_cast<float>(values.min),
+                        static_cast<float>(values.max));
+}
+
+glm::vec3 viewColor(const ViewParams& view, float t) {
+  return view.transfer.colors.empty() ? sampleColormap(view.colormap, t) : view.transfer.color(t);
+}
+
+float opacityWeight(const ViewParams& view, float t) {
+  if (!view.transfer.opacities.empty()) return static_cast<float>(view.transfer.opacity(t));
+  if (view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f)
+    return t < view.magnitudeThreshold ? 0.0f : std::pow(t, view.magnitudeOpacity);
+  return 1.0f;
+}
+
+float resolvedAlpha(const ViewParams& view, const TransferFacts& facts, Dims dims) {
+  if (!(view.opticalDepth > 0.0f)) return view.alpha;
+  // Cauchy's mean chord of a convex body, 4 V / S: the mean length of a ray through the box.
+  const double a = dims.x, b = dims.y, c = dims.z;
+  const double chord = 2.0 * a * b * c / std::max(a * b + b * c + c * a, 1.0);
+  double grey = 1.0;
+  if (view.opacityMode == OpacityMode::Intensity && facts.intensities &&
+      facts.intensities->total() > 0) {
+    const glm::vec2 transfer = greyTransfer(view, facts);
+    grey = facts.intensities->mean(
+        [&](double i) { return std::clamp(transfer.x * i + transfer.y, 0.0, 1.0); });
+  } else if (view.opacityMode == OpacityMode::Intensity) {
+    grey = 0.5;
+  }
+  double weight = 1.0;
+  const ValueHistogram* values =
+      view.opacityBy == view.colorBy ? facts.colorValues.get() : facts.opacityValues.get();
+  if (values && values->total() > 0) {
+    const glm::vec2 t = magnitudeTransfer(opacityRange(view, facts));
+    weight = values->mean([&](double v) {
+      return opacityWeight(view, std::clamp(static_cast<float>((v - t.x) * t.y), 0.0f, 1.0f));
+    });
+  }
+  const double perVoxel = chord * facts.drawnFraction * grey * weight;
+  if (!(perVoxel > 0.0)) return 1.0f;
+  return static_cast<float>(std::clamp(view.opticalDepth / perVoxel, 0.005, 1.0));
 }
 
 glm::vec2 magnitudeTransfer(const ColorRange& range) {
@@ -44,6 +116,19 @@ Result<void> validate(const ViewParams& view) {
     LIC3D_TRY(checkRange(r::kFogColor, view.fogColor[c]));
   }
   LIC3D_TRY(checkRange(r::kAlpha, view.alpha));
+  LIC3D_TRY(checkRange(r::kOpticalDepth, view.opticalDepth));
+  LIC3D_TRY(checkRange(r::kRangeTail, view.rangeTail));
+  LIC3D_TRY(checkRange(r::kWindowPercentiles, view.windowPercentiles.x));
+  LIC3D_TRY(checkRange(r::kWindowPercentiles, view.windowPercentiles.y));
+  if (view.percentileWindow && !(view.windowPercentiles.x < view.windowPercentiles.y))
+    return parameterError(r::kWindowPercentiles.key, "needs LOW < HIGH");
+  if (view.colorBy.empty()) return parameterError("view.color_by", "must name a scalar");
+  if (view.opacityBy.empty()) return parameterError("view.opacity_by", "must name a scalar");
+  if (Result<void> tf = validate(view.transfer, "view.transfer_function"); !tf) {
+    Error e = std::move(tf).error();
+    e.parameter = "view.transfer_function";
+    return e;
+  }
   if (view.manualWindow) {
     LIC3D_TRY(checkRange(r::kWindow, view.windowLow));
     LIC3D_TRY(checkRange(r::kWindow, view.windowHigh));
@@ -65,8 +150,12 @@ Result<void> validate(const ViewParams& view) {
     if (!(view.clipMin[a] < view.clipMax[a]))
       return parameterError(r::kClipMin.key, "needs min < max on each axis");
     LIC3D_TRY(checkRange(r::kRoiCenter, view.roiCenter[a]));
+    LIC3D_TRY(checkRange(r::kClipPlanePoint, view.clipPlanePoint[a]));
+    LIC3D_TRY(checkRange(r::kClipPlaneNormal, view.clipPlaneNormal[a]));
     LIC3D_TRY(checkRange(r::kRoiRotation, view.roiRotation[a]));
   }
+  if (view.clipPlane && !(glm::length(view.clipPlaneNormal) > 1e-6f))
+    return parameterError(r::kClipPlaneNormal.key, "must not be zero");
   LIC3D_TRY(checkRange(r::kRoiSize, view.roiSize));
   LIC3D_TRY(checkRange(r::kFogRange, view.fogStart));
   LIC3D_TRY(checkRange(r::kFogRange, view.fogEnd));

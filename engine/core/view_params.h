@@ -3,11 +3,16 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <memory>
+#include <string>
 
 #include "core/camera.h"
 #include "core/colormap.h"
 #include "core/enum_names.h"
 #include "core/error.h"
+#include "core/transfer_function.h"
+#include "core/value_histogram.h"
+#include "core/volume.h"
 
 namespace lic3d {
 
@@ -59,6 +64,10 @@ struct ViewParams {
 
   // Thesis 5.1.1: opacity per voxel of distance, corrected for the slice spacing.
   float alpha = 0.3f;
+  // > 0: alpha is chosen from the data instead, so that a ray through the volume meets about this
+  // optical depth (the volume's opacity weights, the drawn fraction and the grey measured on the
+  // data; passes/slice_pass.h, resolvedAlpha). Looks set it; 0 keeps `alpha`.
+  float opticalDepth = 0.0f;
   OpacityMode opacityMode = OpacityMode::Intensity;
   VolumeFilter filter = VolumeFilter::Linear;
 
@@ -67,16 +76,29 @@ struct ViewParams {
   // without, grey = I. A manual window [low, high] maps to [0, 1] instead. Then
   // grey = 0.5 + gain * (grey - 0.5) + brightness.
   bool contrast = true;
+  // The window from percentiles of the drawn voxels' LIC values instead (fractions low, high):
+  // sparse volumes and seed noise, whose values a mean and deviation do not describe.
+  bool percentileWindow = false;
+  glm::vec2 windowPercentiles{0.01f, 0.99f};
   bool manualWindow = false;
   float windowLow = 0.0f;
   float windowHigh = 1.0f;
   float gain = 1.0f;
   float brightness = 0.0f;
 
-  // Thesis 5.1.2: colour by |v| through a colour map over [colorLow, colorHigh] (automatic: the
-  // field's min and max |v|); the LIC grey modulates it. The legend is drawn into the image.
+  // Thesis 5.1.2: colour by a scalar through a colour map over [colorLow, colorHigh]
+  // (automatic: the scalar's percentiles rangeTail and 1 - rangeTail, its min and max for 0); the
+  // LIC grey modulates it. The legend is drawn beside the picture.
   ColorMode color = ColorMode::None;
   Colormap colormap = Colormap::Thesis;
+  // What colour and opacity follow: "speed" (|v|), "vorticity" (|curl v|), "helicity"
+  // (v . curl v) or a point scalar of the field's file by name (inputs/scalars.h).
+  std::string colorBy = "speed";
+  std::string opacityBy = "speed";
+  float rangeTail = 0.0f;
+  // Colours and opacities as functions of the scalar, replacing the colour map (its colours)
+  // and the magnitude opacity (its opacities); empty by default.
+  TransferFunction transfer;
   bool autoColorRange = true;
   float colorLow = 0.0f;
   float colorHigh = 1.0f;
@@ -84,15 +106,22 @@ struct ViewParams {
   // The box's edges with each axis labelled by its physical range (origin to the last voxel
   // centre, in the file's units), drawn over the picture.
   bool axes = false;
+  std::string title;  // drawn above the picture when not empty
 
-  // Thesis 5.1.3: alpha *= t^exponent, t = |v| normalised over the colour range; 0 is off.
-  // Voxels with t below the threshold vanish.
+  // Thesis 5.1.3: alpha *= t^exponent, t = the opacity scalar normalised over its range (the
+  // colour range when it is the colour scalar); 0 is off. Voxels with t below the threshold vanish.
   float magnitudeOpacity = 0.0f;
   float magnitudeThreshold = 0.0f;
 
   // Thesis 5.2.1: the drawn part of the box, as fractions of it along x, y, z.
   glm::vec3 clipMin{0.0f};
   glm::vec3 clipMax{1.0f};
+
+  // A clip plane at any orientation: the half of the box the normal points into is cut away.
+  // The point is in fractions of the box, the normal in box axes.
+  bool clipPlane = false;
+  glm::vec3 clipPlanePoint{0.5f};
+  glm::vec3 clipPlaneNormal{0.0f, 0.0f, 1.0f};
 
   // Thesis 5.2.2: a region of interest in fractions of the box (centre, size of the longest
   // side), rotated by Euler angles in degrees (x, then y, then z).
@@ -125,6 +154,13 @@ struct ViewParams {
 
 // Grey deviation of the drawn voxels after the contrast stretch: +-2 deviations span [0,1].
 inline constexpr float kContrastTargetDeviation = 0.25f;
+// The stretch assumes white noise, whose LIC values centre on 0.5. Seed noise (sparse bright
+// spots on black) leaves most voxels near 0: tornado 48^3 with 500 seeds has mean 0.004, median
+// 0, 95th percentile 0.036, and the stretch made it an opaque block. Below this mean of the drawn
+// voxels the stretch takes the window between the percentiles kSparseWindowPercentiles instead
+// (the streamlines look's window), so the lit streamlines show and the rest is clear.
+inline constexpr float kSparseIntensityMean = 0.25f;
+inline constexpr glm::vec2 kSparseWindowPercentiles{0.85f, 0.95f};
 
 // What a picture's colours come from besides the view: the drawn voxels' LIC mean and
 // deviation (the contrast stretch) and the field's |v| over its voxels (the automatic colour
@@ -132,12 +168,18 @@ inline constexpr float kContrastTargetDeviation = 0.25f;
 struct TransferFacts {
   float intensityMean = 0.5f;
   float intensityDeviation = 0.1f;
-  float minMagnitude = 0.0f;
+  float minMagnitude = 0.0f;  // of the colour scalar over the voxels
   float maxMagnitude = 1.0f;
+  // What percentile ranges, windows and the automatic alpha are measured on, where known: the
+  // drawn voxels' LIC values, the colour scalar and the opacity scalar (null: the colour one).
+  std::shared_ptr<const ValueHistogram> intensities;
+  std::shared_ptr<const ValueHistogram> colorValues;
+  std::shared_ptr<const ValueHistogram> opacityValues;
+  float drawnFraction = 1.0f;  // of the voxels, the rest hidden by sparsity
 };
 
-// The grey transfer as a line, grey = x * I + y (clamped to [0,1] by its users): the window, or
-// the contrast stretch, then gain and brightness.
+// The grey transfer as a line, grey = x * I + y (clamped to [0,1] by its users): the window (or
+// the percentile window), or the contrast stretch, then gain and brightness.
 glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts);
 
 // The |v| range that colour and magnitude opacity span: the view's, or the field's.
@@ -146,8 +188,25 @@ struct ColorRange {
   float high = 1.0f;
 };
 ColorRange colorRange(const ViewParams& view, const TransferFacts& facts);
+// The range the opacity scalar is normalised over: the colour range when it is the colour
+// scalar, else its own automatic range.
+ColorRange opacityRange(const ViewParams& view, const TransferFacts& facts);
 // t = (|v| - x) * y maps the colour range to [0, 1].
 glm::vec2 magnitudeTransfer(const ColorRange& range);
+
+// The colour at t in [0, 1] of the colour range: the transfer function's colours, else the
+// colour map (the table the slices sample, core/colormap.h).
+glm::vec3 viewColor(const ViewParams& view, float t);
+
+// The opacity weight of a voxel whose opacity scalar is at t in [0, 1] of its range: the
+// transfer function's opacity, else the magnitude opacity t^E (0 below the threshold), else 1.
+float opacityWeight(const ViewParams& view, float t);
+
+// The alpha per voxel of depth the slices use: `alpha`, or with an optical depth the alpha at
+// which a ray of the box's mean chord length (4 V / S, in voxels of `dims`) meets that depth,
+// given the drawn fraction, the mean grey (intensity opacity) and the mean opacity weight
+// measured on the data. In [0.005, 1].
+float resolvedAlpha(const ViewParams& view, const TransferFacts& facts, Dims dims);
 
 // The ranges of core/parameter_ranges.h and their consistency; InvalidInput naming the
 // parameter.

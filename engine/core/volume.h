@@ -49,6 +49,7 @@ struct VectorField {
   GridGeometry geometry;
   std::vector<glm::vec3> vectors;   // voxelCount(dims) entries
   std::optional<FieldPiece> piece;  // set when this is a piece of a larger field
+  std::string unit;                 // of the vectors, where the file gives one (the legend's)
 
   const glm::vec3& at(int i, int j, int k) const { return vectors[voxelIndex(dims, i, j, k)]; }
 };

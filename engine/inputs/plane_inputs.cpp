@@ -13,8 +13,20 @@ namespace {
 
 // The plane of a file's field: a 2D file is its own plane, a 3D one is cut across plane.axis.
 Result<VectorField> planeOfFile(const VectorField& field, const Session& session,
-                                const std::string& what) {
+                                const std::string& what, PlaneSource& inputs) {
   const PlaneParams& p = session.plane;
+  inputs.outside.clear();
+  if (p.oblique) {
+    if (field.dims.x == 1 || field.dims.y == 1 || field.dims.z == 1)
+      return parameterError("plane.normal", what +
+                                                ": a plane at any orientation cuts a 3D "
+                                                "grid; " +
+                                                gridText(field.dims) + " is flat");
+    LIC3D_TRY_ASSIGN(ObliquePlane plane,
+                     obliquePlane(field, glm::dvec3(p.point), glm::dvec3(p.normal)));
+    inputs.outside = std::move(plane.outside);
+    return std::move(plane.field);
+  }
   const bool flat = field.dims.x == 1 || field.dims.y == 1 || field.dims.z == 1;
   if (flat && p.index < 0 && p.axis == 2) return planarField(field, what);
   Result<VectorField> plane =
@@ -39,6 +51,11 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
     if (!source.array.empty())
       return parameterError("field.array",
                             "picks an array of a file; " + source.field + " is an analytic field");
+    if (p.oblique) {
+      LIC3D_TRY(checkHostMemory(source.grid));
+      return planeOfFile(makeAnalyticField(*field3D, source.grid, time), session, source.field,
+                         inputs);
+    }
     const int index = p.index >= 0 ? p.index : source.grid[p.axis] / 2;
     if (index >= source.grid[p.axis])
       return parameterError("plane.index",
@@ -56,7 +73,7 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
   }
   if (!inputs.series) {
     LIC3D_TRY_ASSIGN(const VectorField field, loadField(source, false, &inputs.info));
-    return planeOfFile(field, session, source.field);
+    return planeOfFile(field, session, source.field, inputs);
   }
   const TimeBracket b = inputs.series->bracket(time);
   for (auto it = inputs.steps.begin(); it != inputs.steps.end();)
@@ -66,7 +83,7 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
     const std::string file = inputs.series->files[static_cast<std::size_t>(k)].string();
     LIC3D_TRY_ASSIGN(const VectorField step,
                      inputs.series->loadStep(k, source.array, &inputs.info));
-    LIC3D_TRY_ASSIGN(VectorField plane, planeOfFile(step, session, file));
+    LIC3D_TRY_ASSIGN(VectorField plane, planeOfFile(step, session, file, inputs));
     if (!inputs.steps.empty() && (plane.dims != inputs.steps.begin()->second.dims ||
                                   !(plane.geometry == inputs.steps.begin()->second.geometry)))
       return inputError(file +

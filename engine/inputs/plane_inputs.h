@@ -3,8 +3,10 @@
 // analytic field, a 2D file or a plane of a 3D one, or a series of such files, each at a time,
 // from the session's field source and plane (docs/TIME.md).
 
+#include <cstdint>
 #include <map>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "core/session.h"
@@ -20,6 +22,9 @@ struct PlaneSource {
   std::optional<TimeSeries> series;
   std::map<int, VectorField> steps;
   FieldReadInfo info;  // of the last file read
+  // A plane at any orientation (PlaneParams::oblique): its points outside the field's box, 1 per
+  // voxel of the plane's grid (lic/field_plane.h); empty otherwise.
+  std::vector<std::uint8_t> outside;
 };
 
 // The plane of `session`'s field at `time` (see above). `gridGiven`: the grid was given

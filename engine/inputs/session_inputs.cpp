@@ -1,12 +1,19 @@
 #include "inputs/session_inputs.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <string>
 
+#include "core/look.h"
 #include "core/memory_budget.h"
+#include "core/resolution.h"
+#include "core/value_histogram.h"
 #include "gpu/gpu_resources.h"
 #include "io/field_io.h"
 #include "lic/noise.h"
+#include "lic/resample.h"
 #include "lic/sparsity.h"
 #include "passes/volume_textures.h"
 
@@ -41,6 +48,7 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
   request.dims = dims;
   request.precision = resolvePrecision(context, session.precision);
   request.sparsity = session.lic.sparsity.distribution != SparsityDistribution::None;
+  request.scalars = session.view.colorBy != "speed" || session.view.opacityBy != "speed";
   request.doubleBuffered = shape.doubleBuffered;
   request.volumeReadback = shape.volumeReadback;
   request.timeSeries = shape.timeSeries;
@@ -54,9 +62,19 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
                            "the LIC of " + session.field.field);
 }
 
+namespace {
+
+Error analyticResolutionError(const FieldSource& source) {
+  return parameterError("field.resolution", source.resolution + ": " + source.field +
+                                                " is an analytic field; field.grid sets its grid");
+}
+
+}  // namespace
+
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
                               double time) {
   if (const auto analytic = parseEnum<AnalyticField>(source.field)) {
+    if (!source.resolution.empty()) return analyticResolutionError(source);
     if (!source.array.empty())
       return parameterError("field.array", source.array + ": " + source.field +
                                                " is an analytic field; field.array picks a "
@@ -71,14 +89,27 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
   if (isFieldSeriesPattern(source.field))
     return parameterError("field.source", source.field + " names a time series, not one field");
   if (gridGiven)
-    return parameterError("field.grid",
-                          "applies to analytic fields only; " + source.field + " has its own grid");
+    return parameterError("field.grid", "applies to analytic fields only; " + source.field +
+                                            " has its own grid (a finer LIC grid: "
+                                            "field.resolution)");
   const std::filesystem::path path(source.field);
   if (!path.has_extension())
     return parameterError("field.source", "'" + source.field + "' is neither an analytic field (" +
                                               enumChoices<AnalyticField>() +
                                               ") nor a file name with an extension");
-  return readVectorField(path, source.array, info);
+  FieldReadInfo read;
+  LIC3D_TRY_ASSIGN(VectorField field, readVectorField(path, source.array, &read));
+  field.unit = read.unit;
+  if (info) *info = read;
+  return atResolution(std::move(field), source);
+}
+
+Result<VectorField> atResolution(VectorField field, const FieldSource& source) {
+  LIC3D_TRY_ASSIGN(const Resolution resolution, parseResolution(source.resolution));
+  const Dims dims = resolvedGrid(resolution, field.dims);
+  if (dims == field.dims) return field;
+  LIC3D_TRY(checkHostMemory(dims));
+  return resampleField(field, dims);
 }
 
 Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {
@@ -90,6 +121,13 @@ Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {
                             "asks for more spots than the grid " + gridText(dims) + " has voxels");
     return makeSeedNoise(dims, static_cast<std::size_t>(source.seedSpots), source.seed);
   }
+  if (source.seedFraction > 0.0f && source.file.empty()) {
+    // At least one spot: a tiny grid keeps a streamline.
+    const auto spots = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::llround(static_cast<double>(source.seedFraction) *
+                                                 static_cast<double>(voxelCount(dims)))));
+    return makeSeedNoise(dims, spots, source.seed);
+  }
   if (source.file.empty()) return makeWhiteNoise(dims, source.seed);
   LIC3D_TRY_ASSIGN(NoiseVolume noise, readNoise(source.file));
   if (noise.dims != dims)
@@ -99,8 +137,22 @@ Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims) {
 }
 
 Result<NoiseVolume> loadNoise(const NoiseSource& source, const VectorField& field) {
+  if (source.seedFraction > 0.0f && source.seedSpots == 0 && source.file.empty() && !field.piece) {
+    // The fraction counts the voxels where the field flows: a vessel tree filling 3 % of its
+    // box gets as many seeds per flowing voxel as a field filling all of it. Flowing: faster
+    // than the looks' empty-space threshold (kEmptySpeedFraction of the fastest speeds).
+    const ValueHistogram speeds = speedHistogram(field);
+    const double empty = kEmptySpeedFraction * speeds.percentile(1.0 - kLookRangeTail);
+    double flowing = 0.0;
+    for (const glm::vec3& v : field.vectors) flowing += glm::length(v) > empty ? 1.0 : 0.0;
+    const double share = std::max(flowing / static_cast<double>(field.vectors.size()), 0.01);
+    NoiseSource scaled = source;
+    scaled.seedFraction =
+        static_cast<float>(std::min(static_cast<double>(source.seedFraction) / share, 0.5));
+    return loadNoise(scaled, field.dims);
+  }
   if (!field.piece || field.piece->wholeDims == field.dims) return loadNoise(source, field.dims);
-  if (source.seedSpots > 0 || !source.file.empty())
+  if (source.seedSpots > 0 || source.seedFraction > 0.0f || !source.file.empty())
     return parameterError("noise.file",
                           "cannot be given for a piece of a distributed field: its noise is "
                           "the whole grid's seeded white noise");
@@ -113,6 +165,7 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
   const FieldSource& source = session.field;
   const std::optional<AnalyticField> analytic = parseEnum<AnalyticField>(source.field);
   if (analytic && options.analyticTimeSteps > 0) {
+    if (!source.resolution.empty()) return analyticResolutionError(source);
     LIC3D_TRY(checkHostMemory(source.grid));
     LIC3D_TRY_ASSIGN(inputs.series,
                      analyticSeries(*analytic, source.grid, options.analyticTimeSteps));
@@ -121,6 +174,9 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
     if (options.gridGiven)
       return parameterError(
           "field.grid", "applies to analytic fields only; " + source.field + " has its own grid");
+    if (!source.resolution.empty())
+      return parameterError("field.resolution",
+                            source.resolution + ": applies to one file, not to a time series");
     LIC3D_TRY_ASSIGN(inputs.series, fileSeries(source.field));
     inputs.fromFile = true;
   }

@@ -58,6 +58,10 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven,
                               FieldReadInfo* info = nullptr, double time = 0.0);
 
+// A file's field on the LIC grid of source.resolution (core/resolution.h): resampled, or as it
+// is when none is given. Checks the host memory first.
+Result<VectorField> atResolution(VectorField field, const FieldSource& source);
+
 // Noise on a grid of `dims`: a noise file (which must have that grid), sparse seed noise, or
 // seeded white noise.
 Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);

@@ -59,6 +59,22 @@ Result<VectorField> readVectorField(const std::filesystem::path& path, std::stri
   return readVectorFieldNrrd(path, info);
 }
 
+Result<PointScalars> readPointScalars(const std::filesystem::path& path, std::string_view name) {
+  const std::string extension = lowerCaseExtension(path);
+  const bool named = extension == ".vtk" || extension == ".vti";
+  if (!named && extension != ".nrrd" && extension != ".nhdr")
+    return fileError(path, "cannot read scalars from a file with " + describeExtension(extension) +
+                               " (supported: .vtk, .vti, .nrrd, .nhdr)");
+  LIC3D_TRY(checkRegularFile(path));
+  if (extension == ".vtk") return readPointScalarsVtk(path, name);
+  if (extension == ".vti") return readPointScalarsVti(path, name);
+  if (!name.empty())
+    return fileError(path, "an array name (" + quoteForMessage(name) +
+                               ") applies only to .vtk and .vti files; a NRRD file holds one "
+                               "unnamed array");
+  return readPointScalarsNrrd(path);
+}
+
 Result<NoiseVolume> readNoise(const std::filesystem::path& path) {
   const std::string extension = lowerCaseExtension(path);
   if (extension != ".nrrd" && extension != ".nhdr")

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "core/volume.h"
-#include "io/volume_io.h"  // FieldReadInfo
+#include "io/volume_io.h"  // FieldReadInfo, PointScalars
 
 namespace lic3d {
 
@@ -22,6 +22,18 @@ namespace lic3d {
 // error.
 Result<VectorField> readVectorField(const std::filesystem::path& path,
                                     std::string_view arrayName = {}, FieldReadInfo* info = nullptr);
+
+// A scalar of a field's file, to colour the field by or to set its opacity (PointScalars, in
+// io/volume_io.h, since each format's reader makes one). By extension, compared case-insensitively:
+//   .vtk          readPointScalarsVtk  (a SCALARS array of 1 component, or a 1-component FIELD
+//                                       array, in POINT_DATA)
+//   .vti          readPointScalarsVti  (a 1-component PointData array)
+//   .nrrd, .nhdr  readPointScalarsNrrd (the file's single scalar array; `name` must be empty)
+// An empty `name` picks the file's active or first scalar array. Cell-data scalars are read when
+// no point array of that name exists, on the cell-centred grid (cellCentredGrid). Values of any
+// numeric type become float, NaN kept. An error names the file and, when the array is missing,
+// lists the scalar arrays the file has.
+Result<PointScalars> readPointScalars(const std::filesystem::path& path, std::string_view name);
 
 // `.nrrd` or `.nhdr` (readNoiseNrrd).
 Result<NoiseVolume> readNoise(const std::filesystem::path& path);

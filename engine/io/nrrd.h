@@ -1,6 +1,6 @@
 #pragma once
-// NRRD files (teem.sourceforge.net/nrrd/format.html): vector fields, noise and scalar volumes in;
-// vector fields, noise, LIC results and RGBA volumes out.
+// NRRD files (teem.sourceforge.net/nrrd/format.html): vector fields, noise, scalar volumes and
+// scalars to colour by in; vector fields, noise, LIC results and RGBA volumes out.
 //
 // Readers accept NRRD0001..NRRD0005, `raw` and `gzip` encodings, either byte order, every NRRD
 // spelling of the types they take, comments, `key:=value` lines and unknown fields. A detached
@@ -25,8 +25,9 @@ namespace lic3d {
 // from `space directions` (the length of each axis vector is its spacing: lic3d grids are axis
 // aligned, so a rotation or flip is dropped) or else from `spacings`; `space origin` sets the
 // origin. Vectors with a NaN or infinite component become zero and are counted (finishVectorField).
-// A 2D grid (one layer along z) is also read: `dimension: 3`, `sizes: C NX NY` with C = 3 or 2
-// (vectors (x, y, 0)), `space dimension` 2 or 3 (directions and origin of 2 or 3 numbers).
+// `info->unit` gets `sample units` (quotes removed) where the header has it. A 2D grid (one layer
+// along z) is also read: `dimension: 3`, `sizes: C NX NY` with C = 3 or 2 (vectors (x, y, 0)),
+// `space dimension` 2 or 3 (directions and origin of 2 or 3 numbers).
 Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path,
                                         FieldReadInfo* info = nullptr);
 
@@ -40,6 +41,12 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path);
 // voxels hidden by sparsity), with the geometry read as for vector fields. Reads what
 // writeScalarNrrd writes.
 Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path);
+
+// A scalar to colour a field by, or to set its opacity: `dimension: 3` (or 2: a 2D grid, one
+// layer along z), any integer type, float or double (converted to float; NaN is kept), with the
+// geometry read as for vector fields. Its name is the file name's stem (a NRRD file holds one
+// unnamed array) and its unit the header's `sample units` (quotes removed), where given.
+Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path);
 
 // `dimension: 4`, `sizes: 4 NX NY NZ`, type uchar: what writeRgbaNrrd writes.
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path);

@@ -206,6 +206,7 @@ class HeaderInterpreter {
     LIC3D_TRY(readGrid(layout));
     LIC3D_TRY(readValues(layout));
     LIC3D_TRY(readGeometry(layout));
+    readSampleUnits(layout);
     return layout;
   }
 
@@ -368,6 +369,16 @@ class HeaderInterpreter {
       return fail("endian", "expected little or big, found " + quoteForMessage(endian->value));
     layout.order = endianKey == "little" ? std::endian::little : std::endian::big;
     return {};
+  }
+
+  // sample units: free text, which teem writes in double quotes (like the per-axis `units`).
+  void readSampleUnits(Layout& layout) const {
+    const HeaderField* units = find("sample units");
+    if (!units) return;
+    std::string_view text = units->value;
+    if (text.size() >= 2 && text.front() == '"' && text.back() == '"')
+      text = trim(text.substr(1, text.size() - 2));
+    layout.sampleUnits = text;
   }
 
   // space dimension, space directions or spacings, space origin

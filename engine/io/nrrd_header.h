@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -51,6 +52,9 @@ struct Layout {
   // Bytes skipped before the data (in the file for raw, in the decompressed stream for gzip);
   // -1 (raw only) puts the data at the end of the file.
   std::int64_t byteSkip = 0;
+  // `sample units`: the unit of the values, without the quotes teem writes around it; empty when
+  // the header gives none.
+  std::string sampleUnits;
 
   std::uint64_t payloadBytes() const { return voxels * components * valueBytes(type); }
 };
@@ -63,8 +67,8 @@ struct Expectation {
   std::string_view componentsMeaning;
   std::vector<ValueType> types;
   std::string_view typesText;
-  // Vector fields: also a 2D grid (one layer along z), `dimension` - 1 axes, whose first axis
-  // holds 2 or `components` values (2D vectors lie in the x-y plane).
+  // Also a 2D grid (one layer along z), `dimension` - 1 axes. For vector fields the first axis
+  // holds 2 or `components` values (2D vectors lie in the x-y plane); scalars have no such axis.
   bool planar = false;
 };
 

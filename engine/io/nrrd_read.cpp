@@ -73,21 +73,30 @@ Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
 
 using ChunkSink = std::function<void(const char* data, std::size_t bytes)>;
 
-// Calls `use` with each float or double of a chunk in native byte order.
+template <class T, class Use>
+void forEachOf(const char* data, std::size_t bytes, Use&& use) {
+  for (std::size_t offset = 0; offset + sizeof(T) <= bytes; offset += sizeof(T)) {
+    T value;
+    std::memcpy(&value, data + offset, sizeof(T));
+    use(static_cast<double>(value));
+  }
+}
+
+// Calls `use` with each value of a chunk in native byte order, as a double.
 template <class Use>
 void forEachValue(ValueType type, const char* data, std::size_t bytes, Use&& use) {
-  if (type == ValueType::Double) {
-    for (std::size_t offset = 0; offset + 8 <= bytes; offset += 8) {
-      double value;
-      std::memcpy(&value, data + offset, 8);
-      use(value);
-    }
-  } else {
-    for (std::size_t offset = 0; offset + 4 <= bytes; offset += 4) {
-      float value;
-      std::memcpy(&value, data + offset, 4);
-      use(static_cast<double>(value));
-    }
+  switch (type) {
+    case ValueType::Int8: return forEachOf<std::int8_t>(data, bytes, use);
+    case ValueType::UInt8: return forEachOf<std::uint8_t>(data, bytes, use);
+    case ValueType::Int16: return forEachOf<std::int16_t>(data, bytes, use);
+    case ValueType::UInt16: return forEachOf<std::uint16_t>(data, bytes, use);
+    case ValueType::Int32: return forEachOf<std::int32_t>(data, bytes, use);
+    case ValueType::UInt32: return forEachOf<std::uint32_t>(data, bytes, use);
+    case ValueType::Int64: return forEachOf<std::int64_t>(data, bytes, use);
+    case ValueType::UInt64: return forEachOf<std::uint64_t>(data, bytes, use);
+    case ValueType::Float: return forEachOf<float>(data, bytes, use);
+    case ValueType::Double: return forEachOf<double>(data, bytes, use);
+    case ValueType::Block: return;  // no reader accepts it
   }
 }
 
@@ -227,6 +236,25 @@ Result<void> readPayload(Opened& opened, const ChunkSink& sink) {
   return inDataFile(opened.header, std::move(read).error());
 }
 
+// One value per voxel as float (NaN kept, beyond the float range infinite); `unit` gets the
+// header's `sample units`.
+Result<ScalarVolume> readScalars(const std::filesystem::path& path, const Expectation& expected,
+                                 std::string* unit = nullptr) {
+  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  const Layout& layout = opened.layout;
+  ScalarVolume volume;
+  volume.dims = layout.dims;
+  volume.geometry = layout.geometry;
+  volume.values.resize(static_cast<std::size_t>(layout.voxels));
+  std::size_t next = 0;
+  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    forEachValue(layout.type, data, bytes,
+                 [&](double value) { volume.values[next++] = vectorComponent(value); });
+  }));
+  if (unit) *unit = layout.sampleUnits;
+  return volume;
+}
+
 }  // namespace
 
 Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, FieldReadInfo* info) {
@@ -258,7 +286,10 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
     forEachValue(layout.type, data, bytes, store);
   }));
-  if (info) *info = FieldReadInfo{};
+  if (info) {
+    *info = FieldReadInfo{};
+    info->unit = layout.sampleUnits;
+  }
   LIC3D_TRY(finishVectorField(path, field, info));
   return field;
 }
@@ -266,18 +297,29 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
 Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path) {
   const Expectation expected{
       3, 1, "a 3D grid of scalars", "", {ValueType::Float, ValueType::Double}, "float or double"};
-  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
-  const Layout& layout = opened.layout;
-  ScalarVolume volume;
-  volume.dims = layout.dims;
-  volume.geometry = layout.geometry;
-  volume.values.resize(static_cast<std::size_t>(layout.voxels));
-  std::size_t next = 0;
-  LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
-    forEachValue(layout.type, data, bytes,
-                 [&](double value) { volume.values[next++] = vectorComponent(value); });
-  }));
-  return volume;
+  return readScalars(path, expected);
+}
+
+Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path) {
+  const Expectation expected{
+      3,
+      1,
+      "a 3D grid of scalars",
+      "",
+      {ValueType::Int8, ValueType::UInt8, ValueType::Int16, ValueType::UInt16, ValueType::Int32,
+       ValueType::UInt32, ValueType::Int64, ValueType::UInt64, ValueType::Float, ValueType::Double},
+      "a signed or unsigned integer type, float or double",
+      true};
+  std::string unit;
+  LIC3D_TRY_ASSIGN(ScalarVolume volume, readScalars(path, expected, &unit));
+  PointScalars scalars;
+  scalars.dims = volume.dims;
+  scalars.geometry = volume.geometry;
+  scalars.values = std::move(volume.values);
+  // A NRRD file holds one unnamed array: the file names it.
+  scalars.name = path.stem().string();
+  scalars.unit = std::move(unit);
+  return scalars;
 }
 
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path) {

@@ -15,4 +15,13 @@ Result<void> writeSession(const std::filesystem::path& path, const Session& sess
   return writeFileAtomically(path, sessionToJson(session));
 }
 
+Result<TransferFunction> readTransferFunction(const std::filesystem::path& path) {
+  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 16 << 20));
+  return transferFunctionFromJson(text, path.string());
+}
+
+Result<void> writeTransferFunction(const std::filesystem::path& path, const TransferFunction& tf) {
+  return writeFileAtomically(path, transferFunctionToJson(tf));
+}
+
 }  // namespace lic3d

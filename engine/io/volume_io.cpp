@@ -42,6 +42,16 @@ Result<void> finishVectorField(const std::filesystem::path& path, VectorField& f
   return {};
 }
 
+std::size_t maskVectors(std::span<const std::uint8_t> valid, std::vector<glm::vec3>& vectors) {
+  std::size_t masked = 0;
+  for (std::size_t i = 0; i < valid.size() && i < vectors.size(); ++i) {
+    if (valid[i] != 0) continue;
+    vectors[i] = glm::vec3(0.0f);
+    ++masked;
+  }
+  return masked;
+}
+
 CellCentredGrid cellCentredGrid(Dims pointDims, const GridGeometry& pointGeometry) {
   CellCentredGrid cells;
   cells.geometry = pointGeometry;

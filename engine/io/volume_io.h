@@ -1,7 +1,8 @@
 #pragma once
 // What the volume readers and writers of every format share: what a vector-field reader reports
-// besides the field, the rule for NaN and infinite vectors, cell-centred grids, zlib blocks, the
-// checks every writer makes, and the RGBA volume the writers save.
+// besides the field, the rule for NaN and infinite vectors, VTK's mask of valid points, the scalar
+// arrays read for colour and opacity, cell-centred grids, zlib blocks, the checks every writer
+// makes, and the RGBA volume the writers save.
 
 #include <zlib.h>
 
@@ -26,7 +27,33 @@ struct FieldReadInfo {
   std::string arrayName;
   // Every vector (3-component) array in the file, in file order.
   std::vector<std::string> arrayNames;
+  // Every 1-component point-data array of the file, in file order: the scalars that can colour
+  // the field or set its opacity (readPointScalars). kValidPointMaskName is not one of them.
+  std::vector<std::string> scalarNames;
+  // Vectors set to zero because the file's kValidPointMaskName array is 0 there.
+  std::size_t maskedVectors = 0;
+  // The unit of the vectors where the file gives one (NRRD `sample units`), else empty.
+  std::string unit;
 };
+
+// A scalar on the points of a field's grid (colour or opacity by it).
+struct PointScalars {
+  Dims dims{0};
+  GridGeometry geometry;
+  std::vector<float> values;  // voxelCount(dims), x fastest; NaN where the file has NaN
+  std::string name;           // the array's name (for NRRD: the file name's stem)
+  std::string unit;           // where the file gives one (NRRD sample units), else empty
+};
+
+// The point array VTK's probe and resample filters add: 0 where a point fell outside the data they
+// sampled, whose values there are only fill (zero, or NaN). The readers zero the vectors at those
+// points, so LIC treats them as critical points and the renderer leaves them transparent, instead
+// of drawing flow that is not there.
+inline constexpr std::string_view kValidPointMaskName = "vtkValidPointMask";
+
+// Sets every vector whose `valid` flag is 0 to zero; returns how many were. `valid` holds one flag
+// per vector.
+std::size_t maskVectors(std::span<const std::uint8_t> valid, std::vector<glm::vec3>& vectors);
 
 // An 8-bit RGBA volume (the colour-mapped LIC volume): 4 bytes per voxel, x fastest.
 struct RgbaVolume {

@@ -1,6 +1,6 @@
 #pragma once
-// VTK XML ImageData files (.vti, "VTK File Formats", XML section): vector fields in, LIC and RGBA
-// volumes out (and back in, so users and tests can check what was written).
+// VTK XML ImageData files (.vti, "VTK File Formats", XML section): vector fields and scalar arrays
+// in, LIC and RGBA volumes out (and back in, so users and tests can check what was written).
 //
 // Readers take one Piece covering WholeExtent, Origin and Spacing (the Direction matrix is
 // dropped: lic3d grids are axis aligned), arrays in PointData or CellData, in every encoding VTK
@@ -26,11 +26,20 @@ namespace lic3d {
 // cell data of the same name. Cell data on a grid of N cells becomes a field of N voxels at the
 // cell centres, its origin moved by half a spacing (cellCentredGrid). Any numeric type is read as
 // float; vectors with a NaN or infinite component become zero and are counted
-// (finishVectorField). When the array is missing the error lists the 3-component arrays found;
-// `info` also gets their names.
+// (finishVectorField). Where a 1-component PointData array named vtkValidPointMask is 0,
+// point-data vectors are set to zero first and counted in `info->maskedVectors`
+// (kValidPointMaskName). When the array is missing the error lists the 3-component arrays found;
+// `info` also gets their names and those of the 1-component PointData arrays (the mask left out).
 Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                                        std::string_view arrayName = {},
                                        FieldReadInfo* info = nullptr);
+
+// The 1-component DataArray (NumberOfComponents 1 or absent) named `name`, or when `name` is empty
+// PointData's active `Scalars`, else its first 1-component array, else the same in CellData; the
+// validity mask is read only by name. Cell data lies at the cell centres (cellCentredGrid). Any
+// numeric type is read as float; NaN is kept. When the array is missing the error lists the
+// 1-component arrays found.
+Result<PointScalars> readPointScalarsVti(const std::filesystem::path& path, std::string_view name);
 
 // PointData's active `Scalars`, else its first 1-component array (then CellData's, centred as
 // above), as float; NaN is kept (lic3d writes it for voxels hidden by sparsity).

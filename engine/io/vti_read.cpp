@@ -449,6 +449,40 @@ CellCentredGrid gridOf(const VtiFile& file, const ArrayRef& array) {
   return {file.dims, file.geometry};
 }
 
+bool isValidPointMask(const ArrayRef& array) {
+  return !array.cellData && array.components == 1 && array.name == kValidPointMaskName;
+}
+
+// Sets point-data vectors to zero where PointData's kValidPointMaskName array is 0; how many.
+Result<std::size_t> applyValidPointMask(const VtiFile& file, const std::vector<ArrayRef>& arrays,
+                                        VectorField& field) {
+  const auto mask = std::find_if(arrays.begin(), arrays.end(), isValidPointMask);
+  if (mask == arrays.end()) return std::size_t{0};
+  std::vector<std::uint8_t> valid;
+  LIC3D_TRY(ArrayReader(file, *mask, voxelCount(file.dims))
+                .read([&] { valid.reserve(voxelCount(file.dims)); },
+                      [&](const double* values, std::size_t count) {
+                        for (std::size_t i = 0; i < count; ++i)
+                          valid.push_back(values[i] != 0.0 ? 1 : 0);
+                      }));
+  return maskVectors(valid, field.vectors);
+}
+
+// One 1-component array as float, on its grid; NaN is kept.
+Result<ScalarVolume> readScalarArray(const VtiFile& file, const ArrayRef& array) {
+  const CellCentredGrid grid = gridOf(file, array);
+  ScalarVolume volume;
+  volume.dims = grid.dims;
+  volume.geometry = grid.geometry;
+  LIC3D_TRY(ArrayReader(file, array, voxelCount(grid.dims))
+                .read([&] { volume.values.reserve(voxelCount(grid.dims)); },
+                      [&](const double* values, std::size_t count) {
+                        for (std::size_t i = 0; i < count; ++i)
+                          volume.values.push_back(vectorComponent(values[i]));
+                      }));
+  return volume;
+}
+
 }  // namespace
 
 Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
@@ -475,12 +509,21 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                                        [static_cast<glm::length_t>(next % components)] =
                               vectorComponent(values[i]);
                       }));
+  // The mask is on the points: it says nothing about cell-centred vectors.
+  std::size_t masked = 0;
+  if (!array.cellData) {
+    LIC3D_TRY_ASSIGN(masked, applyValidPointMask(*file, arrays, field));
+  }
   if (info) {
     *info = FieldReadInfo{};
     info->arrayName = array.name;
-    for (const ArrayRef& each : arrays)
+    for (const ArrayRef& each : arrays) {
       if (each.components == 3 || (each.components == 2 && grid.dims.z == 1))
         info->arrayNames.push_back(each.name);
+      if (!each.cellData && each.components == 1 && each.type && !isValidPointMask(each))
+        info->scalarNames.push_back(each.name);
+    }
+    info->maskedVectors = masked;
   }
   LIC3D_TRY(finishVectorField(path, field, info));
   return field;
@@ -490,17 +533,22 @@ Result<ScalarVolume> readScalarVti(const std::filesystem::path& path) {
   LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
   LIC3D_TRY_ASSIGN(const std::vector<ArrayRef> arrays, listArrays(*file));
   LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, {}, 1, "Scalars"));
-  const CellCentredGrid grid = gridOf(*file, array);
-  ScalarVolume volume;
-  volume.dims = grid.dims;
-  volume.geometry = grid.geometry;
-  LIC3D_TRY(ArrayReader(*file, array, voxelCount(grid.dims))
-                .read([&] { volume.values.reserve(voxelCount(grid.dims)); },
-                      [&](const double* values, std::size_t count) {
-                        for (std::size_t i = 0; i < count; ++i)
-                          volume.values.push_back(vectorComponent(values[i]));
-                      }));
-  return volume;
+  return readScalarArray(*file, array);
+}
+
+Result<PointScalars> readPointScalarsVti(const std::filesystem::path& path, std::string_view name) {
+  LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
+  LIC3D_TRY_ASSIGN(std::vector<ArrayRef> arrays, listArrays(*file));
+  // VTK's mask of valid points is no colour to offer: it is read only when named.
+  if (name != kValidPointMaskName) std::erase_if(arrays, isValidPointMask);
+  LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, name, 1, "Scalars"));
+  LIC3D_TRY_ASSIGN(ScalarVolume volume, readScalarArray(*file, array));
+  PointScalars scalars;
+  scalars.dims = volume.dims;
+  scalars.geometry = volume.geometry;
+  scalars.values = std::move(volume.values);
+  scalars.name = array.name;
+  return scalars;
 }
 
 Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {

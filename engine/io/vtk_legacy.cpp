@@ -1,6 +1,7 @@
 #include "io/vtk_legacy.h"
 
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,8 +32,43 @@ Result<void> skipMetadata(Parser& parser) {
   }
 }
 
-// FIELD name numArrays, then per array "name numComponents numTuples type" and its values.
-Result<void> skipFieldData(Parser& parser, const Words& words) {
+// One array of a POINT_DATA or CELL_DATA section, as scanData meets it before its data.
+struct DataArray {
+  enum class Kind { Vectors, Scalars, Field };  // VECTORS, SCALARS, an array of a FIELD block
+  Kind kind = Kind::Vectors;
+  std::string name;  // after %XX decoding
+  std::string type;
+  std::uint64_t components = 1;
+  std::uint64_t tuples = 0;
+  bool pointData = true;
+  std::uint64_t offset = 0;  // where its data starts in the file
+};
+
+// How every error names an array: "SCALARS 'p'", "VECTORS 'v' (cell data)".
+std::string describe(const DataArray& array) {
+  const char* kind = array.kind == DataArray::Kind::Vectors   ? "VECTORS "
+                     : array.kind == DataArray::Kind::Scalars ? "SCALARS "
+                                                              : "FIELD array ";
+  return kind + quoteForMessage(array.name) + (array.pointData ? "" : " (cell data)");
+}
+
+// What a visitor did with an array: left its data to be skipped, read it, or read it and needs
+// nothing after it.
+enum class Visit { Skip, Read, Last };
+using ArrayVisitor = std::function<Result<Visit>(Parser& parser, const DataArray& array)>;
+
+// The POINT_DATA or CELL_DATA section being read.
+struct Section {
+  bool pointData = false;
+  std::uint64_t tuples = 0;
+};
+
+// FIELD name numArrays, then per array "name numComponents numTuples type" and its values. In a
+// POINT_DATA or CELL_DATA section (`section` given) an array of one tuple per point or cell is
+// data on them and goes to `visit`; the rest, and every array of the dataset's own FIELD (before
+// the sections), are skipped. `stop` is set when the visitor needs nothing more.
+Result<void> readFieldData(Parser& parser, const Words& words, const Section* section = nullptr,
+                           const ArrayVisitor* visit = nullptr, bool* stop = nullptr) {
   LIC3D_TRY(checkWords(parser, words, 3, 3, "FIELD name numArrays"));
   const std::string what = "FIELD " + quoteForMessage(decodeName(words[1]));
   LIC3D_TRY_ASSIGN(const std::uint64_t arrays, parseCount(parser, words[2], what));
@@ -56,6 +92,20 @@ Result<void> skipFieldData(Parser& parser, const Words& words) {
     if (__builtin_mul_overflow(components, tuples, &values))
       return parser.fail(arrayWhat + ": " + line->at(1) + " x " + line->at(2) +
                          " values is too many");
+    if (section && visit && tuples == section->tuples) {
+      DataArray array;
+      array.kind = DataArray::Kind::Field;
+      array.name = decodeName(line->at(0));
+      array.type = line->at(3);
+      array.components = components;
+      array.tuples = tuples;
+      array.pointData = section->pointData;
+      array.offset = parser.position();
+      LIC3D_TRY_ASSIGN(const Visit done, (*visit)(parser, array));
+      if (done == Visit::Last && stop) *stop = true;
+      if (done == Visit::Last) return {};
+      if (done == Visit::Read) continue;
+    }
     LIC3D_TRY(parser.skipTyped(values, line->at(3), arrayWhat));
   }
   return {};
@@ -164,7 +214,7 @@ Result<Words> readGeometry(Parser& parser, Dataset dataset, Geometry& geometry) 
                (key == "X_COORDINATES" || key == "Y_COORDINATES" || key == "Z_COORDINATES")) {
       LIC3D_TRY(readUniformCoordinates(parser, *words, geometry));
     } else if (key == "FIELD") {
-      LIC3D_TRY(skipFieldData(parser, *words));
+      LIC3D_TRY(readFieldData(parser, *words));
     } else if (key == "METADATA") {
       LIC3D_TRY(skipMetadata(parser));
     } else {
@@ -209,24 +259,11 @@ Result<Dataset> readPreamble(Parser& parser) {
                      " is not supported (expected STRUCTURED_POINTS or RECTILINEAR_GRID)");
 }
 
-// Skips one attribute other than VECTORS, whose data holds `tuples` tuples.
+// Skips one attribute other than VECTORS, SCALARS and FIELD, whose data holds `tuples` tuples.
 Result<void> skipAttribute(Parser& parser, const Words& line, std::uint64_t tuples,
                            std::string_view section) {
   const std::string key = upperCase(line.front());
   const std::string what = key + " " + quoteForMessage(line.size() > 1 ? decodeName(line[1]) : "");
-  if (key == "SCALARS") {
-    LIC3D_TRY(checkWords(parser, line, 3, 4, "SCALARS name type [numComponents]"));
-    std::uint64_t components = 1;
-    if (line.size() == 4) {
-      LIC3D_TRY_ASSIGN(components, parseCount(parser, line[3], what));
-      if (components < 1 || components > 4)
-        return parser.fail(what + ": expected 1 to 4 components, found " + line[3]);
-    }
-    LIC3D_TRY_ASSIGN(const std::optional<Words> table, parser.nextKeywordLine());
-    if (!table || upperCase(table->front()) != "LOOKUP_TABLE" || table->size() != 2)
-      return parser.fail(what + ": expected a 'LOOKUP_TABLE name' line after SCALARS");
-    return parser.skipTyped(tuples * components, line[2], what);
-  }
   if (key == "LOOKUP_TABLE") {
     LIC3D_TRY(checkWords(parser, line, 3, 3, "LOOKUP_TABLE name size"));
     LIC3D_TRY_ASSIGN(const std::uint64_t entries, parseCount(parser, line[2], what));
@@ -241,8 +278,8 @@ Result<void> skipAttribute(Parser& parser, const Words& line, std::uint64_t tupl
       return parser.fail(what + ": expected 1 to 4 values per tuple, found " + line[2]);
     return parser.skipValues(tuples * components, 1, what);
   }
-  if (key == "VECTORS" || key == "NORMALS") {
-    LIC3D_TRY(checkWords(parser, line, 3, 3, key + " name type"));
+  if (key == "NORMALS") {
+    LIC3D_TRY(checkWords(parser, line, 3, 3, "NORMALS name type"));
     return parser.skipTyped(3 * tuples, line[2], what);
   }
   if (key == "TEXTURE_COORDINATES") {
@@ -260,18 +297,106 @@ Result<void> skipAttribute(Parser& parser, const Words& line, std::uint64_t tupl
     LIC3D_TRY(checkWords(parser, line, 3, 3, key + " name type"));
     return parser.skipTyped(tuples, line[2], what);
   }
-  if (key == "FIELD") return skipFieldData(parser, line);
   if (key == "METADATA") return skipMetadata(parser);
   return parser.fail("unexpected " + quoteForMessage(line.front()) + " in " + std::string(section) +
                      " (expected SCALARS, VECTORS, NORMALS, TENSORS, TEXTURE_COORDINATES, "
                      "COLOR_SCALARS, LOOKUP_TABLE, FIELD, POINT_DATA or CELL_DATA)");
 }
 
+// SCALARS name type [numComponents], then its LOOKUP_TABLE line.
+Result<DataArray> readScalarsHeader(Parser& parser, const Words& line, const Section& section) {
+  const std::string what = "SCALARS " + quoteForMessage(line.size() > 1 ? decodeName(line[1]) : "");
+  LIC3D_TRY(checkWords(parser, line, 3, 4, "SCALARS name type [numComponents]"));
+  DataArray array;
+  array.kind = DataArray::Kind::Scalars;
+  array.name = decodeName(line[1]);
+  array.type = line[2];
+  array.tuples = section.tuples;
+  array.pointData = section.pointData;
+  if (line.size() == 4) {
+    LIC3D_TRY_ASSIGN(array.components, parseCount(parser, line[3], what));
+    if (array.components < 1 || array.components > 4)
+      return parser.fail(what + ": expected 1 to 4 components, found " + line[3]);
+  }
+  LIC3D_TRY_ASSIGN(const std::optional<Words> table, parser.nextKeywordLine());
+  if (!table || upperCase(table->front()) != "LOOKUP_TABLE" || table->size() != 2)
+    return parser.fail(what + ": expected a 'LOOKUP_TABLE name' line after SCALARS");
+  array.offset = parser.position();
+  return array;
+}
+
+// Walks the POINT_DATA and CELL_DATA sections from `line` (the one that opens the first) to the
+// end of the file. Each VECTORS and SCALARS array, and each FIELD array of one tuple per point or
+// cell, goes to `visit` before its data; the data it leaves is skipped. The walk stops at the
+// first error, or when the visitor needs nothing more.
+Result<void> scanData(Parser& parser, Dims dims, Words line, const ArrayVisitor& visit) {
+  Section section;
+  for (;;) {
+    const std::string key = upperCase(line.front());
+    if (key == "POINT_DATA" || key == "CELL_DATA") {
+      LIC3D_TRY(checkWords(parser, line, 2, 2, key + " count"));
+      LIC3D_TRY_ASSIGN(section.tuples, parseCount(parser, line[1], key));
+      section.pointData = key == "POINT_DATA";
+      const std::uint64_t expected = section.pointData ? voxelCount(dims) : cellCount(dims);
+      if (section.tuples != expected)
+        return parser.fail(key + " " + line[1] + " does not match the " + std::to_string(expected) +
+                           (section.pointData ? " points" : " cells") + " of the " +
+                           std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                           std::to_string(dims.z) + " grid");
+    } else if (key == "VECTORS" || key == "SCALARS") {
+      DataArray array;
+      if (key == "SCALARS") {
+        LIC3D_TRY_ASSIGN(array, readScalarsHeader(parser, line, section));
+      } else {
+        LIC3D_TRY(checkWords(parser, line, 3, 3, "VECTORS name type"));
+        array.name = decodeName(line[1]);
+        array.type = line[2];
+        array.components = 3;
+        array.tuples = section.tuples;
+        array.pointData = section.pointData;
+        array.offset = parser.position();
+      }
+      LIC3D_TRY_ASSIGN(const Visit done, visit(parser, array));
+      if (done == Visit::Last) return {};
+      if (done == Visit::Skip)
+        LIC3D_TRY(parser.skipTyped(array.tuples * array.components, array.type,
+                                   key + " " + quoteForMessage(array.name)));
+    } else if (key == "FIELD") {
+      bool stop = false;
+      LIC3D_TRY(readFieldData(parser, line, &section, &visit, &stop));
+      if (stop) return {};
+    } else {
+      LIC3D_TRY(skipAttribute(parser, line, section.tuples,
+                              section.pointData ? "POINT_DATA" : "CELL_DATA"));
+    }
+    LIC3D_TRY_ASSIGN(std::optional<Words> next, parser.nextKeywordLine());
+    if (!next) return {};
+    line = std::move(*next);
+  }
+}
+
+// The preamble and the geometry; the line that opens the first POINT_DATA or CELL_DATA.
+Result<Words> readHead(Parser& parser, Geometry& geometry) {
+  LIC3D_TRY_ASSIGN(const Dataset dataset, readPreamble(parser));
+  return readGeometry(parser, dataset, geometry);
+}
+
+// Reads the data of an array the scan has passed (cell data, chosen only when no point data of
+// its name follows), from where it starts.
+Result<void> readAgain(const std::filesystem::path& path, Format format, const DataArray& array,
+                       const std::function<Result<void>(Parser&)>& read) {
+  LIC3D_TRY_ASSIGN(FileReader again, FileReader::open(path));
+  if (again.skip(array.offset) != array.offset)
+    return fileError(path, "cannot read: " + again.failureReason());
+  Parser parser(again);
+  parser.setFormat(format);
+  return read(parser);
+}
+
 // The VECTORS arrays of a file, in file order.
 struct VectorsSeen {
   std::vector<std::string> names;
   std::vector<bool> cellData;  // per name
-  bool anyData = false;        // any POINT_DATA or CELL_DATA section
 };
 
 std::string listVectors(const VectorsSeen& seen) {
@@ -287,18 +412,26 @@ Error vectorsNotFound(const Parser& parser, std::string_view arrayName, const Ve
   if (!arrayName.empty())
     return parser.fail("no VECTORS named " + quoteForMessage(arrayName) +
                        "; found: " + listVectors(seen));
-  if (!seen.anyData) return parser.fail("no POINT_DATA or CELL_DATA section holds VECTORS");
   return parser.fail("no VECTORS in POINT_DATA or CELL_DATA");
 }
 
-// Where the data of a cell-data VECTORS array starts, to come back to it when no point-data
-// array is chosen.
-struct CellVectors {
-  std::string name;
-  std::string type;
-  std::uint64_t tuples = 0;
-  std::uint64_t offset = 0;
-};
+// The scalar arrays met: 1-component SCALARS and FIELD arrays, point and cell data.
+std::string listScalars(const std::vector<DataArray>& arrays) {
+  std::string list;
+  for (const DataArray& array : arrays)
+    list += (list.empty() ? "" : ", ") + quoteForMessage(array.name) +
+            (array.pointData ? "" : " (cell data)");
+  return list.empty() ? "none" : list;
+}
+
+Result<void> readScalarValues(Parser& parser, const DataArray& array, std::vector<float>& values) {
+  return parser.readValues(
+      array.tuples, array.type, describe(array),
+      [&] { values.reserve(static_cast<std::size_t>(array.tuples)); },
+      [&](const double* read, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) values.push_back(vectorComponent(read[i]));
+      });
+}
 
 }  // namespace
 
@@ -306,96 +439,142 @@ Result<VectorField> readVectorFieldVtk(const std::filesystem::path& path,
                                        std::string_view arrayName, FieldReadInfo* info) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   Parser parser(reader);
-  LIC3D_TRY_ASSIGN(const Dataset dataset, readPreamble(parser));
-  const Format format = parser.format();
   Geometry geometry;
-  LIC3D_TRY_ASSIGN(std::optional<Words> words, readGeometry(parser, dataset, geometry));
+  LIC3D_TRY_ASSIGN(Words first, readHead(parser, geometry));
   const Dims dims = *geometry.dims;
-  const CellCentredGrid cells = cellCentredGrid(dims, geometry.grid);
 
-  bool inPointData = false;
-  std::uint64_t tuples = 0;  // in the current POINT_DATA or CELL_DATA section
   VectorsSeen seen;
+  std::vector<std::string> scalarNames;
   std::optional<VectorField> chosen;  // point data is preferred: it is what lic3d samples
   std::string chosenName;
-  std::optional<CellVectors> cellVectors;
+  std::optional<DataArray> cellVectors;
+  std::vector<std::uint8_t> valid;  // kValidPointMaskName, when the file has it
 
-  // One keyword line and its data.
-  const auto readSection = [&](const Words& line) -> Result<void> {
-    const std::string key = upperCase(line.front());
-    const std::string_view section = inPointData ? "POINT_DATA" : "CELL_DATA";
-    if (key == "POINT_DATA" || key == "CELL_DATA") {
-      LIC3D_TRY(checkWords(parser, line, 2, 2, key + " count"));
-      LIC3D_TRY_ASSIGN(tuples, parseCount(parser, line[1], key));
-      inPointData = key == "POINT_DATA";
-      seen.anyData = true;
-      const std::uint64_t expected = inPointData ? voxelCount(dims) : cellCount(dims);
-      if (tuples != expected)
-        return parser.fail(key + " " + line[1] + " does not match the " + std::to_string(expected) +
-                           (inPointData ? " points" : " cells") + " of the " +
-                           std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                           std::to_string(dims.z) + " grid");
-      return {};
-    }
-    if (key != "VECTORS" || line.size() != 3) return skipAttribute(parser, line, tuples, section);
-    const std::string name = decodeName(line[1]);
-    seen.names.push_back(name);
-    seen.cellData.push_back(!inPointData);
-    const bool wanted = !chosen && (arrayName.empty() || name == arrayName);
-    if (wanted && inPointData) {
-      VectorField field;
-      field.dims = dims;
-      field.geometry = geometry.grid;
-      LIC3D_TRY(
-          parser.readVectors(tuples, line[2], "VECTORS " + quoteForMessage(name), field.vectors));
-      chosen = std::move(field);
-      chosenName = name;
-      return {};
-    }
-    if (wanted && !cellVectors) cellVectors = CellVectors{name, line[2], tuples, reader.position()};
-    return skipAttribute(parser, line, tuples, section);
-  };
-
-  while (words) {
-    Result<void> read = readSection(*words);
-    if (read.ok()) {
-      // Without `info` nothing after the chosen array matters; with it, the scan goes on only
-      // to list the other arrays, so the result never depends on whether `info` was given.
-      if (chosen && !info) break;
-      Result<std::optional<Words>> next = parser.nextKeywordLine();
-      if (next.ok()) {
-        words = std::move(next).value();
-        continue;
+  const auto visit = [&](Parser& p, const DataArray& array) -> Result<Visit> {
+    if (array.kind != DataArray::Kind::Vectors) {
+      if (!array.pointData || array.components != 1) return Visit::Skip;
+      if (array.name != kValidPointMaskName) {
+        scalarNames.push_back(array.name);
+        return Visit::Skip;
       }
-      read = std::move(next).error();
+      if (!valid.empty()) return Visit::Skip;
+      LIC3D_TRY(p.readValues(
+          array.tuples, array.type, describe(array),
+          [&] { valid.reserve(static_cast<std::size_t>(array.tuples)); },
+          [&](const double* values, std::size_t count) {
+            for (std::size_t i = 0; i < count; ++i) valid.push_back(values[i] != 0.0 ? 1 : 0);
+          }));
+      return Visit::Read;
     }
-    if (chosen) break;
-    return std::move(read).error();
-  }
+    seen.names.push_back(array.name);
+    seen.cellData.push_back(!array.pointData);
+    if (chosen || !(arrayName.empty() || array.name == arrayName)) return Visit::Skip;
+    if (!array.pointData) {
+      if (!cellVectors) cellVectors = array;
+      return Visit::Skip;
+    }
+    VectorField field;
+    field.dims = dims;
+    field.geometry = geometry.grid;
+    LIC3D_TRY(p.readVectors(array.tuples, array.type, describe(array), field.vectors));
+    chosen = std::move(field);
+    chosenName = array.name;
+    return Visit::Read;
+  };
+  // The whole file is scanned even when the chosen array comes early: the mask may follow it,
+  // and `info` lists every array (the result never depends on whether `info` was given).
+  const Result<void> scanned = scanData(parser, dims, std::move(first), visit);
+  // What follows the chosen array only adds names (and perhaps the mask): an error there does not
+  // spoil the field.
+  if (!scanned.ok() && !chosen) return scanned.error();
 
   VectorField field;
+  std::size_t masked = 0;
   if (chosen) {
     field = std::move(*chosen);
+    // The mask is on the points: it says nothing about cell-centred vectors.
+    masked = maskVectors(valid, field.vectors);
   } else if (cellVectors) {
     // Cell-centred vectors on an N-cell grid become a field of N voxels at the cell centres: the
-    // origin moves by half a spacing (cellCentredGrid). Their data is read from where it starts.
-    LIC3D_TRY_ASSIGN(FileReader again, FileReader::open(path));
-    if (again.skip(cellVectors->offset) != cellVectors->offset)
-      return fileError(path, "cannot read: " + again.failureReason());
-    Parser cellParser(again);
-    cellParser.setFormat(format);
+    // origin moves by half a spacing (cellCentredGrid).
+    const CellCentredGrid cells = cellCentredGrid(dims, geometry.grid);
     field.dims = cells.dims;
     field.geometry = cells.geometry;
-    LIC3D_TRY(cellParser.readVectors(
-        cellVectors->tuples, cellVectors->type,
-        "VECTORS " + quoteForMessage(cellVectors->name) + " (cell data)", field.vectors));
+    LIC3D_TRY(readAgain(path, parser.format(), *cellVectors, [&](Parser& again) {
+      return again.readVectors(cellVectors->tuples, cellVectors->type, describe(*cellVectors),
+                               field.vectors);
+    }));
     chosenName = cellVectors->name;
   } else {
     return vectorsNotFound(parser, arrayName, seen);
   }
-  if (info) *info = FieldReadInfo{0, chosenName, seen.names};
+  if (info) {
+    *info = FieldReadInfo{};
+    info->arrayName = chosenName;
+    info->arrayNames = seen.names;
+    info->scalarNames = std::move(scalarNames);
+    info->maskedVectors = masked;
+  }
   LIC3D_TRY(finishVectorField(path, field, info));
   return field;
+}
+
+Result<PointScalars> readPointScalarsVtk(const std::filesystem::path& path, std::string_view name) {
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
+  Parser parser(reader);
+  Geometry geometry;
+  LIC3D_TRY_ASSIGN(Words first, readHead(parser, geometry));
+  const Dims dims = *geometry.dims;
+
+  std::vector<DataArray> found;       // the scalar arrays, for the error when none fits
+  std::optional<DataArray> misshape;  // an array of that name with other than 1 component
+  std::optional<PointScalars> chosen;
+  std::optional<DataArray> cellArray;
+  const auto visit = [&](Parser& p, const DataArray& array) -> Result<Visit> {
+    if (array.kind == DataArray::Kind::Vectors || array.components != 1) {
+      if (!misshape && !name.empty() && array.name == name) misshape = array;
+      return Visit::Skip;
+    }
+    // VTK's mask of valid points is no colour to offer: it is read only when named.
+    const bool mask = array.pointData && array.name == kValidPointMaskName;
+    if (!mask) found.push_back(array);
+    if (name.empty() ? mask : array.name != name) return Visit::Skip;
+    if (!array.pointData) {
+      if (!cellArray) cellArray = array;
+      return Visit::Skip;
+    }
+    PointScalars scalars;
+    scalars.dims = dims;
+    scalars.geometry = geometry.grid;
+    scalars.name = array.name;
+    LIC3D_TRY(readScalarValues(p, array, scalars.values));
+    chosen = std::move(scalars);
+    return Visit::Last;
+  };
+  const Result<void> scanned = scanData(parser, dims, std::move(first), visit);
+  if (!scanned.ok()) return scanned.error();
+  if (chosen) return std::move(*chosen);
+  if (cellArray) {
+    // Cell data is centred like cell vectors (cellCentredGrid).
+    const CellCentredGrid cells = cellCentredGrid(dims, geometry.grid);
+    PointScalars scalars;
+    scalars.dims = cells.dims;
+    scalars.geometry = cells.geometry;
+    scalars.name = cellArray->name;
+    LIC3D_TRY(readAgain(path, parser.format(), *cellArray, [&](Parser& again) {
+      return readScalarValues(again, *cellArray, scalars.values);
+    }));
+    return scalars;
+  }
+  const std::string kinds = "(SCALARS or FIELD array of 1 component)";
+  if (misshape)
+    return parser.fail(describe(*misshape) + " has " + std::to_string(misshape->components) +
+                       " components, a scalar has 1; scalar arrays " + kinds + ": " +
+                       listScalars(found));
+  if (!name.empty())
+    return parser.fail("no scalar array " + kinds + " named " + quoteForMessage(name) +
+                       "; found: " + listScalars(found));
+  return parser.fail("no scalar array " + kinds + " in POINT_DATA or CELL_DATA");
 }
 
 }  // namespace lic3d

@@ -29,6 +29,8 @@ constexpr std::size_t kMaxLineBytes = 4096;
 constexpr std::size_t kMaxTokenBytes = 256;
 // A multiple of every value size, so chunks never split a value.
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+// ASCII values are delivered in chunks of this many.
+constexpr std::size_t kChunkValues = std::size_t{1} << 16;
 
 // The sizes in BINARY files. `long` is 8 bytes because VTK writes sizeof(long), and legacy files
 // come from LP64 systems; vtkIdType is always written as a 32-bit int.
@@ -201,60 +203,65 @@ Result<std::vector<double>> Parser::readNumbers(std::uint64_t count, std::string
   return numbers;
 }
 
+Result<void> Parser::readValues(std::uint64_t count, std::string_view typeName,
+                                const std::string& what, const std::function<void()>& allocate,
+                                const ValueSink& sink) {
+  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+  const std::size_t bytesPerValue = type->binaryBytes;
+  if (format_ == Format::Binary) {
+    std::uint64_t bytes = 0;
+    if (__builtin_mul_overflow(count, bytesPerValue, &bytes) || bytes > reader_.remaining())
+      return truncated(what, count, bytesPerValue);
+    allocate();
+    std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, bytes)));
+    const std::size_t perChunk = chunk.size() / bytesPerValue;
+    std::vector<double> values(perChunk);
+    for (std::uint64_t done = 0; done < count;) {
+      const std::size_t n =
+          static_cast<std::size_t>(std::min<std::uint64_t>(perChunk, count - done));
+      if (reader_.read(chunk.data(), n * bytesPerValue) != n * bytesPerValue)
+        return fail(what + ": cannot read: " + reader_.failureReason());
+      toNativeOrder(chunk.data(), n, bytesPerValue, std::endian::big);
+      for (std::size_t i = 0; i < n; ++i)
+        values[i] = binaryValue(chunk.data() + i * bytesPerValue, *type);
+      sink(values.data(), n);
+      done += n;
+    }
+    return {};
+  }
+  LIC3D_TRY(checkAsciiFits(count, what));
+  allocate();
+  const bool asFloat = type->kind == NumberKind::Real && bytesPerValue == 4;
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, kChunkValues)));
+  for (std::uint64_t i = 0; i < count; ++i) {
+    double value = 0.0;
+    LIC3D_TRY(readAsciiNumber(value, count, i, what, asFloat));
+    values.push_back(value);
+    if (values.size() == kChunkValues) {
+      sink(values.data(), values.size());
+      values.clear();
+    }
+  }
+  if (!values.empty()) sink(values.data(), values.size());
+  return {};
+}
+
 Result<void> Parser::readVectors(std::uint64_t count, std::string_view typeName,
                                  const std::string& what, std::vector<glm::vec3>& vectors) {
   const std::string key = asciiLowerCase(typeName);
   if (key != "float" && key != "double")
     return fail(what + ": type " + quoteForMessage(typeName) +
                 " is not supported (expected float or double)");
-  const bool isDouble = key == "double";
-  const std::size_t bytesPerValue = isDouble ? 8 : 4;
-  const std::uint64_t valueCount = 3 * count;
-  if (format_ == Format::Binary) {
-    if (valueCount * bytesPerValue > reader_.remaining())
-      return truncated(what, valueCount, bytesPerValue);
-  } else {
-    LIC3D_TRY(checkAsciiFits(valueCount, what));
-  }
-  vectors.assign(static_cast<std::size_t>(count), glm::vec3(0.0f));
-
   std::uint64_t next = 0;
-  const auto store = [&](double value) {
-    vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
-        vectorComponent(value);
-    ++next;
-  };
-
-  if (format_ == Format::Binary) {
-    std::vector<char> chunk(
-        static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, valueCount * bytesPerValue)));
-    const std::size_t perChunk = chunk.size() / bytesPerValue;
-    while (next < valueCount) {
-      const std::size_t n =
-          static_cast<std::size_t>(std::min<std::uint64_t>(perChunk, valueCount - next));
-      if (reader_.read(chunk.data(), n * bytesPerValue) != n * bytesPerValue)
-        return fail(what + ": cannot read: " + reader_.failureReason());
-      toNativeOrder(chunk.data(), n, bytesPerValue, std::endian::big);
-      for (std::size_t i = 0; i < n; ++i) {
-        if (isDouble) {
-          double value;
-          std::memcpy(&value, chunk.data() + 8 * i, 8);
-          store(value);
-        } else {
-          float value;
-          std::memcpy(&value, chunk.data() + 4 * i, 4);
-          store(value);
-        }
-      }
-    }
-  } else {
-    while (next < valueCount) {
-      double value = 0.0;
-      LIC3D_TRY(readAsciiNumber(value, valueCount, next, what, !isDouble));
-      store(value);
-    }
-  }
-  return {};
+  return readValues(
+      3 * count, typeName, what,
+      [&] { vectors.assign(static_cast<std::size_t>(count), glm::vec3(0.0f)); },
+      [&](const double* values, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i, ++next)
+          vectors[static_cast<std::size_t>(next / 3)][static_cast<glm::length_t>(next % 3)] =
+              vectorComponent(values[i]);
+      });
 }
 
 Error Parser::truncated(const std::string& what, std::uint64_t count,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
@@ -30,6 +31,9 @@ std::string decodeName(std::string_view name);
 // A data type as the file names it, with its size in BINARY files (vtk_legacy_parser.cpp).
 struct DataType;
 
+// Receives an array's values in order, in chunks.
+using ValueSink = std::function<void(const double* values, std::size_t count)>;
+
 class Parser {
  public:
   explicit Parser(FileReader& reader) : reader_(reader) {}
@@ -37,6 +41,7 @@ class Parser {
   Error fail(const std::string& problem) const { return fileError(reader_.path(), problem); }
   void setFormat(Format format) { format_ = format; }
   Format format() const { return format_; }
+  std::uint64_t position() const { return reader_.position(); }
 
   // One line without its "\n" or "\r\n"; nullopt at the end of the file.
   Result<std::optional<std::string>> readLine();
@@ -52,6 +57,11 @@ class Parser {
   // Reads `count` numbers of any VTK type as doubles; the caller bounds `count`.
   Result<std::vector<double>> readNumbers(std::uint64_t count, std::string_view typeName,
                                           const std::string& what);
+  // Reads `count` numbers of any VTK type into `sink`, in chunks, calling `allocate` once the
+  // count has been checked against the bytes left in the file and before any value is delivered.
+  // Float values in ASCII parse as float, so they read exactly as they were written.
+  Result<void> readValues(std::uint64_t count, std::string_view typeName, const std::string& what,
+                          const std::function<void()>& allocate, const ValueSink& sink);
   // Reads `count` float or double vectors into `vectors`, checked against the file first.
   Result<void> readVectors(std::uint64_t count, std::string_view typeName, const std::string& what,
                            std::vector<glm::vec3>& vectors);

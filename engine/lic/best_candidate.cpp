@@ -191,7 +191,8 @@ std::vector<glm::vec3> bestCandidatePoints(Dims dims, std::size_t count, int can
     FixedPoint best = candidate();
     std::int64_t best2 = nearest2(best);
     std::int64_t within = isqrt(best2);
-    const std::uint64_t candidates = m * points.size();
+    const std::uint64_t candidates =
+        m * std::min<std::uint64_t>(points.size(), kBestCandidateHistory);
     for (std::uint64_t c = 1; c < candidates; ++c) {
       const FixedPoint q = candidate();
       if (distanceSquared(witnessOf(q), q) <= best2 || anyWithin(q, best2, within)) continue;

@@ -16,14 +16,30 @@ std::uint8_t toByte(float value) {
 
 }  // namespace
 
-RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const ViewParams& view) {
+RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const ViewParams& view,
+                      const std::vector<std::uint8_t>& outside) {
+  // The plane's point nearest to pixel (i, j) (the 2D LIC's mapping, lic_reference.h), for the
+  // outside mask.
+  const auto isOutside = [&](int i, int j) {
+    if (outside.empty()) return false;
+    const auto at = [](int p, int pixels, int points) {
+      const double x = (p + 0.5) * points / pixels - 0.5;
+      return std::clamp(static_cast<int>(std::lround(x)), 0, points - 1);
+    };
+    return outside[voxelIndex(field.dims, at(i, lic.dims.x, field.dims.x),
+                              at(j, lic.dims.y, field.dims.y), 0)] != 0;
+  };
   // The image's own statistics feed the contrast stretch, as the histogram pass does in 3D.
-  double sum = 0.0, squares = 0.0;
-  for (const float v : lic.values) {
-    sum += v;
-    squares += static_cast<double>(v) * v;
-  }
-  const double n = std::max<double>(1.0, static_cast<double>(lic.values.size()));
+  double sum = 0.0, squares = 0.0, n = 0.0;
+  for (int j = 0; j < lic.dims.y; ++j)
+    for (int i = 0; i < lic.dims.x; ++i) {
+      if (isOutside(i, j)) continue;
+      const double v = lic.at(i, j, 0);
+      sum += v;
+      squares += v * v;
+      n += 1.0;
+    }
+  n = std::max(n, 1.0);
   TransferFacts facts;
   facts.minMagnitude = static_cast<float>(minMagnitude(field));
   facts.maxMagnitude = static_cast<float>(maxMagnitude(field));
@@ -56,25 +72,33 @@ RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const V
             oneSpeed ? 0.5f
                      : std::clamp((static_cast<float>(glm::length(v)) - magnitude.x) * magnitude.y,
                                   0.0f, 1.0f);
-        rgb = sampleColormap(view.colormap, t) * grey;
+        rgb = viewColor(view, t) * grey;
       }
+      if (isOutside(i, j)) rgb = view.background;
       const std::size_t p = 4 * (static_cast<std::size_t>(image.height - 1 - j) * image.width + i);
       image.pixels[p + 0] = toByte(rgb.r);
       image.pixels[p + 1] = toByte(rgb.g);
       image.pixels[p + 2] = toByte(rgb.b);
       image.pixels[p + 3] = 255;
     }
-  if (view.legend && byMagnitude)
-    drawLegend(image, view.colormap, low, high, "|v|", view.background);
-  return image;
+  if (view.legend && byMagnitude) {
+    const LegendSpec legend{[&view](float t) { return viewColor(view, t); }, low, high,
+                            legendTitle("speed", field.unit)};
+    return annotatedPicture(image, &legend, view.title, view.background);
+  }
+  return annotatedPicture(image, nullptr, view.title, view.background);
 }
 
 RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
-                           const ViewParams& view, const TransferFacts& facts) {
+                           const ViewParams& view, const TransferFacts& facts,
+                           const VolumeScalars& scalars) {
   const glm::vec2 transfer = greyTransfer(view, facts);
-  const glm::vec2 magnitude = magnitudeTransfer(colorRange(view, facts));
-  const bool byMagnitude = view.color == ColorMode::Magnitude;
-  const bool magnitudeOpacity = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f;
+  const glm::vec2 colorT = magnitudeTransfer(colorRange(view, facts));
+  const glm::vec2 opacityT = magnitudeTransfer(opacityRange(view, facts));
+  const bool byColor = view.color == ColorMode::Magnitude;
+  const bool weighted = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
+                        !view.transfer.opacities.empty();
+  const float alphaPerVoxel = resolvedAlpha(view, facts, lic.dims);
 
   RgbaVolume out;
   out.dims = lic.dims;
@@ -82,15 +106,19 @@ RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
   out.rgba.resize(4 * lic.values.size());
   for (std::size_t i = 0; i < lic.values.size(); ++i) {
     const float grey = std::clamp(transfer.x * lic.values[i] + transfer.y, 0.0f, 1.0f);
-    float alpha = view.opacityMode == OpacityMode::Intensity ? view.alpha * grey : view.alpha;
+    float alpha = view.opacityMode == OpacityMode::Intensity ? alphaPerVoxel * grey : alphaPerVoxel;
     if (!lic.drawn.empty() && !lic.drawn[i]) alpha = 0.0f;
     glm::vec3 rgb(grey);
-    if (byMagnitude || magnitudeOpacity) {
+    if (byColor || weighted) {
       const float speed = glm::length(field.vectors[i]);
-      const float t = std::clamp((speed - magnitude.x) * magnitude.y, 0.0f, 1.0f);
-      if (byMagnitude) rgb = sampleColormap(view.colormap, t) * grey;
-      if (magnitudeOpacity)
-        alpha *= t < view.magnitudeThreshold ? 0.0f : std::pow(t, view.magnitudeOpacity);
+      const float colorValue = scalars.color ? scalars.color->values[i] : speed;
+      const float opacityValue = scalars.opacity ? scalars.opacity->values[i] : speed;
+      if (byColor)
+        rgb = viewColor(view, std::clamp((colorValue - colorT.x) * colorT.y, 0.0f, 1.0f)) * grey;
+      if (weighted)
+        alpha *=
+            opacityWeight(view, std::clamp((opacityValue - opacityT.x) * opacityT.y, 0.0f, 1.0f));
+      if (std::isnan(colorValue) || std::isnan(opacityValue)) alpha = 0.0f;
     }
     out.rgba[4 * i + 0] = toByte(rgb.r);
     out.rgba[4 * i + 1] = toByte(rgb.g);

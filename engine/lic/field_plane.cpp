@@ -1,5 +1,9 @@
 #include "lic/field_plane.h"
 
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <string>
 
 namespace lic3d {
@@ -37,6 +41,88 @@ Result<VectorField> planarField(const VectorField& field, const std::string& wha
     return inputError(what + ": the grid " + gridText(field.dims) +
                       " is flat along more than one axis; 2D LIC needs a plane");
   return extractPlane(field, flat, 0);
+}
+
+Result<ObliquePlane> obliquePlane(const VectorField& field, glm::dvec3 point, glm::dvec3 normal) {
+  const GridGeometry& g = field.geometry;
+  const Dims d = field.dims;
+  const glm::dvec3 size = g.spacing * glm::dvec3(glm::max(d - 1, Dims(0)));
+  // The normal in box axes is a normal of the box's unit cube; in physical space it scales by
+  // the inverse of the box's size (planes map to planes, normals by the inverse transpose).
+  glm::dvec3 n = normal / glm::max(size, glm::dvec3(1e-30));
+  if (!(glm::length(n) > 0.0)) return parameterError("plane.normal", "must not be zero");
+  n = glm::normalize(n);
+  const glm::dvec3 p = g.origin + point * size;
+  int least = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(n[a]) < std::abs(n[least])) least = a;
+  glm::dvec3 axis(0.0);
+  axis[least] = 1.0;
+  const glm::dvec3 u = glm::normalize(axis - glm::dot(axis, n) * n);
+  const glm::dvec3 v = glm::cross(n, u);
+
+  // The rectangle in (u, v) around the plane's cut through the box: the points where the plane
+  // crosses the box's 12 edges.
+  glm::dvec2 lo(1e300), hi(-1e300);
+  const auto cornerAt = [&](int c) {
+    return g.origin + size * glm::dvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+  };
+  for (int c = 0; c < 8; ++c)
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      if (c & bit) continue;  // each edge once, from its corner with the bit clear
+      const glm::dvec3 a = cornerAt(c), b = cornerAt(c | bit);
+      const double da = glm::dot(a - p, n), db = glm::dot(b - p, n);
+      if ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0)) continue;
+      const glm::dvec3 x = da == db ? a : a + (da / (da - db)) * (b - a);
+      const glm::dvec2 q(glm::dot(x - p, u), glm::dot(x - p, v));
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  if (lo.x > hi.x) return parameterError("plane.point", "the plane misses the field's box");
+  const double spacing = std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+  const auto points = [&](double extent) {
+    return static_cast<int>(std::min(std::floor(extent / spacing + 1e-9) + 1.0, 8192.0));
+  };
+  ObliquePlane plane;
+  VectorField& out = plane.field;
+  out.dims = Dims(points(hi.x - lo.x), points(hi.y - lo.y), 1);
+  out.geometry.spacing = glm::dvec3(spacing);
+  out.geometry.origin = glm::dvec3(lo.x, lo.y, 0.0);
+  out.unit = field.unit;
+  out.vectors.assign(voxelCount(out.dims), glm::vec3(0.0f));
+  plane.outside.assign(out.vectors.size(), 1);
+  std::size_t inside = 0;
+  for (int j = 0; j < out.dims.y; ++j)
+    for (int i = 0; i < out.dims.x; ++i) {
+      const glm::dvec3 x = p + (lo.x + i * spacing) * u + (lo.y + j * spacing) * v;
+      const glm::dvec3 voxel = (x - g.origin) / g.spacing;
+      bool in = true;
+      for (int a = 0; a < 3; ++a) in = in && voxel[a] >= -1e-9 && voxel[a] <= (d[a] - 1) + 1e-9;
+      if (!in) continue;
+      glm::dvec3 f(0.0);
+      glm::ivec3 c0, c1;
+      glm::dvec3 t;
+      for (int a = 0; a < 3; ++a) {
+        const double xa = std::clamp(voxel[a], 0.0, static_cast<double>(d[a] - 1));
+        c0[a] = std::min(static_cast<int>(std::floor(xa)), d[a] - 1);
+        c1[a] = std::min(c0[a] + 1, d[a] - 1);
+        t[a] = xa - c0[a];
+      }
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::ivec3 at((corner & 1) ? c1.x : c0.x, (corner & 2) ? c1.y : c0.y,
+                            (corner & 4) ? c1.z : c0.z);
+        const double w = ((corner & 1) ? t.x : 1.0 - t.x) * ((corner & 2) ? t.y : 1.0 - t.y) *
+                         ((corner & 4) ? t.z : 1.0 - t.z);
+        f += w * glm::dvec3(field.at(at.x, at.y, at.z));
+      }
+      const std::size_t index = voxelIndex(out.dims, i, j, 0);
+      out.vectors[index] =
+          glm::vec3(static_cast<float>(glm::dot(f, u)), static_cast<float>(glm::dot(f, v)), 0.0f);
+      plane.outside[index] = 0;
+      ++inside;
+    }
+  if (inside == 0) return parameterError("plane.point", "the plane misses the field's box");
+  return plane;
 }
 
 }  // namespace lic3d

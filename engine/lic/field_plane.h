@@ -3,8 +3,10 @@
 // vectors lie in the x-y plane (z components 0). A plane of a 3D field, or a file whose grid is
 // flat along one axis, becomes such a field here, so the 2D passes read x and y only.
 
+#include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "core/volume.h"
@@ -48,6 +50,20 @@ inline bool isPlanar(const VectorField& field) { return field.dims.z == 1; }
 // InvalidInput naming the grid). In-plane components are kept; the component along `axis` is
 // dropped: 2D LIC follows the vectors' projection onto the plane.
 Result<VectorField> extractPlane(const VectorField& field, int axis, int index);
+
+// A plane at any orientation through a 3D field: through `point` (fractions of the box) with
+// `normal` (in box axes, so that (0,0,1) is the z layers' normal on any box). Its picture axes are
+// u (right) and v (up), orthonormal in physical space with n = u x v: u the box axis least
+// aligned with n, made perpendicular to it. The plane's grid has the field's smallest spacing
+// over the rectangle that bounds the plane's cut through the box; each point gets the field's
+// trilinear interpolation projected onto u and v. Points outside the box get zero vectors and
+// are marked in `outside` (1 per voxel of the plane's grid), which the picture paints as
+// background. InvalidInput when the plane misses the box or the normal is zero.
+struct ObliquePlane {
+  VectorField field;
+  std::vector<std::uint8_t> outside;
+};
+Result<ObliquePlane> obliquePlane(const VectorField& field, glm::dvec3 point, glm::dvec3 normal);
 
 // A field read from a 2D file: its one flat axis (one voxel) is the plane's normal. An
 // InvalidInput error naming `what` when no axis or more than one is flat.

@@ -135,11 +135,11 @@ double sampleNoise(const NoiseVolume& noise, NoiseFilter filter, glm::dvec3 x) {
   return std::lerp(std::lerp(c00, c10, cy.t), std::lerp(c01, c11, cy.t), cz.t);
 }
 
-std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
-                                        const LicParams& params, glm::dvec3 start, int sign,
-                                        int steps) {
+Streamline followStreamline(const FieldSampler& sampler, Dims dims, const LicParams& params,
+                            glm::dvec3 start, int sign, int steps) {
   const Stepper stepper{sampler, params, kCriticalFraction * sampler.maxSpeed()};
-  std::vector<glm::dvec3> samples{start};
+  Streamline line;
+  line.samples.push_back(start);
   glm::dvec3 x = start;
   const double sh = sign * static_cast<double>(params.step);
   const bool ab2 = params.integrator == Integrator::Rk2 && params.scheme == StepScheme::Ab2;
@@ -149,19 +149,33 @@ std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
     if (d == glm::dvec3(0.0)) break;  // critical point: x was the last sample
     x = ab2 && i > 1 ? x + sh * (1.5 * d - 0.5 * previous) : stepper.advance(x, d, sh);
     previous = d;
-    if (!inside(x, dims)) break;  // never clamp a streamline back into the grid
-    samples.push_back(x);
+    if (!inside(x, dims)) {  // never clamp a streamline back into the grid
+      line.exit = StreamlineExit{x, sh * d, steps - i};
+      break;
+    }
+    line.samples.push_back(x);
   }
-  return samples;
+  return line;
+}
+
+std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
+                                        const LicParams& params, glm::dvec3 start, int sign,
+                                        int steps) {
+  return followStreamline(sampler, dims, params, start, sign, steps).samples;
 }
 
 namespace {
 
-bool inBlackVoxel(const SparsityMask& mask, glm::dvec3 x) {
-  glm::ivec3 v;
-  for (int a = 0; a < 3; ++a)
-    v[a] = std::clamp(static_cast<int>(std::floor(x[a] + 0.5)), 0, mask.dims[a] - 1);
-  return mask.black[voxelIndex(mask.dims, v.x, v.y, v.z)] != 0;
+glm::ivec3 nearestVoxel(glm::dvec3 x) {
+  return {static_cast<int>(std::floor(x.x + 0.5)), static_cast<int>(std::floor(x.y + 0.5)),
+          static_cast<int>(std::floor(x.z + 0.5))};
+}
+
+// Whether the straight continuation of a streamline beyond the grid meets a black voxel.
+bool exitTouchesBlack(const SparsityMask& mask, const StreamlineExit& exit) {
+  for (int k = 0; k <= exit.stepsLeft; ++k)
+    if (isBlack(mask, nearestVoxel(exit.outside + static_cast<double>(k) * exit.step))) return true;
+  return false;
 }
 
 }  // namespace
@@ -178,8 +192,8 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
   double sum = 0.0, weights = 0.0;
   for (int sign : {-1, 1}) {
     const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
-    const std::vector<glm::dvec3> samples =
-        traceStreamline(sampler, noise.dims, params, start, sign, steps);
+    const Streamline line = followStreamline(sampler, noise.dims, params, start, sign, steps);
+    const std::vector<glm::dvec3>& samples = line.samples;
     // The start sample belongs to both directions; count it once (with the backward pass).
     for (std::size_t i = sign < 0 ? 0 : 1; i < samples.size(); ++i) {
       const double w = kernelWeight(params.kernel, sign * static_cast<int>(i), shape);
@@ -187,8 +201,9 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
       weights += w;
       // A hidden voxel's value is never shown: its streamline is not followed further, and
       // the value is 0 on both implementations (docs/LIC_SEMANTICS.md, Sparsity).
-      if (mask && inBlackVoxel(*mask, samples[i])) return {0.0, false};
+      if (mask && isBlack(*mask, nearestVoxel(samples[i]))) return {0.0, false};
     }
+    if (mask && line.exit && exitTouchesBlack(*mask, *line.exit)) return {0.0, false};
   }
   return {sum / weights, true};
 }
@@ -204,9 +219,9 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   const FieldSampler sampler(field);
   std::optional<SparsityMask> mask;
   if (params.sparsity.distribution != SparsityDistribution::None) {
-    LIC3D_TRY_ASSIGN(mask, field.piece
-                               ? makeSparsityMaskPiece(params.sparsity, *field.piece, field.dims)
-                               : makeSparsityMask(params.sparsity, field.dims));
+    const SparsityParams sparsity = maskParams(params);
+    LIC3D_TRY_ASSIGN(mask, field.piece ? makeSparsityMaskPiece(sparsity, *field.piece, field.dims)
+                                       : makeSparsityMask(sparsity, field.dims));
   }
   ScalarVolume out =
       computeLicOnGrid(sampler, noise, params, mask ? &*mask : nullptr, threads, progress);

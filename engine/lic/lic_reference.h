@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -59,15 +60,32 @@ class FieldSampler {
   glm::dvec3 fieldPerOutput_{1.0};  // N / W per axis
 };
 
+// Where a streamline left the grid: its first sample outside, the step that took it there
+// (sh times the direction at the last sample inside) and the steps it had left after that one.
+// For the sparsity mask alone, the streamline goes on straight: outside + k step, k = 0..stepsLeft.
+struct StreamlineExit {
+  glm::dvec3 outside{0.0};
+  glm::dvec3 step{0.0};
+  int stepsLeft = 0;
+};
+struct Streamline {
+  std::vector<glm::dvec3> samples;
+  std::optional<StreamlineExit> exit;  // none if it ran its steps or stopped at a critical point
+};
+
 // The samples x_0 = start, x_1, ... that a streamline reaches in direction sign (+1 or -1) within
 // `steps` steps: it stops before leaving the grid and after reaching a critical point.
+Streamline followStreamline(const FieldSampler& sampler, Dims dims, const LicParams& params,
+                            glm::dvec3 start, int sign, int steps);
+// followStreamline's samples.
 std::vector<glm::dvec3> traceStreamline(const FieldSampler& sampler, Dims dims,
                                         const LicParams& params, glm::dvec3 start, int sign,
                                         int steps);
 
 // The LIC value of voxel (i,j,k), and whether it is drawn: with a sparsity mask, a voxel is
 // not drawn if any sample of its streamline lies in a black voxel (the voxel nearest to the
-// sample, as for nearest noise).
+// sample, as for nearest noise), counting the straight continuation of a streamline that left
+// the grid (StreamlineExit, MaskBeyondGrid).
 struct LicSample {
   double value = 0.0;
   bool drawn = true;

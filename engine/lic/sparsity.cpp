@@ -7,6 +7,7 @@
 #include "io/file_util.h"
 #include "lic/fixed_point.h"
 #include "lic/sparsity_automatic.h"
+#include "lic_kernel.h"
 
 namespace lic3d {
 using namespace points;
@@ -38,6 +39,10 @@ Result<void> validate(const SparsityParams& params, Dims dims) {
                                                      formatNumber(kMinSparsityRadius) + ", " +
                                                      formatNumber(largest) + "] voxels, got " +
                                                      formatNumber(params.radius));
+  if (!(params.blackFraction > 0.0 && params.blackFraction < 1.0))
+    return parameterError("lic.sparsity.amount", "gives a black fraction of " +
+                                                     formatNumber(params.blackFraction) +
+                                                     ", which must be in (0, 1)");
   if (!(params.ratio > 0.0f && params.ratio < 1.0f))
     return parameterError("lic.sparsity.ratio",
                           "must be in (0, 1), got " + formatNumber(params.ratio));
@@ -79,7 +84,42 @@ Result<void> validate(const SparsityParams& params, Dims dims) {
   return {};
 }
 
+bool isBlack(const SparsityMask& mask, glm::ivec3 v) {
+  const Dims d = mask.dims;
+  if (v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x < d.x && v.y < d.y && v.z < d.z)
+    return mask.black[voxelIndex(d, v.x, v.y, v.z)] != 0;
+  const glm::ivec3 w = v + mask.beyond.offset;
+  return glsl::licBlackBeyondGrid(static_cast<std::uint32_t>(w.x), static_cast<std::uint32_t>(w.y),
+                                  static_cast<std::uint32_t>(w.z), mask.beyond.seed,
+                                  mask.beyond.threshold);
+}
+
+namespace {
+
+// The threshold of licBlackBeyondGrid for a mask's black fraction, and a 32-bit seed.
+MaskBeyondGrid beyondOf(const SparsityParams& params, const SparsityMask& mask) {
+  MaskBeyondGrid beyond;
+  const double fraction =
+      static_cast<double>(mask.blackCount) / static_cast<double>(voxelCount(mask.dims));
+  beyond.threshold =
+      static_cast<std::uint32_t>(std::min(std::floor(fraction * 4294967296.0), 4294967295.0));
+  beyond.seed = static_cast<std::uint32_t>(params.seed ^ (params.seed >> 32));
+  return beyond;
+}
+
+Result<SparsityMask> makeWholeMask(const SparsityParams& params, Dims dims);
+
+}  // namespace
+
 Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims) {
+  LIC3D_TRY_ASSIGN(SparsityMask mask, makeWholeMask(params, dims));
+  mask.beyond = beyondOf(params, mask);
+  return mask;
+}
+
+namespace {
+
+Result<SparsityMask> makeWholeMask(const SparsityParams& params, Dims dims) {
   LIC3D_TRY(validate(params, dims));
   SparsityMask mask;
   mask.dims = dims;
@@ -122,6 +162,8 @@ Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims) {
   return mask;
 }
 
+}  // namespace
+
 Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const FieldPiece& piece,
                                            Dims dims) {
   for (int a = 0; a < 3; ++a)
@@ -130,6 +172,8 @@ Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const F
   LIC3D_TRY_ASSIGN(const SparsityMask whole, makeSparsityMask(params, piece.wholeDims));
   SparsityMask mask;
   mask.dims = dims;
+  mask.beyond = whole.beyond;
+  mask.beyond.offset = piece.offset;
   mask.black.resize(voxelCount(dims));
   for (int k = 0; k < dims.z; ++k)
     for (int j = 0; j < dims.y; ++j)

@@ -20,25 +20,18 @@
 
 namespace lic3d {
 
-// The black fraction that automatic parameters (points = 0, radius = 0) aim at. A LIC voxel is
-// drawn only if its streamline (about 20 voxels long with the default L = 20, h = 0.5) touches
-// no black voxel: with a fraction f black that is roughly (1 - f)^20, so 10 % draws about an
-// eighth of the voxels. Fewer black points leave a 128-voxel-deep volume opaque (we rendered
-// 2 %, 5 % and 10 %: only about 10 % showed the inside), and the thesis' figures black up to
-// 12 % (250,000 Hammersley points).
-//
-// How each automatic value follows from it, for a grid of V voxels and f = kDefaultBlackFraction:
-//  - halton, hammersley: points = f V (low-discrepancy points seldom share a voxel).
-//  - poisson-approx: points = f V, at most kAutomaticBestCandidatePoints (its time grows with
-//    the square of the points), so grids above about 59^3 get a smaller fraction.
+// How each automatic value follows from the black fraction f = params.blackFraction
+// (kDefaultBlackFraction, or what maskParams() derives from an amount; core/lic_params.h), for a
+// grid of V voxels:
+//  - halton, hammersley, poisson-approx: points = f V (these points seldom share a voxel).
 //  - poisson: points = f V unless given, radius = cbrt(kPoissonDensity V / (1.1 points)) unless
 //    given (1.7 voxels for f = 10 %); the maximal set for that radius has about 10 % more points
 //    than asked, and a uniform random subset of exactly `points` is kept (stopping the sampling
 //    early would leave the end of the volume empty). With a radius and no points, all of the
 //    maximal set. A radius >= sqrt(3) puts every point in its own voxel: points = black voxels.
-//  - jitter: radius = cbrt(kJitterDensity / f) (1.6 voxels).
-// The checkerboard has no automatic value: its ratio is always explicit (default 0.05).
-inline constexpr double kDefaultBlackFraction = 0.10;
+//  - jitter: radius = cbrt(kJitterDensity / f) (1.6 voxels for 10 %).
+// The checkerboard has no automatic value: its ratio is explicit (default 0.05) unless an amount
+// sets it.
 
 // Ranges: points in [0, voxels] and at most kMaxSparsityPoints (poisson-approx:
 // kMaxBestCandidatePoints), radius 0 or in [kMinSparsityRadius, largest axis], ratio in (0, 1),
@@ -46,11 +39,27 @@ inline constexpr double kDefaultBlackFraction = 0.10;
 // --sparsity-points, --sparsity-radius, --sparsity-ratio.
 Result<void> validate(const SparsityParams& params, Dims dims);
 
+// How the mask goes on beyond the grid (shaders/lic_kernel.h, licBlackBeyondGrid): a streamline
+// that leaves the grid is followed on, straight, for the mask alone, through voxels that are black
+// at random with the whole mask's black fraction. Without it, streamlines near faces and edges,
+// cut short by the grid, would touch fewer black voxels and be drawn far more often than interior
+// ones (22 % of the voxels drawn inside, 48 % on faces, 69 % on edges).
+struct MaskBeyondGrid {
+  Dims offset{0};               // of this grid in the whole grid (a piece's; 0 for the whole)
+  std::uint32_t seed = 0;       // from the distribution's seed
+  std::uint32_t threshold = 0;  // the whole mask's black fraction * 2^32
+};
+
 struct SparsityMask {
   Dims dims{0};
   std::vector<std::uint8_t> black;  // voxelCount(dims) entries, 1 = black
   std::size_t blackCount = 0;
+  MaskBeyondGrid beyond;
 };
+
+// Whether voxel v (this mask's coordinates; any integers) is black: the mask inside its grid,
+// licBlackBeyondGrid outside.
+bool isBlack(const SparsityMask& mask, glm::ivec3 v);
 
 // Black voxels for the distribution: each point blackens the voxel that contains it; the
 // checkerboard blackens its pattern; None leaves every voxel white. Validates first.

@@ -24,9 +24,9 @@ float radiusForVolume(double volumePerPoint) {
   return static_cast<float>(hi) * kFixedToVoxels;
 }
 
-std::size_t automaticPointCount(Dims dims) {
-  const double points = std::round(kDefaultBlackFraction * static_cast<double>(voxelCount(dims)));
-  return std::clamp<std::size_t>(static_cast<std::size_t>(points), 1, kMaxSparsityPoints);
+std::size_t automaticPointCount(double blackFraction, Dims dims, std::size_t limit) {
+  const double points = std::round(blackFraction * static_cast<double>(voxelCount(dims)));
+  return std::clamp<std::size_t>(static_cast<std::size_t>(points), 1, limit);
 }
 
 // Poisson with a point count: a radius whose maximal set has about this many times more points,
@@ -49,16 +49,18 @@ ResolvedParams resolve(const SparsityParams& params, Dims dims) {
   ResolvedParams resolved;
   const auto voxels = static_cast<double>(voxelCount(dims));
   const auto given = static_cast<std::size_t>(std::max(params.points, 0));
+  const auto automatic = [&](std::size_t limit) {
+    return automaticPointCount(params.blackFraction, dims, limit);
+  };
   switch (params.distribution) {
     case SparsityDistribution::None:
     case SparsityDistribution::Checkerboard: break;
     case SparsityDistribution::Halton:
     case SparsityDistribution::Hammersley:
-      resolved.points = given > 0 ? given : automaticPointCount(dims);
+      resolved.points = given > 0 ? given : automatic(kMaxSparsityPoints);
       break;
     case SparsityDistribution::PoissonApprox:
-      resolved.points =
-          given > 0 ? given : std::min(automaticPointCount(dims), kAutomaticBestCandidatePoints);
+      resolved.points = given > 0 ? given : automatic(kMaxBestCandidatePoints);
       break;
     case SparsityDistribution::Poisson:
       resolved.points = given;
@@ -66,7 +68,7 @@ ResolvedParams resolve(const SparsityParams& params, Dims dims) {
         resolved.radius = params.radius;
         break;
       }
-      if (given == 0) resolved.points = automaticPointCount(dims);
+      if (given == 0) resolved.points = automatic(kMaxSparsityPoints);
       resolved.radius =
           std::max(radiusForVolume(kPoissonDensity * voxels /
                                    (kPoissonSurplus * static_cast<double>(resolved.points))),
@@ -79,7 +81,7 @@ ResolvedParams resolve(const SparsityParams& params, Dims dims) {
     case SparsityDistribution::Jitter:
       resolved.radius = params.radius;
       if (params.radius > 0.0f) break;
-      resolved.radius = radiusForVolume(kJitterDensity / kDefaultBlackFraction);
+      resolved.radius = radiusForVolume(kJitterDensity / params.blackFraction);
       if (!jitterFits(dims, resolved.radius))
         resolved.radius =
             smallestRadiusThatFits([&](float r) { return jitterFits(dims, r); }, largestAxis(dims));

@@ -66,6 +66,7 @@ Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& fie
   step.geometry = field.geometry;
   const double largest = maxMagnitude(field);
   step.scale = largest > 0.0 ? largest : 1.0;
+  step.speeds = std::make_shared<const ValueHistogram>(speedHistogram(field));
 
   ImageDesc desc;
   desc.format = stepFormat(resolved);
@@ -260,6 +261,10 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
   // As uploadLicInputs: a texel's xyz times this is the physical vector.
   const double speed = target.maxVoxelSpeed > 0.0 ? target.maxVoxelSpeed : 1.0;
   target.texelToPhysical = speed / unit;
+  // The blend's spread of speeds, from the steps' (measured on the host when they were read).
+  if (a.speeds && b.speeds)
+    target.speeds = std::make_shared<const ValueHistogram>(
+        ValueHistogram::blend(*a.speeds, *b.speeds, std::clamp(weight, 0.0, 1.0)));
   return {};
 }
 

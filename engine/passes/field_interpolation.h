@@ -6,8 +6,10 @@
 // steps in use are on the device: a series longer than device memory streams through it.
 
 #include <cstdint>
+#include <memory>
 
 #include "core/error.h"
+#include "core/value_histogram.h"
 #include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_timer.h"
@@ -26,7 +28,8 @@ struct FieldStep {
   int index = -1;  // the step's number in its series
   Dims dims{0};
   GridGeometry geometry;
-  double scale = 1.0;  // max |v| of the step: texel xyz times this is v
+  double scale = 1.0;                            // max |v| of the step: texel xyz times this is v
+  std::shared_ptr<const ValueHistogram> speeds;  // |v| over the step's voxels
 };
 
 Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& field, int index,

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
@@ -15,14 +16,17 @@ namespace lic3d {
 IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts) {
   IntensityStatistics stats;
   double sum = 0.0, sumSquares = 0.0;
-  const double bins = static_cast<double>(counts.size());
-  for (std::size_t b = 0; b < counts.size(); ++b) {
-    const double value = (static_cast<double>(b) + 0.5) / bins;
+  // The last count is of the voxels the sparsity mask hid.
+  const std::span<const std::uint32_t> bins(counts.data(), counts.size() - 1);
+  stats.maskedVoxels = counts.back();
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    const double value = (static_cast<double>(b) + 0.5) / static_cast<double>(bins.size());
     stats.voxels += counts[b];
     sum += counts[b] * value;
     sumSquares += counts[b] * value * value;
   }
   if (stats.voxels == 0) return stats;
+  stats.histogram = std::make_shared<const ValueHistogram>(histogramOfCounts(bins, 0.0, 1.0));
   const double n = static_cast<double>(stats.voxels);
   const double mean = sum / n;
   stats.mean = static_cast<float>(mean);
@@ -36,6 +40,7 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   constexpr Binding bindings[] = {
       {gpu::kHistogramBindingVolume},
       {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {gpu::kHistogramBindingField},
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
@@ -45,7 +50,7 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
                    createComputePipeline(context, shader, pass.layout_, nullptr, "lic histogram"));
 
   LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_NEAREST, "histogram sampler"));
-  const VkDeviceSize bytes = gpu::kHistogramBins * sizeof(std::uint32_t);
+  const VkDeviceSize bytes = (gpu::kHistogramBins + 1) * sizeof(std::uint32_t);
   LIC3D_TRY_ASSIGN(pass.counts_, Buffer::create(context, bytes,
                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -57,8 +62,9 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   return pass;
 }
 
-void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dims,
-                              std::uint32_t slot) {
+void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
+                              double emptySpeed, std::uint32_t slot) {
+  const Dims dims = field.dims;
   LIC3D_ASSERT(slot < kSlots);
   // The previous histogram's shader and copy must be done with the buffers before they are reused.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -75,8 +81,11 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
   DescriptorWrites()
       .sampledImage(gpu::kHistogramBindingVolume, sampler_, volume.view())
       .storageBuffer(gpu::kHistogramBindingCounts, counts_)
+      .sampledImage(gpu::kHistogramBindingField, sampler_, field.image.view())
       .push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
-  const gpu::HistogramPushConstants push{glm::ivec4(dims, 0)};
+  const gpu::HistogramPushConstants push{
+      glm::ivec4(dims, field.precision == FieldPrecision::Byte ? 1 : 0),
+      glm::vec4(glm::vec3(field.texelToPhysical), static_cast<float>(emptySpeed))};
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);
 
@@ -90,7 +99,7 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, Dims dim
 
 std::vector<std::uint32_t> LicHistogramPass::counts(std::uint32_t slot) const {
   LIC3D_ASSERT(slot < kSlots);
-  std::vector<std::uint32_t> out(gpu::kHistogramBins);
+  std::vector<std::uint32_t> out(gpu::kHistogramBins + 1);
   std::memcpy(out.data(), static_cast<const std::byte*>(readback_.mapped()) + slot * counts_.size(),
               out.size() * sizeof(std::uint32_t));
   return out;

@@ -7,23 +7,30 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/error.h"
+#include "core/value_histogram.h"
 #include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
 #include "gpu/vulkan_context.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d {
 
 struct IntensityStatistics {
   float mean = 0.5f;
   float deviation = 0.0f;
-  std::uint64_t voxels = 0;  // drawn voxels counted
+  std::uint64_t voxels = 0;        // drawn voxels counted (outside empty space)
+  std::uint64_t maskedVoxels = 0;  // voxels the sparsity mask hid
+  // Their values over [0, 1] (the percentile window and the automatic alpha read it).
+  std::shared_ptr<const ValueHistogram> histogram;
 };
 
-// Mean and standard deviation of a histogram over [0,1] (values at bin centres).
+// Mean and standard deviation of a histogram over [0,1] (values at bin centres); `counts` is
+// the pass' read-back: the bins, then the masked voxels.
 IntensityStatistics intensityStatistics(const std::vector<std::uint32_t>& counts);
 
 class LicHistogramPass {
@@ -35,9 +42,12 @@ class LicHistogramPass {
   static Result<LicHistogramPass> create(const Context& context);
 
   // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
-  // visible to compute shaders) and its copy to host-visible memory in `slot`.
-  void record(VkCommandBuffer cmd, const Image& volume, Dims dims, std::uint32_t slot);
+  // visible to compute shaders) on `field`'s grid, leaving out the voxels slower than
+  // `emptySpeed` (physical |v|), and its copy to host-visible memory in `slot`.
+  void record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
+              double emptySpeed, std::uint32_t slot);
   // The counts recorded into `slot`, once that command buffer completed.
+  // The bins, then the count of masked voxels.
   std::vector<std::uint32_t> counts(std::uint32_t slot) const;
 
  private:
@@ -45,7 +55,7 @@ class LicHistogramPass {
   PipelineLayout layout_;
   Pipeline pipeline_;
   Sampler sampler_;
-  Buffer counts_;
+  Buffer counts_;  // of the pass being recorded
   Buffer readback_;
 };
 

@@ -47,8 +47,8 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
 }
 
 Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
-                             const Image& output, const LicParams& params, int zBegin, int zEnd,
-                             const Image* noise) {
+                             const MaskBeyondGrid& beyond, const Image& output,
+                             const LicParams& params, int zBegin, int zEnd, const Image* noise) {
   LIC3D_ASSERT(!separateNoise_ || noise);
   LicSpecialization specialization = licSpecialization(params, field.precision);
   specialization.interleave = context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 1u;
@@ -73,6 +73,8 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   push.dims = glm::ivec4(dims, zBegin);
   push.invDims = glm::vec4(1.0f / glm::vec3(dims), 0.0f);
   setLicPushParams(push, params);
+  push.maskBeyond = glm::uvec4(glm::uvec3(beyond.offset), beyond.threshold);
+  push.maskSeed = beyond.seed;
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 
   vkCmdDispatch(cmd, groupCount(dims.x, specialization.localSizeX),

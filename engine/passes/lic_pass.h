@@ -14,6 +14,7 @@
 #include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
 #include "gpu/vulkan_context.h"
+#include "lic/sparsity.h"
 #include "passes/volume_textures.h"
 
 namespace lic3d {
@@ -55,8 +56,8 @@ class LicPass {
   // is read only when params.sparsity has a distribution (any image will do otherwise); `noise`
   // only by a separate-noise pass.
   Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
-                      const Image& output, const LicParams& params, int zBegin, int zEnd,
-                      const Image* noise = nullptr);
+                      const MaskBeyondGrid& beyond, const Image& output, const LicParams& params,
+                      int zBegin, int zEnd, const Image* noise = nullptr);
 
   std::size_t variantCount() const { return pipelines_.size(); }
   bool separateNoise() const { return separateNoise_; }

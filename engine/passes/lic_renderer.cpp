@@ -6,6 +6,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
+#include "core/look.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/vk_check.h"
 #include "lic/legend.h"
@@ -48,6 +49,26 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   return renderer;
 }
 
+double LicRenderer::emptySpeed() const {
+  if (!field_.speeds) return 0.0;
+  return kEmptySpeedFraction * field_.speeds->percentile(1.0 - kLookRangeTail);
+}
+
+Result<void> LicRenderer::ensureScalarTexture() {
+  if (scalars_.image) return {};
+  // Both follow the speed: a texture of one texel stands in (made with the field's upload
+  // rather than at creation, so creating a renderer submits nothing).
+  LIC3D_TRY_ASSIGN(scalars_, uploadScalars(*context_, Dims{1}, nullptr, nullptr));
+  return {};
+}
+
+Result<void> LicRenderer::setScalars(const PointScalars* color, const PointScalars* opacity) {
+  vkDeviceWaitIdle(context_->device());  // in-flight frames may sample the old texture
+  scalars_ = ScalarTexture();
+  LIC3D_TRY_ASSIGN(scalars_, uploadScalars(*context_, field_.dims, color, opacity));
+  return {};
+}
+
 Result<void> LicRenderer::setFramePrecision(FramePrecision precision) {
   const VkFormat format = precision == FramePrecision::Float16 ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                                : VK_FORMAT_R8G8B8A8_UNORM;
@@ -71,11 +92,13 @@ Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume&
   if (field.piece != piece_) maskParams_.reset();  // a piece's mask is cut from the whole one
   piece_ = field.piece;
   if (field.dims != field_.dims) {
-    maskParams_.reset();  // the mask and the volumes live on the field's grid
+    maskParams_.reset();  // the mask, the volumes and the scalars live on the field's grid
     mask_ = Image();
     volumes_[0] = Image();
     volumes_[1] = Image();
+    if (scalars_.color || scalars_.opacity) scalars_ = ScalarTexture();
   }
+  LIC3D_TRY(ensureScalarTexture());
   field_ = FieldTexture();  // free the old texture before allocating the new one
   interpolated_.reset();    // a steady field: any time series' steps are no longer needed
   fieldChanged_ = false;
@@ -130,7 +153,9 @@ Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicPara
       uploadImage(*context_, frontVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
   LIC3D_TRY(submitAndWait(
       *context_,
-      [&](VkCommandBuffer cmd) { histogramPass_.record(cmd, frontVolume(), field_.dims, 0); },
+      [&](VkCommandBuffer cmd) {
+        histogramPass_.record(cmd, frontVolume(), field_, emptySpeed(), 0);
+      },
       "lic histogram"));
   collectStatistics(0);
   shownParams_ = params;
@@ -151,6 +176,26 @@ VolumeFacts LicRenderer::volumeFacts() const {
   facts.fieldPrecision = field_.precision;
   facts.intensityMean = statistics_.mean;
   facts.intensityDeviation = statistics_.deviation;
+  facts.intensities = statistics_.histogram;
+  facts.colorValues = field_.speeds;
+  facts.opacityValues = field_.speeds;
+  facts.colorScalar = scalars_.color;
+  facts.opacityScalar = scalars_.opacity;
+  facts.scalarRange = scalars_.range;
+  facts.colorUnit = field_.unit;
+  if (scalars_.color) {
+    facts.colorValues = scalars_.colorValues;
+    facts.minMagnitude = static_cast<float>(scalars_.colorValues->min);
+    facts.maxMagnitude = static_cast<float>(scalars_.colorValues->max);
+    facts.colorName = scalars_.colorName;
+    facts.colorUnit = scalars_.colorUnit;
+  }
+  if (scalars_.opacity) facts.opacityValues = scalars_.opacityValues;
+  const std::size_t voxels = voxelCount(field_.dims);
+  facts.drawnFraction = statistics_.histogram && voxels > 0
+                            ? static_cast<float>(static_cast<double>(statistics_.voxels) /
+                                                 static_cast<double>(voxels))
+                            : 1.0f;
   facts.sparsity =
       shownParams_ && shownParams_->sparsity.distribution != SparsityDistribution::None;
   return facts;
@@ -179,6 +224,7 @@ LicStatus LicRenderer::licStatus() const {
 // ---- Unsteady fields ---------------------------------------------------------------------------
 
 Result<void> LicRenderer::setTimeNoise(const NoiseVolume& noise) {
+  LIC3D_TRY(ensureScalarTexture());
   if (!interpolation_) {
     LIC3D_TRY_ASSIGN(FieldInterpolation pass, FieldInterpolation::create(*context_));
     interpolation_.emplace(std::move(pass));
@@ -251,21 +297,21 @@ Result<void> LicRenderer::interpolateTime(int first, int second, double weight) 
 Result<void> LicRenderer::startJob(const LicParams& params, bool force) {
   LIC3D_TRY(validate(params));
   if (!field_.image) return inputError("no vector field and noise were set");
-  LIC3D_TRY(validate(params.sparsity, piece_ ? piece_->wholeDims : field_.dims));
+  const SparsityParams sparsity = maskParams(params);
+  LIC3D_TRY(validate(sparsity, piece_ ? piece_->wholeDims : field_.dims));
   if (!force && job_ && job_->params == params) return {};
   fieldChanged_ = false;  // the job reads the field texture as it is now
   Job job;
   job.params = params;
-  job.needsMask = params.sparsity.distribution != SparsityDistribution::None &&
-                  !(maskParams_ && *maskParams_ == params.sparsity);
-  if (job.needsMask && job_ && job_->needsMask && job_->params.sparsity == params.sparsity) {
+  job.needsMask = sparsity.distribution != SparsityDistribution::None &&
+                  !(maskParams_ && *maskParams_ == sparsity);
+  if (job.needsMask && job_ && job_->needsMask && maskParams(job_->params) == sparsity) {
     // The mask the dropped job was waiting for serves this one (a new field, e.g. the next
     // time of a series, does not change it): not made again, and not waited for here.
     job.mask = job_->mask;
   } else if (job.needsMask) {
     // Some distributions take seconds (best candidate): never on the thread that draws.
-    job.mask = std::async(std::launch::async, [sparsity = params.sparsity, dims = field_.dims,
-                                               piece = piece_] {
+    job.mask = std::async(std::launch::async, [sparsity, dims = field_.dims, piece = piece_] {
                  return piece ? makeSparsityMaskPiece(sparsity, *piece, dims)
                               : makeSparsityMask(sparsity, dims);
                }).share();
@@ -292,6 +338,7 @@ Result<void> LicRenderer::uploadMask(const SparsityMask& mask) {
   mask_ = Image();
   LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
   LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
+  maskBeyond_ = mask.beyond;
   ++maskBuilds_;
   return {};
 }
@@ -307,7 +354,7 @@ Result<bool> LicRenderer::prepareMask() {
     return error;
   }
   LIC3D_TRY(uploadMask(*mask));
-  maskParams_ = job_->params.sparsity;
+  maskParams_ = maskParams(job_->params);
   job_->needsMask = false;
   return true;
 }
@@ -336,8 +383,8 @@ Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, s
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
-  LIC3D_TRY(licPass_.record(cmd, field_, maskFor(job_->params), back, job_->params, zBegin, zEnd,
-                            separateNoise_ ? &separateNoise_ : nullptr));
+  LIC3D_TRY(licPass_.record(cmd, field_, maskFor(job_->params), maskBeyond_, back, job_->params,
+                            zBegin, zEnd, separateNoise_ ? &separateNoise_ : nullptr));
   work.slicesRecorded = zEnd - zBegin;
   job_->nextZ = zEnd;
   if (zEnd < dims.z) return work;
@@ -346,7 +393,7 @@ Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, s
                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-  histogramPass_.record(cmd, back, dims, slot);
+  histogramPass_.record(cmd, back, field_, emptySpeed(), slot);
   // Shown once its statistics are read back: a frame never draws a volume with another's
   // contrast stretch.
   finished_ = Finished{job_->params, slot};
@@ -384,33 +431,36 @@ Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallb
 
 // ---- Drawing -----------------------------------------------------------------------------------
 
-Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkExtent2D extent,
+Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
                                      const ViewParams& view, std::uint32_t slotBase) {
   if (!hasVolume()) return {};
   LIC3D_TRY(validate(view));
+  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
   const VolumeFacts facts = volumeFacts();
   const bool sideBySide = view.stereo == StereoMode::SideBySide;
-  const VkExtent2D eyeExtent{sideBySide ? extent.width / 2 : extent.width, extent.height};
+  const VkExtent2D eyeExtent{sideBySide ? area.extent.width / 2 : area.extent.width,
+                             area.extent.height};
   const float aspect = static_cast<float>(eyeExtent.width) / static_cast<float>(eyeExtent.height);
   struct Draw {
     Eye eye;
     VkRect2D viewport;
   };
   std::vector<Draw> draws;
+  const VkOffset2D at = area.offset;
+  const VkOffset2D right{at.x + static_cast<std::int32_t>(eyeExtent.width), at.y};
   switch (view.stereo) {
-    case StereoMode::None: draws = {{Eye::Mono, {{0, 0}, eyeExtent}}}; break;
+    case StereoMode::None: draws = {{Eye::Mono, {at, eyeExtent}}}; break;
     case StereoMode::Anaglyph:
-      draws = {{Eye::Left, {{0, 0}, eyeExtent}}, {Eye::Right, {{0, 0}, eyeExtent}}};
+      draws = {{Eye::Left, {at, eyeExtent}}, {Eye::Right, {at, eyeExtent}}};
       break;
     case StereoMode::SideBySide:
-      draws = {{Eye::Left, {{0, 0}, eyeExtent}},
-               {Eye::Right, {{static_cast<std::int32_t>(eyeExtent.width), 0}, eyeExtent}}};
+      draws = {{Eye::Left, {at, eyeExtent}}, {Eye::Right, {right, eyeExtent}}};
       break;
   }
   for (std::uint32_t i = 0; i < draws.size(); ++i) {
     const SliceFrame frame = makeSliceFrame(view, facts, draws[i].eye, aspect);
-    LIC3D_TRY(slicePass_.record(cmd, format, draws[i].viewport, frontVolume(), field_, frame,
-                                slotBase + i));
+    LIC3D_TRY(slicePass_.record(cmd, format, draws[i].viewport, frontVolume(), field_,
+                                scalars_.image, frame, slotBase + i));
   }
   return {};
 }
@@ -452,7 +502,10 @@ void LicRenderer::recordOffscreenFrame(VkCommandBuffer cmd, const ViewParams& vi
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
   const VkExtent2D extent{target_.extent().width, target_.extent().height};
   beginClearedRendering(cmd, target_.view(), extent, view.background);
-  status = recordDraw(cmd, target_.format(), extent, view, 0);
+  const glm::ivec4 p = pictureLayoutFor(view).picture;
+  status = recordDraw(
+      cmd, target_.format(),
+      {{p.x, p.y}, {static_cast<std::uint32_t>(p.z), static_cast<std::uint32_t>(p.w)}}, view, 0);
   vkCmdEndRendering(cmd);
 }
 
@@ -495,23 +548,35 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
       image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
     }
   }
-  if (view.legend && view.color == ColorMode::Magnitude) {
-    const VolumeFacts facts = volumeFacts();
-    const float low = view.autoColorRange ? facts.minMagnitude : view.colorLow;
-    const float high = view.autoColorRange ? facts.maxMagnitude : view.colorHigh;
-    drawLegend(image, view.colormap, low, high, "|v|", view.background);
-  }
+  const std::optional<LegendSpec> legend = legendFor(view);
+  const PictureLayout layout = pictureLayoutFor(view);
+  if (legend) drawLegend(image, layout, *legend, view.background);
+  drawTitle(image, layout, view.title, view.background);
   if (view.axes && view.stereo != StereoMode::SideBySide) {
     const VolumeFacts facts = volumeFacts();
+    const glm::ivec4 area = layout.picture;
     const SliceFrame frame = makeSliceFrame(
-        view, facts, Eye::Mono, static_cast<float>(width) / static_cast<float>(view.height));
-    const bool legend = view.legend && view.color == ColorMode::Magnitude;
+        view, facts, Eye::Mono, static_cast<float>(area.z) / static_cast<float>(area.w));
     drawBoxAxes(image,
-                projectBoxAxes(frame.camera.viewProjection, frame.halfExtent, facts.dims,
-                               facts.geometry, width, view.height, legend),
+                projectBoxAxes(frame.camera, view.camera.orthographic, frame.halfExtent, facts.dims,
+                               facts.geometry, area),
                 view.background);
   }
   return image;
+}
+
+std::optional<LegendSpec> LicRenderer::legendFor(const ViewParams& view) const {
+  if (!view.legend || view.color != ColorMode::Magnitude) return std::nullopt;
+  const VolumeFacts facts = volumeFacts();
+  const ColorRange range = colorRange(view, facts.transfer());
+  return LegendSpec{[view](float t) { return viewColor(view, t); }, range.low, range.high,
+                    legendTitle(facts.colorName, facts.colorUnit)};
+}
+
+PictureLayout LicRenderer::pictureLayoutFor(const ViewParams& view) const {
+  const int width = view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width;
+  const std::optional<LegendSpec> legend = legendFor(view);
+  return pictureLayout(width, view.height, legend ? &*legend : nullptr, view.title);
 }
 
 Result<ScalarVolume> LicRenderer::readLicVolume() const {

@@ -21,6 +21,7 @@
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
+#include "lic/legend.h"
 #include "lic/lic_reference.h"
 #include "lic/sparsity.h"
 #include "passes/field_interpolation.h"
@@ -69,6 +70,11 @@ class LicRenderer {
   // The field and the noise that LIC smears along it; they share one texture, so they are set
   // together (the noise must be on the field's grid). Waits for the device to be idle.
   Result<void> setInputs(const VectorField& field, const NoiseVolume& noise);
+  // What colour and opacity follow when not the speed (inputs/scalars.h): scalars on the field's
+  // grid, null for the speed. Kept until set again or until a field of another grid is set.
+  // Redraws only; waits for the device to be idle.
+  Result<void> setScalars(const PointScalars* color, const PointScalars* opacity);
+
   // Uses a LIC volume computed elsewhere (the CPU reference) as the result for `params`.
   Result<void> setLicVolume(const ScalarVolume& volume, const LicParams& params);
 
@@ -106,10 +112,14 @@ class LicRenderer {
   // statistics are what recordDraw() draws from then on.
   void collectStatistics(std::uint32_t slot);
   // Records the shown volume's slices into an open dynamic rendering of one `format` attachment
-  // covering `extent` (both halves for side-by-side stereo). Uniform slots `slotBase` and
+  // into `area` of it (both halves of it for side-by-side stereo). Uniform slots `slotBase` and
   // slotBase + 1 must not be in use by a frame still in flight.
-  Result<void> recordDraw(VkCommandBuffer cmd, VkFormat format, VkExtent2D extent,
+  Result<void> recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
                           const ViewParams& view, std::uint32_t slotBase);
+  // The legend of `view` for the shown volume (colour on and a legend asked for), and where
+  // render() puts the volume, the legend and the title in a picture of the view's size.
+  std::optional<LegendSpec> legendFor(const ViewParams& view) const;
+  PictureLayout pictureLayoutFor(const ViewParams& view) const;
   bool hasVolume() const { return shownParams_.has_value(); }
   // Whether updateLic(params) would run the pass: no volume of `params` for the current field.
   bool needsLic(const LicParams& params) const {
@@ -171,6 +181,10 @@ class LicRenderer {
   Result<void> startJob(const LicParams& params, bool force);
   Result<bool> prepareMask();
   Result<void> uploadMask(const SparsityMask& mask);
+  Result<void> ensureScalarTexture();
+  // Physical |v| below which voxels are empty space, left out of the LIC histogram: a fraction
+  // kEmptySpeedFraction of the field's fast speeds (core/look.h).
+  double emptySpeed() const;
   Result<void> ensureTarget(int width, int height);
   void recordOffscreenFrame(VkCommandBuffer cmd, const ViewParams& view, Result<void>& status);
   const Image& maskFor(const LicParams& params) const;
@@ -198,9 +212,11 @@ class LicRenderer {
   std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
   IntensityStatistics statistics_;
   std::uint64_t licDispatches_ = 0;
-  Image mask_;       // the sparsity mask of maskParams_ on the field's grid
-  Image emptyMask_;  // 1x1x1, bound when sparsity is off
+  Image mask_;             // the sparsity mask of maskParams_ on the field's grid
+  Image emptyMask_;        // 1x1x1, bound when sparsity is off
+  ScalarTexture scalars_;  // colour and opacity scalars (1x1x1 while both follow the speed)
   std::optional<SparsityParams> maskParams_;
+  MaskBeyondGrid maskBeyond_;        // of mask_
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
   std::uint64_t maskBuilds_ = 0;
   // Unsteady fields: the pass, the two resident steps and what the field texture was made from.

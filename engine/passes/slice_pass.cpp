@@ -58,8 +58,13 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   s.opacityMode = static_cast<std::uint32_t>(view.opacityMode);
   s.orthographic = view.camera.orthographic ? 1u : 0u;
   s.colorMode = static_cast<std::uint32_t>(view.color);
-  s.colormap = static_cast<std::uint32_t>(view.colormap);
+  s.colormap = view.transfer.colors.empty() ? static_cast<std::uint32_t>(view.colormap)
+                                            : static_cast<std::uint32_t>(kCustomColormapRow);
   s.magnitudeOpacity = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ? 1u : 0u;
+  s.opacityTable = view.transfer.opacities.empty() ? 0u : 1u;
+  s.clipPlane = view.clipPlane ? 1u : 0u;
+  s.colorSource = volume.colorScalar ? 1u : 0u;
+  s.opacitySource = volume.opacityScalar ? 1u : 0u;
   s.sparsity = volume.sparsity ? 1u : 0u;
   s.roiShape = static_cast<std::uint32_t>(view.roi);
   s.roiOutside = view.roi != RoiShape::None && view.roiOutside ? 1u : 0u;
@@ -78,17 +83,24 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
       glm::scale(glm::mat4(1.0f), 2.0f * h) * glm::translate(glm::mat4(1.0f), -view.roiCenter);
   u.roiFromTexture = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / std::max(view.roiSize, 1e-6f))) *
                      glm::mat4(glm::transpose(rotation)) * toWorld;
-  u.halfExtent = glm::vec4(h, view.alpha);
+  const TransferFacts transferFacts = volume.transfer();
+  u.halfExtent = glm::vec4(h, resolvedAlpha(view, transferFacts, volume.dims));
   u.clipMin = glm::vec4((glm::clamp(view.clipMin, 0.0f, 1.0f) - 0.5f) * 2.0f * h, 0.0f);
   u.clipMax = glm::vec4((glm::clamp(view.clipMax, 0.0f, 1.0f) - 0.5f) * 2.0f * h, 0.0f);
   u.planeNormal = glm::vec4(frame.plan.normal, frame.plan.firstOffset);
   u.eyePosition = glm::vec4(frame.camera.eye, frame.plan.spacing);
   u.toViewer = glm::vec4(central.toViewer, 0.0f);
-  u.transfer = glm::vec4(greyTransfer(view, volume.transfer()), frame.plan.voxelSize, 0.0f);
-  const ColorRange range = colorRange(view, volume.transfer());
-  u.magnitude = glm::vec4(magnitudeTransfer(range), 0.0f, 0.0f);
+  u.transfer = glm::vec4(greyTransfer(view, transferFacts), frame.plan.voxelSize, 0.0f);
+  u.magnitude = glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), 0.0f, 0.0f);
   u.texelToPhysical = glm::vec4(volume.texelToPhysical, 0.0f);
-  u.magnitudeOpacity = glm::vec4(view.magnitudeOpacity, view.magnitudeThreshold, 0.0f, 0.0f);
+  u.magnitudeOpacity = glm::vec4(view.magnitudeOpacity, view.magnitudeThreshold,
+                                 magnitudeTransfer(opacityRange(view, transferFacts)));
+  if (view.clipPlane) {
+    // The plane through the point (box fractions) with the normal in box axes, in world units.
+    const glm::vec3 point = (view.clipPlanePoint - 0.5f) * 2.0f * h;
+    const glm::vec3 normal = glm::normalize(view.clipPlaneNormal / (2.0f * h));
+    u.clipPlane = glm::vec4(normal, glm::dot(normal, point));
+  }
 
   // Fog depths from the nearest to the farthest point of the volume's bounding sphere.
   const float radius = glm::length(h);
@@ -107,7 +119,10 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.lightTerms = glm::vec4(view.light.ambient, view.light.diffuse, view.light.specular, 0.0f);
   u.voxelSize = glm::vec4(2.0f * h / glm::vec3(volume.dims), 0.0f);
   const std::uint32_t* modes = reinterpret_cast<const std::uint32_t*>(&s);
+  // Every mode after `colormap` but the field packing, in order: the runtime-mode shader's.
   for (int i = 0; i < 12; ++i) u.modes[i / 4][i % 4] = modes[i];
+  u.modes[3] = glm::uvec4(s.opacityTable, s.clipPlane, s.colorSource, s.opacitySource);
+  u.scalarRange = volume.scalarRange;
   return frame;
 }
 
@@ -123,6 +138,7 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
       {gpu::kSliceBindingField, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
       {gpu::kSliceBindingColormap, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
       {gpu::kSliceBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBothStages},
+      {gpu::kSliceBindingScalars, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
   };
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, bindings, 0, 0, "slice"));
   LIC3D_TRY_ASSIGN(pass.vertexShader_, loadShader(context, ShaderId::SliceVertex));
@@ -135,11 +151,11 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   ImageDesc desc;
   desc.type = VK_IMAGE_TYPE_2D;
   desc.format = VK_FORMAT_R8G8B8A8_UNORM;
-  desc.extent = {kColormapWidth, kColormapCount, 1};
+  desc.extent = {kColormapWidth, kColormapRows, 1};
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   desc.name = "colour maps";
   LIC3D_TRY_ASSIGN(pass.colormaps_, Image::create(context, desc));
-  const std::vector<std::uint8_t> table = colormapTable();
+  const std::vector<std::uint8_t> table = colormapTable(pass.tableTransfer_, pass.tableMap_);
   LIC3D_TRY(uploadImage(context, pass.colormaps_, table.data(), table.size()));
 
   const VkDeviceSize alignment = context.properties().limits.minUniformBufferOffsetAlignment;
@@ -148,6 +164,17 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
                                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                                   MemoryUse::Upload, "slice uniforms"));
   return pass;
+}
+
+Result<void> SlicePass::setTransferFunction(const TransferFunction& tf, Colormap map) {
+  if (tf == tableTransfer_ && (map == tableMap_ || !tf.colors.empty())) return {};
+  // Frames still in flight may sample the table.
+  vkQueueWaitIdle(context_->queue());
+  const std::vector<std::uint8_t> table = colormapTable(tf, map);
+  LIC3D_TRY(uploadImage(*context_, colormaps_, table.data(), table.size()));
+  tableTransfer_ = tf;
+  tableMap_ = map;
+  return {};
 }
 
 Result<Pipeline> SlicePass::createPipeline(const SliceVariant& variant) const {
@@ -237,7 +264,7 @@ Result<Pipeline> SlicePass::createPipeline(const SliceVariant& variant) const {
 }
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
-                               const Image& volume, const FieldTexture& field,
+                               const Image& volume, const FieldTexture& field, const Image& scalars,
                                const SliceFrame& frame, std::uint32_t slot) {
   LIC3D_ASSERT(slot < kUniformSlots);
   // The runtime-mode shader needs one pipeline per colour write mask only.
@@ -269,6 +296,7 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
       .sampledImage(gpu::kSliceBindingField, linear_, field.image.view())
       .sampledImage(gpu::kSliceBindingColormap, linear_, colormaps_.view())
       .uniformBuffer(gpu::kSliceBindingUniforms, uniforms_, offset, sizeof(gpu::SliceUniforms))
+      .sampledImage(gpu::kSliceBindingScalars, linear_, scalars.view())
       .push(*context_, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_);
   vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
   return {};

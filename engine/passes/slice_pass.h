@@ -8,6 +8,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -38,10 +39,14 @@ struct SliceSpecialization {
   std::uint32_t filter = 1;
   std::uint32_t anaglyph = 0;
   std::uint32_t fieldPacking = 0;  // LicSpecialization::packing
+  std::uint32_t opacityTable = 0;  // the transfer function's opacities
+  std::uint32_t clipPlane = 0;
+  std::uint32_t colorSource = 0;    // 1: the scalar texture's R (ScalarTexture::color)
+  std::uint32_t opacitySource = 0;  // 1: its G
 
   bool operator==(const SliceSpecialization&) const = default;
 };
-static_assert(sizeof(SliceSpecialization) == 13 * 4);
+static_assert(sizeof(SliceSpecialization) == 17 * 4);
 
 // What a frame needs to know about the volume besides the view.
 struct VolumeFacts {
@@ -55,8 +60,22 @@ struct VolumeFacts {
   bool sparsity = false;            // the LIC volume carries a sparsity mask
   FieldPrecision fieldPrecision = FieldPrecision::Half;  // how the field texture is packed
 
+  // What automatic ranges, windows and alpha are measured on (TransferFacts).
+  std::shared_ptr<const ValueHistogram> intensities;
+  std::shared_ptr<const ValueHistogram> colorValues;
+  std::shared_ptr<const ValueHistogram> opacityValues;
+  float drawnFraction = 1.0f;
+  // Colour and opacity by a scalar texture instead of |v| (ScalarTexture), its value range, and
+  // what the legend calls the colour scalar.
+  bool colorScalar = false;
+  bool opacityScalar = false;
+  glm::vec4 scalarRange{0.0f, 1.0f, 0.0f, 1.0f};
+  std::string colorName = "speed";
+  std::string colorUnit;
+
   TransferFacts transfer() const {
-    return {intensityMean, intensityDeviation, minMagnitude, maxMagnitude};
+    return {intensityMean, intensityDeviation, minMagnitude,  maxMagnitude,
+            intensities,   colorValues,        opacityValues, drawnFraction};
   }
 };
 
@@ -92,8 +111,11 @@ class SlicePass {
   // `viewport` of it. `volume` and `field.image` must be in SHADER_READ_ONLY_OPTIMAL with their
   // writes visible to fragment shaders. `slot` must not be used by a draw still in flight.
   Result<void> record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
-                      const Image& volume, const FieldTexture& field, const SliceFrame& frame,
-                      std::uint32_t slot);
+                      const Image& volume, const FieldTexture& field, const Image& scalars,
+                      const SliceFrame& frame, std::uint32_t slot);
+
+  // The transfer function's row of the colour table (core/colormap.h): uploaded when it changed.
+  Result<void> setTransferFunction(const TransferFunction& tf, Colormap map);
 
   std::size_t variantCount() const { return pipelines_.size(); }
 
@@ -113,6 +135,8 @@ class SlicePass {
   ShaderModule fragmentShader_;
   Sampler linear_;
   Image colormaps_;
+  TransferFunction tableTransfer_;  // what the table's custom row holds
+  Colormap tableMap_ = Colormap::Thesis;
   Buffer uniforms_;
   VkDeviceSize slotSize_ = 0;
   PipelineCache<SliceVariant> pipelines_;

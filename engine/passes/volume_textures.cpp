@@ -90,6 +90,8 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   texture.geometry = field.geometry;
   texture.maxMagnitude = maxMagnitude(field);
   texture.minMagnitude = minMagnitude(field);
+  texture.speeds = std::make_shared<const ValueHistogram>(speedHistogram(field));
+  texture.unit = field.unit;
   texture.maxVoxelSpeed = maxVoxelSpeed(field);
   texture.precision = resolved;
   // On isotropic grids voxelUnitScale is exactly 1 and maxVoxelSpeed is max|v|: the texels are
@@ -126,6 +128,47 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
     LIC3D_TRY(
         uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   }
+  return texture;
+}
+
+Result<ScalarTexture> uploadScalars(const Context& context, Dims dims, const PointScalars* color,
+                                    const PointScalars* opacity) {
+  constexpr std::uint16_t kHalfNaN = 0x7e00;  // a quiet NaN: no value there
+  ScalarTexture texture;
+  texture.color = color != nullptr;
+  texture.opacity = opacity != nullptr;
+  const Dims size = color || opacity ? dims : Dims{1};
+  for (const PointScalars* s : {color, opacity})
+    if (s && s->dims != dims)
+      return inputError("the scalar '" + s->name + "' (" + gridText(s->dims) +
+                        ") must be on the field's grid " + gridText(dims));
+  std::vector<std::uint16_t> texels(2 * voxelCount(size), glm::packHalf1x16(0.0f));
+  for (int c = 0; c < 2; ++c) {
+    const PointScalars* s = c == 0 ? color : opacity;
+    if (!s) continue;
+    auto histogram = std::make_shared<const ValueHistogram>(histogramOf(s->values));
+    const double span = histogram->max > histogram->min ? histogram->max - histogram->min : 1.0;
+    texture.range[2 * c] = static_cast<float>(histogram->min);
+    texture.range[2 * c + 1] = static_cast<float>(span);
+    for (std::size_t i = 0; i < s->values.size(); ++i)
+      texels[2 * i + static_cast<std::size_t>(c)] =
+          std::isnan(s->values[i])
+              ? kHalfNaN
+              : glm::packHalf1x16(static_cast<float>(
+                    (static_cast<double>(s->values[i]) - histogram->min) / span));
+    (c == 0 ? texture.colorValues : texture.opacityValues) = std::move(histogram);
+  }
+  if (color) {
+    texture.colorName = color->name;
+    texture.colorUnit = color->unit;
+  }
+  ImageDesc desc;
+  desc.extent = extentOf(size);
+  desc.format = VK_FORMAT_R16G16_SFLOAT;
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "colour and opacity scalars";
+  LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+  LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   return texture;
 }
 

@@ -8,13 +8,18 @@
 // sample (docs/LIC_SEMANTICS.md).
 
 #include <cstdint>
+#include <glm/vec4.hpp>
+#include <memory>
+#include <string>
 #include <string_view>
 
 #include "core/error.h"
 #include "core/field_precision.h"
+#include "core/value_histogram.h"
 #include "core/volume.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
+#include "io/field_io.h"
 
 namespace lic3d {
 
@@ -28,7 +33,30 @@ struct FieldTexture {
   // Per axis, a texel's xyz times this is the physical vector: maxVoxelSpeed / voxelUnitScale.
   glm::dvec3 texelToPhysical{1.0};
   FieldPrecision precision = FieldPrecision::Half;
+  std::shared_ptr<const ValueHistogram> speeds;  // |v| over the voxels (automatic ranges)
+  std::string unit;                              // VectorField::unit
 };
+
+// The scalars colour and opacity follow when they are not the speed (inputs/scalars.h), on the
+// field's grid: R the colour scalar, G the opacity scalar, each as (value - min) / (max - min)
+// in half floats (filterable on every device; 11 bits of the range are finer than the 256
+// entries of a colour table), NaN where the scalar has no value. A 1x1x1 texture when both
+// follow the speed.
+struct ScalarTexture {
+  Image image;
+  bool color = false;    // R holds the colour scalar
+  bool opacity = false;  // G holds the opacity scalar
+  // Per channel: value = min + t * span (span 1 for a constant scalar).
+  glm::vec4 range{0.0f, 1.0f, 0.0f, 1.0f};  // colour min, span, opacity min, span
+  std::shared_ptr<const ValueHistogram> colorValues;
+  std::shared_ptr<const ValueHistogram> opacityValues;
+  std::string colorName;  // the quantity or array, for the legend
+  std::string colorUnit;
+};
+
+// `color`, `opacity`: null for the speed; otherwise on `dims`.
+Result<ScalarTexture> uploadScalars(const Context& context, Dims dims, const PointScalars* color,
+                                    const PointScalars* opacity);
 
 FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested);
 

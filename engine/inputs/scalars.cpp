@@ -1,0 +1,63 @@
+#include "inputs/scalars.h"
+
+#include <filesystem>
+
+#include "core/resolution.h"
+#include "io/file_util.h"
+#include "lic/derived_fields.h"
+#include "lic/resample.h"
+
+namespace lic3d {
+namespace {
+
+bool isScalarFile(const std::string& name) {
+  const std::string extension = asciiLowerCase(std::filesystem::path(name).extension().string());
+  return extension == ".nrrd" || extension == ".nhdr";
+}
+
+}  // namespace
+
+Result<std::optional<PointScalars>> loadScalars(const std::string& name, const std::string& key,
+                                                const Session& session,
+                                                const SessionInputs& inputs) {
+  const std::optional<DerivedQuantity> derived = derivedQuantity(name);
+  if (derived == DerivedQuantity::Speed) return std::optional<PointScalars>();
+  if (inputs.series)
+    return parameterError(key, "'" + name +
+                                   "': a time series is blended on the GPU, which has the speed "
+                                   "alone; colour and opacity of a series follow speed");
+  if (derived)
+    return std::optional<PointScalars>(derivedScalars(inputs.field, *derived, inputs.info.unit));
+  if (!inputs.fromFile && !isScalarFile(name))
+    return parameterError(key, "'" + name + "' is not speed, vorticity or helicity, and " +
+                                   session.field.field +
+                                   " is an analytic field with no arrays; a scalar file "
+                                   "(.nrrd, .nhdr) on its grid may be given instead");
+  PointScalars scalars;
+  if (isScalarFile(name)) {
+    LIC3D_TRY_ASSIGN(scalars, readPointScalars(name, {}));
+  } else {
+    LIC3D_TRY_ASSIGN(scalars, readPointScalars(session.field.field, name));
+  }
+  LIC3D_TRY_ASSIGN(const Resolution resolution, parseResolution(session.field.resolution));
+  // On the file's grid, which the field was resampled from: resampled the same way.
+  if (resolution.given() && resolvedGrid(resolution, scalars.dims) == inputs.field.dims &&
+      scalars.dims != inputs.field.dims)
+    scalars = resampleScalars(scalars, inputs.field.dims);
+  if (scalars.dims != inputs.field.dims)
+    return parameterError(key, "'" + name + "' has the grid " + gridText(scalars.dims) +
+                                   ", the field " + gridText(inputs.field.dims) +
+                                   ": they must be the same");
+  return std::optional<PointScalars>(std::move(scalars));
+}
+
+std::vector<std::string> scalarChoices(const SessionInputs& inputs) {
+  std::vector<std::string> names;
+  for (const DerivedQuantity q :
+       {DerivedQuantity::Speed, DerivedQuantity::Vorticity, DerivedQuantity::Helicity})
+    names.emplace_back(enumName(q));
+  for (const std::string& name : inputs.info.scalarNames) names.push_back(name);
+  return names;
+}
+
+}  // namespace lic3d
