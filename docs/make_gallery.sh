@@ -24,18 +24,51 @@ cat > "$page" <<'EOF'
 # Gallery
 
 Every picture was made by `docs/make_gallery.sh`, which runs the command beside it
-(`lic3d render --width 320 --height 320 --field FIELD …`) and writes this page; lavapipe and the
-H100 give the same pictures. Defaults: 128³ grid, L = 20 steps of h = 0.5 voxel, RK2, box
-kernel, alpha 0.3 with intensity-weighted opacity, contrast stretch on.
+(`lic3d render --width 320 --height 320 --field FIELD …`) and writes this page. Defaults: 128³
+grid for analytic fields, L = 20 steps of h = 0.5 voxel, RK2, box kernel.
 
-A dense 3D LIC volume is a solid block: its faces hide the inside (the "before" column). The
-thesis' chapter 5 techniques open it up. Each row shows one technique on one field; the field
-names the row's before picture.
+## Looks
+
+`--look` ([LOOKS.md](LOOKS.md)) sets the display parameters from the data: percentile ranges of
+the speed, an optical depth, empty space below 2 % of the fast speeds left clear. With no flags,
+`lic3d render` uses `see-through`; `dense` is the thesis' look. Each picture is
+`lic3d render --look LOOK` plus the flags in the first column.
+
+| field | dense | see-through (the default) | streamlines | sparse |
+|---|---|---|---|---|
+EOF
+
+looks_row() {  # title, key, flags... (render() sets $name: other names here)
+  row_title=$1 row_key=$2
+  shift 2
+  cells=""
+  for look in dense see-through streamlines sparse; do
+    render "look-$row_key-$look" "$@" --look "$look"
+    cells="$cells ![]($OUT/look-$row_key-$look.png) |"
+  done
+  # shellcheck disable=SC2001
+  printf '| %s: `%s` |%s\n' "$row_title" "$(echo "$*" | sed 's#\.\./assets#assets#')" "$cells" >> "$page"
+}
+looks_row "Tornado (Crawfis)" tornado --field tornado
+looks_row "Carotid artery, MRI, 76×49×45, LIC on a grid twice as fine" carotid \
+  --field ../assets/data/carotid.vtk --resolution 2x --distance 1.7 --azimuth 20
+looks_row "Magnetic mirror, FEM, 47×47×47, twice as fine" femm \
+  --field ../assets/data/example-femm-3d.vtk --resolution 2x --azimuth 60 --elevation 20
+looks_row "ABC flow" abc --field abc
+
+cat >> "$page" <<'EOF'
+
+## The thesis' techniques on the dense look
+
+A dense 3D LIC volume is a solid block: its faces hide the inside (the "before" column,
+`--look dense`). The thesis' chapter 5 techniques open it up. Each row shows one technique on
+one field; every command starts with `lic3d render --look dense`, and the field names the row's
+before picture.
 
 EOF
 
 for field in tornado corner solenoidal; do
-  render "$field" --field "$field"
+  render "$field" --look dense --field "$field"
 done
 
 section() {
@@ -45,7 +78,7 @@ section() {
 technique() {  # title, field, name, flags...
   title=$1 field=$2 name=$3
   shift 3
-  render "$name" --field "$field" "$@"
+  render "$name" --look dense --field "$field" "$@"
   row "$title ($field)" "$field" "$name" "$*"
 }
 
@@ -99,11 +132,12 @@ technique "Linear filtering of a 32³ LIC volume, close up" tornado tornado-line
 
 cat >> "$page" <<'EOF'
 
-## Real data (assets/data)
+## Real data, colour by any scalar, transfer functions, annotation
 
 The two fields in `assets/data` (provenance and licences in
 [assets/data/README.md](../assets/data/README.md)), read from their VTK files with their own
-grids and spacing. The before picture is `lic3d render --field FILE` with no other flag.
+grids and spacing. "before" is `lic3d render --field FILE` with no other flag (the default
+look); "after" adds the flags shown.
 
 | data set | before | after | flags |
 |---|---|---|---|
@@ -115,16 +149,19 @@ realdata() {  # title, file, picture name, flags...
   render "$picture" --field "../assets/data/$file" "$@"
   row "$title" "$picture-default" "$picture" "--field assets/data/$file $*"
 }
-# The carotid's flow fills 4 % of the grid; the rest is measurement noise. Voxels below 3 % of the
-# colour range vanish and slow ones fade, so the vessels stand out; the range stops at 15 (the
-# maximum is 22.7) so the colours spread over the typical speeds.
-realdata "Carotid artery, blood velocity measured by MRI, 76×49×45: noise outside the vessels hidden, colour by speed" \
-  carotid.vtk carotid --color magnitude --color-range 0,15 --magnitude-threshold 0.03 \
-  --magnitude-opacity 0.5 --alpha 1 --length 10 --distance 1.6 --azimuth 20 --legend
-# Cut open at the coil axis (y = 0.5), the field lines bulge between the two coils (red rings).
-realdata "Magnetic mirror, FEM field of two coils, 47×47×47, spacing 0.05, 0.05, 0.125: cut open at the axis, colour by \|B\| in tesla" \
-  example-femm-3d.vtk femm --color magnitude --color-range 0,0.01 --clip 0,1,0,0.5,0,1 \
-  --azimuth 60 --elevation 20 --legend --axes
+realdata "Carotid artery, 76×49×45: LIC on a grid twice as fine, closer, with a title, the legend and ticked axes" \
+  carotid.vtk carotid --resolution 2x --distance 1.6 --azimuth 20 --legend --axes \
+  --title "Carotid bifurcation, MRI velocity"
+realdata "Carotid artery: colour by vorticity \|curl v\|, opacity still by speed" \
+  carotid.vtk carotid-vorticity --resolution 2x --distance 1.6 --azimuth 20 \
+  --color-by vorticity --legend
+realdata "Magnetic mirror, 47×47×47, spacing 0.05, 0.05, 0.125: cut by an oblique plane, colour by \|B\| in tesla" \
+  example-femm-3d.vtk femm --resolution 2x --clip-plane 0.5,0.5,0.5,1,1,0 --azimuth 60 \
+  --elevation 20 --legend --axes
+render abc-helicity --field abc --color-by helicity --tf ../assets/presets/blue-orange.json --legend
+cat >> "$page" <<'EOF'
+| ABC flow: colour by helicity v · curl v through a ParaView preset ([blue-orange.json](../assets/presets/blue-orange.json), its opacities too) | ![](images/gallery/look-abc-see-through.png) | ![](images/gallery/abc-helicity.png) | `--field abc --color-by helicity --tf assets/presets/blue-orange.json --legend` |
+EOF
 
 # ---- 2D LIC (thesis chapter 3) and time (thesis 3.5, chapter 7) ----
 picture2d() {  # name, arguments...
@@ -153,6 +190,9 @@ image's resolution, so an image larger than the field's grid stays sharp.
 |---|---|---|
 EOF
 plane "The thesis' Figure 3.7: a circular field, 320² grid" circle-320 --field circle --grid 320
+plane "An oblique plane through the tornado's centre, normal (1, 1, 1): the box's hexagonal cut, colour by \|v\|" \
+  tornado-oblique --field tornado --grid 96 --plane 0.5,0.5,0.5,1,1,1 --width 320 --color magnitude \
+  --legend
 plane "The same field on a 40² grid, drawn at 320²: fine noise, smooth field" circle-40-up \
   --field circle --grid 40 --width 320
 plane "A saddle point, Hann kernel, L = 40" saddle --field saddle --grid 320 --kernel hann --length 40
@@ -187,7 +227,7 @@ ffmpeg -loglevel error -y -i "$frames/wave_%d.png" -vf tile=6x1:padding=4 -frame
 "$LIC3D" render2d -q --field wave --grid 128 --length 12 --animate-time 32 --animate-bias 16 \
   --fps 12 -o "$frames/loop_%02d.png" --video "$OUT/wave-loop.gif"
 # The tornado through its period as 32 steps blended on the GPU; 4 of the 24 frames in a strip.
-tornado_time="--field tornado --grid 64 --time-steps 32 --animate-time 24 --width 200 --height 200 \
+tornado_time="--look dense --field tornado --grid 64 --time-steps 32 --animate-time 24 --width 200 --height 200 \
   --clip 0,1,0,0.5,0,1 --color magnitude --elevation 10"
 # shellcheck disable=SC2086
 "$LIC3D" render -q $tornado_time --fps 12 -o "$frames/tornado_%02d.png" --video "$OUT/tornado-time.gif"
