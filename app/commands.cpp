@@ -590,8 +590,12 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
                    session.view.height, fieldText(session.field, *inputs).c_str(),
                    context->deviceInfo().name.c_str());
     }
+    // The masked voxels the histogram pass counted (its drawn fraction leaves out empty space).
     if (done && renderer->volumeFacts().sparsity)
-      noteHiddenFraction(global, session.lic, 1.0 - renderer->volumeFacts().drawnFraction, summary);
+      noteHiddenFraction(global, session.lic,
+                         static_cast<double>(renderer->intensityStatistics().maskedVoxels) /
+                             static_cast<double>(voxelCount(renderer->dims())),
+                         summary);
   }
   status = finish(*context, status);
   if (status == kExitOk) {

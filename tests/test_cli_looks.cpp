@@ -112,6 +112,23 @@ TEST_F(LookTest, SparseAndSeedNoiseVolumesAreNeitherBlackNorOpaque) {
   }
 }
 
+// The hidden fraction `render` reports (the GPU's count of masked voxels) is the one `compute`
+// counts in the volume it writes, on a field with empty space too.
+TEST_F(CliTest, RenderAndComputeReportTheSameHiddenFraction) {
+  const std::string carotid = "'" + (test::dataFolder() / "carotid.vtk").string() + "'";
+  const std::string flags = " --field " + carotid + " --sparsity halton --sparsity-amount 0.5 ";
+  const CommandRun render = run("render" + flags + "--width 32 --height 32 -o r.png");
+  const CommandRun compute = run("compute" + flags + "-o c.nrrd");
+  ASSERT_EQ(render.status, 0) << render.output;
+  ASSERT_EQ(compute.status, 0) << compute.output;
+  const auto hidden = [](const std::string& output) {
+    const std::size_t at = output.find("\"hidden_fraction\":");
+    return at == std::string::npos ? -1.0 : std::stod(output.substr(at + 18));
+  };
+  EXPECT_GT(hidden(compute.output), 0.3);
+  EXPECT_NEAR(hidden(render.output), hidden(compute.output), 1e-4) << render.output;
+}
+
 // Colour by a scalar file: through the GPU's scalar texture the same picture as the speed the
 // slices take from the field itself, and on the CPU (the RGBA volume) the colour map at the
 // scalar's value times the LIC grey.
