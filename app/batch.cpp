@@ -482,6 +482,10 @@ std::string summaryLine(const RunSummary& summary) {
                {"field", field}};
   if (summary.hiddenFraction)
     line["hidden_fraction"] = std::round(*summary.hiddenFraction * 10000.0) / 10000.0;
+  Json timings = Json::object();
+  for (const auto& [stage, seconds] : summary.timings)
+    timings[stage] = std::round(seconds * 10000.0) / 10000.0;
+  line["timings"] = timings;
   // File names need not be UTF-8: invalid bytes become U+FFFD rather than failing the run.
   return "lic3d-summary " + line.dump(-1, ' ', false, Json::error_handler_t::replace);
 }

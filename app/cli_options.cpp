@@ -70,6 +70,15 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
                "message makes the command fail (also LIC3D_VALIDATION=1)");
   app.add_flag("-q,--quiet", options.quiet,
                "Print nothing but errors and warnings about the input (no progress, no summary)");
+  app.add_option("--threads", options.threads,
+                 "At most this many CPU threads for the CPU work (the field, noise, masks, the CPU "
+                 "reference, files); default: the CPUs the process may run on (its affinity mask)")
+      ->check(CLI::Range(0u, 4096u));
+  nameFlag("threads", "--threads");
+  app.add_flag("--timings", options.timings,
+               "Print where the time went, stage by stage (reading or making the field, noise, "
+               "mask, uploads, LIC, frames, read-backs, writing), as a table on stderr; the "
+               "summary line has them as \"timings\"");
 }
 
 void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool volume) {

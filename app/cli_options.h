@@ -34,6 +34,8 @@ struct GlobalOptions {
   std::string device;
   bool validation = false;
   bool quiet = false;
+  bool timings = false;  // --timings: the stages' times as a table on stderr
+  unsigned threads = 0;  // --threads: at most this many CPU threads (0: the affinity mask's)
 };
 
 // Flags whose text needs parsing after CLI11 (lists, colours, on/off). Each is applied only if

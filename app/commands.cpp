@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/memory_budget.h"
+#include "core/stage_times.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
 #include "inputs/plane_inputs.h"
@@ -38,6 +39,7 @@ Result<Context> openContext(const GlobalOptions& global) {
   ContextOptions options;
   options.validation = global.validation;
   options.device = global.device;
+  const StageTimer timer("device");
   return Context::create(options);
 }
 
@@ -137,8 +139,20 @@ std::optional<double> hiddenFractionOf(const ScalarVolume& volume) {
 }
 
 void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_point start) {
-  if (global.quiet) return;
   summary.seconds = secondsSince(start);
+  summary.timings = stageTimings();
+  if (global.timings) {
+    // What the stages do not cover (option parsing, device creation, waiting) is the rest.
+    double covered = 0.0;
+    std::fprintf(stderr, "lic3d: timings (wall clock, seconds)\n");
+    for (const auto& [stage, seconds] : summary.timings) {
+      std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
+      covered += seconds;
+    }
+    std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other", summary.seconds - covered,
+                 "total", summary.seconds);
+  }
+  if (global.quiet) return;
   std::printf("%s\n", summaryLine(summary).c_str());
   std::fflush(stdout);
 }
@@ -167,7 +181,10 @@ Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& i
 // compute's output: the volume (.nrrd, .vti) or one slice (.png with --slice).
 Result<void> writeComputeOutput(const ComputeOptions& options, const BatchOptions& batch,
                                 const ScalarVolume& volume) {
-  if (!batch.slice.given()) return writeLicVolumeFile(options.output, volume);
+  if (!batch.slice.given()) {
+    const StageTimer timer("volume write");
+    return writeLicVolumeFile(options.output, volume);
+  }
   LIC3D_TRY_ASSIGN(const LicSlice slice, parseSlice(batch.slice.text));
   return writeLicSlicePng(options.output, volume, slice, options.inputs.session);
 }
@@ -183,6 +200,7 @@ struct ViewScalars {
 };
 
 Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs) {
+  const StageTimer timer("scalars");
   const ViewParams& view = session.view;
   ViewScalars scalars;
   if (view.color == ColorMode::Magnitude) {

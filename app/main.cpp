@@ -11,6 +11,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "core/parallel.h"
 
 using namespace lic3d::cli;
 
@@ -175,6 +176,7 @@ int main(int argc, char** argv) {
           app, argc, argv, "lic3d", "Run `lic3d --help` or `lic3d <command> --help`.",
           {&compute.inputs, &render.inputs, &render2d.inputs}))
     return *status;
+  lic3d::setThreadLimit(global.threads);
 
   try {
     if (devices->parsed()) return runDevices(global);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli_options.h"
+#include "core/parallel.h"
 #include "viewer.h"
 
 using namespace lic3d;
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   if (const std::optional<int> status =
           parseCommandLine(app, argc, argv, "lic3d-view", "Run `lic3d-view --help`.", {&inputs}))
     return *status;
+  setThreadLimit(global.threads);
 
   if (!windowSize.empty()) {
     const Result<glm::ivec2> size = parseSize(windowSize, "--window-size", 64, kMaxImageSize);

@@ -431,5 +431,27 @@ TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// Where the time goes: --timings prints the stages on stderr, the summary has them as
+// "timings"; --threads bounds the CPU threads.
+TEST_F(CliTest, TimingsNameEveryStageAndThreadsAreBounded) {
+  const CommandRun r =
+      run("render --timings --threads 1 --grid 16 --width 32 --height 32 -o a.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* stage :
+       {"device", "field (analytic)", "noise", "field statistics", "field packing", "field upload",
+        "LIC", "frame", "frame read-back", "png encode and write", "other", "total"})
+    EXPECT_NE(r.output.find("  " + std::string(stage) + " "), std::string::npos) << stage;
+  const std::size_t at = r.output.find("\"timings\":{");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"LIC\":", at), std::string::npos);
+  const CommandRun compute = run("compute --grid 16 -o v.nrrd");
+  ASSERT_EQ(compute.status, 0) << compute.output;
+  EXPECT_NE(compute.output.find("\"volume write\":"), std::string::npos) << compute.output;
+  EXPECT_NE(compute.output.find("\"volume read-back\":"), std::string::npos) << compute.output;
+  const CommandRun bad = run("render --threads -2 -o b.png");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--threads"), std::string::npos) << bad.output;
+}
+
 }  // namespace
 }  // namespace lic3d

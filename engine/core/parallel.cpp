@@ -11,14 +11,41 @@
 
 namespace lic3d {
 
+namespace {
+
+std::atomic<unsigned>& threadLimit() {
+  static std::atomic<unsigned> limit{0};
+  return limit;
+}
+
+}  // namespace
+
+void setThreadLimit(unsigned threads) { threadLimit() = threads; }
+
 unsigned availableThreads() {
+  unsigned available = std::max(1u, std::thread::hardware_concurrency());
   cpu_set_t set;
   CPU_ZERO(&set);
   if (sched_getaffinity(0, sizeof(set), &set) == 0) {
     const int count = CPU_COUNT(&set);
-    if (count > 0) return static_cast<unsigned>(count);
+    if (count > 0) available = static_cast<unsigned>(count);
   }
-  return std::max(1u, std::thread::hardware_concurrency());
+  const unsigned limit = threadLimit();
+  return limit > 0 ? std::min(available, limit) : available;
+}
+
+void parallelChunks(std::size_t count, const std::function<void(std::size_t, std::size_t)>& chunk,
+                    std::size_t grain) {
+  if (count == 0) return;
+  const std::size_t threads = availableThreads();
+  // A few chunks per thread evens out uneven ones; none smaller than `grain`.
+  const std::size_t size = std::max(grain, (count + 4 * threads - 1) / (4 * threads));
+  const std::size_t chunks = (count + size - 1) / size;
+  if (chunks == 1) {
+    chunk(0, count);
+    return;
+  }
+  parallelFor(chunks, 0, [&](std::size_t c) { chunk(c * size, std::min(count, (c + 1) * size)); });
 }
 
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,

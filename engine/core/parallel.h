@@ -8,8 +8,10 @@
 namespace lic3d {
 
 // The CPUs this process may run on: its affinity mask (taskset, a batch system's CPU set), else
-// the hardware's thread count. At least 1.
+// the hardware's thread count, at most the limit set by setThreadLimit (`--threads`). At least 1.
 unsigned availableThreads();
+// Bounds availableThreads() for the whole process (0: no bound).
+void setThreadLimit(unsigned threads);
 
 // Calls task(i) for every i in [0, count) on up to `threads` threads (0: availableThreads()), the
 // calling thread among them; a thread that finishes a task takes the next one not yet taken.
@@ -19,5 +21,9 @@ unsigned availableThreads();
 // is rethrown here once all have finished.
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,
                  const std::function<void(double)>& progress = {});
+// [0, count) in consecutive chunks of at least `grain` items, chunk(begin, end) for each, on
+// availableThreads(). For loops over voxels whose iterations write only their own items.
+void parallelChunks(std::size_t count, const std::function<void(std::size_t, std::size_t)>& chunk,
+                    std::size_t grain = std::size_t{1} << 15);
 
 }  // namespace lic3d

@@ -3,31 +3,49 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+
+#include "core/parallel.h"
 
 namespace lic3d {
 namespace {
 
 template <class Values>
 ValueHistogram build(std::size_t n, const Values& valueAt) {
+  // Two passes over the values, chunk by chunk on the available threads: their range, then the
+  // counts. Min, max and integer sums do not depend on the order: the same histogram as one
+  // thread makes.
   ValueHistogram h;
   h.counts.assign(ValueHistogram::kBins, 0);
+  std::mutex mutex;
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = valueAt(i);
-    if (std::isnan(v)) continue;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
+  parallelChunks(n, [&](std::size_t begin, std::size_t end) {
+    double low = std::numeric_limits<double>::max(), high = std::numeric_limits<double>::lowest();
+    for (std::size_t i = begin; i < end; ++i) {
+      const double v = valueAt(i);
+      if (std::isnan(v)) continue;
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+    const std::scoped_lock lock(mutex);
+    lo = std::min(lo, low);
+    hi = std::max(hi, high);
+  });
   if (lo > hi) return h;
   h.min = lo;
   h.max = hi;
   const double scale = hi > lo ? ValueHistogram::kBins / (hi - lo) : 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = valueAt(i);
-    if (std::isnan(v)) continue;
-    const auto bin = static_cast<std::size_t>((v - lo) * scale);
-    ++h.counts[std::min(bin, std::size_t{ValueHistogram::kBins - 1})];
-  }
+  parallelChunks(n, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint64_t> counts(ValueHistogram::kBins, 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      const double v = valueAt(i);
+      if (std::isnan(v)) continue;
+      const auto bin = static_cast<std::size_t>((v - lo) * scale);
+      ++counts[std::min(bin, std::size_t{ValueHistogram::kBins - 1})];
+    }
+    const std::scoped_lock lock(mutex);
+    for (std::size_t b = 0; b < counts.size(); ++b) h.counts[b] += counts[b];
+  });
   return h;
 }
 

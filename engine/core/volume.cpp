@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
+
+#include "core/parallel.h"
 
 namespace lic3d {
 
@@ -13,23 +16,34 @@ std::string gridText(Dims d) {
 
 std::string sizeText(Dims d) { return std::to_string(d.x) + "x" + std::to_string(d.y); }
 
-double maxMagnitude(const VectorField& field) {
-  double largest = 0.0;
-  for (const glm::vec3& v : field.vectors) {
-    const double x = v.x, y = v.y, z = v.z;
-    largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
-  }
-  return largest;
+namespace {
+
+// The largest (or, with `smallest`, the smallest) |v| of the field, chunk by chunk on the
+// available threads: min and max do not depend on the order.
+double extremeMagnitude(const VectorField& field, bool smallest) {
+  std::mutex mutex;
+  double result = smallest ? std::numeric_limits<double>::max() : 0.0;
+  parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
+    double local = result;
+    for (std::size_t i = begin; i < end; ++i) {
+      const glm::vec3& v = field.vectors[i];
+      const double x = v.x, y = v.y, z = v.z;
+      const double length = std::sqrt(x * x + y * y + z * z);
+      local = smallest ? std::min(local, length) : std::max(local, length);
+    }
+    const std::scoped_lock lock(mutex);
+    result = smallest ? std::min(result, local) : std::max(result, local);
+  });
+  return result;
 }
+
+}  // namespace
+
+double maxMagnitude(const VectorField& field) { return extremeMagnitude(field, false); }
 
 double minMagnitude(const VectorField& field) {
   if (field.vectors.empty()) return 0.0;
-  double smallest = std::numeric_limits<double>::max();
-  for (const glm::vec3& v : field.vectors) {
-    const double x = v.x, y = v.y, z = v.z;
-    smallest = std::min(smallest, std::sqrt(x * x + y * y + z * z));
-  }
-  return smallest;
+  return extremeMagnitude(field, true);
 }
 
 std::size_t bytesPerValue(NoiseType type) {

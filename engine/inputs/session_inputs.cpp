@@ -9,6 +9,7 @@
 #include "core/look.h"
 #include "core/memory_budget.h"
 #include "core/resolution.h"
+#include "core/stage_times.h"
 #include "core/value_histogram.h"
 #include "gpu/gpu_resources.h"
 #include "io/field_io.h"
@@ -80,6 +81,7 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
                                                " is an analytic field; field.array picks a "
                                                "vector array of a .vtk or .vti file");
     LIC3D_TRY(checkHostMemory(source.grid));
+    const StageTimer timer("field (analytic)");
     return makeAnalyticField(*analytic, source.grid, time);
   }
   if (parseEnum<AnalyticField2D>(source.field))
@@ -98,7 +100,9 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
                                               enumChoices<AnalyticField>() +
                                               ") nor a file name with an extension");
   FieldReadInfo read;
+  StageTimer reading("field (read)");
   LIC3D_TRY_ASSIGN(VectorField field, readVectorField(path, source.array, &read));
+  reading.stop();
   field.unit = read.unit;
   if (info) *info = read;
   return atResolution(std::move(field), source);
@@ -109,6 +113,7 @@ Result<VectorField> atResolution(VectorField field, const FieldSource& source) {
   const Dims dims = resolvedGrid(resolution, field.dims);
   if (dims == field.dims) return field;
   LIC3D_TRY(checkHostMemory(dims));
+  const StageTimer timer("field (resample)");
   return resampleField(field, dims);
 }
 
@@ -192,6 +197,7 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
     if (analytic && timePeriod(*analytic) > 0.0) inputs.sampled = analytic;
   }
   LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
+  const StageTimer timer("noise");
   LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, inputs.field));
   return inputs;
 }

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "core/stage_times.h"
 #include "io/file_util.h"
 
 // libpng is linked statically (like zlib) so the binary needs nothing beyond libvulkan, libstdc++
@@ -15,6 +16,10 @@
 // setjmp, so no destructor is ever skipped.
 
 namespace lic3d {
+
+namespace {
+constexpr int kPngCompressionLevel = 2;
+}  // namespace
 namespace {
 
 struct EncodeState {
@@ -74,6 +79,9 @@ bool encode(EncodeState& state, const PngFormat& format, png_bytepp rows, png_te
   png_set_IHDR(png, info, static_cast<png_uint_32>(format.width),
                static_cast<png_uint_32>(format.height), format.bitDepth, format.colorType,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // zlib level 2: a 1024² LIC picture took 92 ms and 501 KiB against 320 ms and 397 KiB at the
+  // default level 6 (level 1: 86 ms, 525 KiB; 9: 3.3 s, 367 KiB), measured on the build machine.
+  png_set_compression_level(png, kPngCompressionLevel);
   if (textCount > 0) png_set_text(png, info, texts, textCount);
   png_write_info(png, info);
   png_write_image(png, rows);
@@ -164,6 +172,7 @@ Result<void> checkSize(const std::filesystem::path& path, int width, int height,
 Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
                       const PngText& text) {
   LIC3D_TRY(checkSize(path, image.width, image.height, image.pixels.size(), 4));
+  const StageTimer timer("png encode and write");
   return encodeAndWrite(path, {image.width, image.height, 8, PNG_COLOR_TYPE_RGBA},
                         image.pixels.data(), 4 * static_cast<std::size_t>(image.width), text);
 }
@@ -171,6 +180,7 @@ Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
 Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
                             const std::vector<std::uint16_t>& values, const PngText& text) {
   LIC3D_TRY(checkSize(path, width, height, values.size(), 1));
+  const StageTimer timer("png encode and write");
   std::vector<std::uint8_t> bigEndian(2 * values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     bigEndian[2 * i] = static_cast<std::uint8_t>(values[i] >> 8);

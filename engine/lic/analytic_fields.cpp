@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/parallel.h"
 #include "lic/field_plane.h"
 
 namespace lic3d {
@@ -87,12 +88,15 @@ VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
   result.dims = dims;
   result.geometry = cubicGeometry(domainOf(field), dims);
   result.vectors.resize(voxelCount(dims));
-  for (int k = 0; k < dims.z; ++k)
+  // One z layer per task: each voxel's value depends on its position alone.
+  parallelFor(static_cast<std::size_t>(dims.z), 0, [&](std::size_t layer) {
+    const int k = static_cast<int>(layer);
     for (int j = 0; j < dims.y; ++j)
       for (int i = 0; i < dims.x; ++i) {
         const glm::dvec3 p = result.geometry.origin + glm::dvec3(i, j, k) * result.geometry.spacing;
         result.vectors[voxelIndex(dims, i, j, k)] = glm::vec3(evaluate(field, p, time));
       }
+  });
   return result;
 }
 

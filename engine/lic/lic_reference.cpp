@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <mutex>
 #include <optional>
 
 #include "core/parallel.h"
@@ -80,12 +81,19 @@ double maxVoxelSpeed(const VectorField& field) {
 
 double maxVoxelSpeedOverVoxels(const VectorField& field) {
   const glm::dvec3 scale = voxelUnitScale(field.geometry);
+  std::mutex mutex;
   double largest = 0.0;
-  for (const glm::vec3& v : field.vectors) {
-    // The same arithmetic as maxMagnitude (volume.cpp): equal to it on isotropic grids.
-    const double x = v.x * scale.x, y = v.y * scale.y, z = v.z * scale.z;
-    largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
-  }
+  parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
+    double local = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const glm::vec3& v = field.vectors[i];
+      // The same arithmetic as maxMagnitude (volume.cpp): equal to it on isotropic grids.
+      const double x = v.x * scale.x, y = v.y * scale.y, z = v.z * scale.z;
+      local = std::max(local, std::sqrt(x * x + y * y + z * z));
+    }
+    const std::scoped_lock lock(mutex);
+    largest = std::max(largest, local);
+  });
   return largest;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include "core/parallel.h"
 #include "lic/point_sets.h"
 
 namespace lic3d {
@@ -13,8 +14,10 @@ NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
   noise.dims = dims;
   noise.type = NoiseType::UInt8;
   noise.bytes.resize(voxelCount(dims));
-  for (std::size_t i = 0; i < noise.bytes.size(); ++i)
-    noise.bytes[i] = static_cast<std::uint8_t>(noiseHash(seed, i) >> 56);
+  parallelChunks(noise.bytes.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      noise.bytes[i] = static_cast<std::uint8_t>(noiseHash(seed, i) >> 56);
+  });
   return noise;
 }
 

@@ -7,6 +7,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/look.h"
+#include "core/stage_times.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/vk_check.h"
 #include "lic/legend.h"
@@ -23,6 +24,7 @@ constexpr VkPipelineStageFlags2 kVolumeReaders =
 }  // namespace
 
 Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOptions& options) {
+  const StageTimer timer("pipelines");
   LicRenderer renderer;
   renderer.context_ = &context;
   renderer.precision_ = resolvePrecision(context, options.fieldPrecision);
@@ -353,7 +355,9 @@ Result<bool> LicRenderer::prepareMask() {
     job_.reset();
     return error;
   }
+  StageTimer uploading("mask upload");
   LIC3D_TRY(uploadMask(*mask));
+  uploading.stop();
   maskParams_ = maskParams(job_->params);
   job_->needsMask = false;
   return true;
@@ -416,8 +420,12 @@ Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallb
   LIC3D_TRY(startJob(params, fieldChanged_));
   const int slab = progress ? (field_.dims.z + kProgressSlabs - 1) / kProgressSlabs : field_.dims.z;
   while (job_) {
-    if (job_->needsMask) job_->mask.wait();
+    if (job_->needsMask) {
+      const StageTimer timer("mask");
+      job_->mask.wait();
+    }
     Result<LicWork> work = LicWork{};
+    const StageTimer timer("LIC");
     LIC3D_TRY(submitAndWait(
         *context_, [&](VkCommandBuffer cmd) { work = recordLicWork(cmd, slab, 0); },
         "lic compute"));
@@ -515,6 +523,7 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   const int width = view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width;
   LIC3D_TRY(ensureTarget(width, view.height));
   Result<void> status;
+  StageTimer drawing("frame");
   LIC3D_TRY(submitAndWait(
       *context_,
       [&](VkCommandBuffer cmd) {
@@ -534,7 +543,9 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
       },
       "render frame"));
   LIC3D_TRY(std::move(status));
+  drawing.stop();
 
+  StageTimer reading("frame read-back");
   RgbaImage image;
   image.width = width;
   image.height = view.height;
@@ -548,6 +559,8 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
       image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
     }
   }
+  reading.stop();
+  const StageTimer annotating("annotation");
   const std::optional<LegendSpec> legend = legendFor(view);
   const PictureLayout layout = pictureLayoutFor(view);
   if (legend) drawLegend(image, layout, *legend, view.background);
@@ -581,6 +594,7 @@ PictureLayout LicRenderer::pictureLayoutFor(const ViewParams& view) const {
 
 Result<ScalarVolume> LicRenderer::readLicVolume() const {
   if (!shownParams_) return inputError("no LIC volume has been computed");
+  const StageTimer timer("volume read-back");
   LIC3D_TRY_ASSIGN(
       std::vector<std::byte> bytes,
       readImage(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));

@@ -5,6 +5,8 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/memory_budget.h"
+#include "core/parallel.h"
+#include "core/stage_times.h"
 #include "gpu/gpu_submit.h"
 #include "lic/lic_reference.h"
 
@@ -17,13 +19,15 @@ template <class T, class Convert>
 std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
                           Convert convert) {
   std::vector<T> texels(4 * field.vectors.size());
-  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
-    const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
-    texels[4 * i + 0] = convert(static_cast<float>(v.x));
-    texels[4 * i + 1] = convert(static_cast<float>(v.y));
-    texels[4 * i + 2] = convert(static_cast<float>(v.z));
-    texels[4 * i + 3] = convert(noise.value(i));
-  }
+  parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
+      texels[4 * i + 0] = convert(static_cast<float>(v.x));
+      texels[4 * i + 1] = convert(static_cast<float>(v.y));
+      texels[4 * i + 2] = convert(static_cast<float>(v.z));
+      texels[4 * i + 3] = convert(noise.value(i));
+    }
+  });
   return texels;
 }
 
@@ -37,16 +41,19 @@ std::int8_t snorm8(double value) {
 std::vector<std::int8_t> packByteTexels(const VectorField& field, const NoiseVolume& noise,
                                         glm::dvec3 scale) {
   std::vector<std::int8_t> texels(4 * field.vectors.size());
-  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
-    const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
-    const double speed = glm::length(v);
-    const glm::dvec3 e = speed > 0.0 ? v / std::sqrt(speed) : glm::dvec3(0.0);
-    texels[4 * i + 0] = snorm8(e.x);
-    texels[4 * i + 1] = snorm8(e.y);
-    texels[4 * i + 2] = snorm8(e.z);
-    const double n = std::round(std::clamp(static_cast<double>(noise.value(i)), 0.0, 1.0) * 255.0);
-    texels[4 * i + 3] = static_cast<std::int8_t>(n - 128.0);
-  }
+  parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
+      const double speed = glm::length(v);
+      const glm::dvec3 e = speed > 0.0 ? v / std::sqrt(speed) : glm::dvec3(0.0);
+      texels[4 * i + 0] = snorm8(e.x);
+      texels[4 * i + 1] = snorm8(e.y);
+      texels[4 * i + 2] = snorm8(e.z);
+      const double n =
+          std::round(std::clamp(static_cast<double>(noise.value(i)), 0.0, 1.0) * 255.0);
+      texels[4 * i + 3] = static_cast<std::int8_t>(n - 128.0);
+    }
+  });
   return texels;
 }
 
@@ -88,11 +95,13 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   FieldTexture texture;
   texture.dims = field.dims;
   texture.geometry = field.geometry;
+  StageTimer statistics("field statistics");
   texture.maxMagnitude = maxMagnitude(field);
   texture.minMagnitude = minMagnitude(field);
   texture.speeds = std::make_shared<const ValueHistogram>(speedHistogram(field));
   texture.unit = field.unit;
   texture.maxVoxelSpeed = maxVoxelSpeed(field);
+  statistics.stop();
   texture.precision = resolved;
   // On isotropic grids voxelUnitScale is exactly 1 and maxVoxelSpeed is max|v|: the texels are
   // v / max|v| bit for bit, as before anisotropic grids were converted.
@@ -107,24 +116,33 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   desc.name = "field and noise texture";
   if (texture.precision == FieldPrecision::Half) {
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    StageTimer packing("field packing");
     const std::vector<std::uint16_t> texels = packTexels<std::uint16_t>(
         field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
+    packing.stop();
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    const StageTimer uploading("field upload");
     LIC3D_TRY(
         uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   } else if (texture.precision == FieldPrecision::Byte) {
     desc.format = VK_FORMAT_R8G8B8A8_SNORM;
+    StageTimer packing("field packing");
     const std::vector<std::int8_t> texels = packByteTexels(field, noise, scale);
+    packing.stop();
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    const StageTimer uploading("field upload");
     LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size()));
   } else {
     desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
       return unsupportedError(context.deviceInfo().name +
                               " cannot filter RGBA32F textures; use half precision");
+    StageTimer packing("field packing");
     const std::vector<float> texels =
         packTexels<float>(field, noise, scale, [](float f) { return f; });
+    packing.stop();
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    const StageTimer uploading("field upload");
     LIC3D_TRY(
         uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
   }

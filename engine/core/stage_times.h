@@ -1,0 +1,43 @@
+#pragma once
+// Where a run's time goes: wall-clock seconds per stage (reading or making the field, the noise,
+// the mask, uploads, the LIC, frames, read-backs, encoding, writing), summed over a run's frames.
+// The engine and the front ends add to one process-wide table; the CLI reports it in its summary
+// (`"timings"`) and with --timings. Thread-safe: worker threads add their stages too.
+
+#include <chrono>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace lic3d {
+
+// The stages in the order they were first recorded, with their summed seconds.
+using StageTimings = std::vector<std::pair<std::string, double>>;
+
+void addStageTime(std::string_view stage, double seconds);
+StageTimings stageTimings();
+void clearStageTimings();
+
+// Adds the time from its construction to its destruction (or to stop()) to `stage`.
+class StageTimer {
+ public:
+  explicit StageTimer(std::string_view stage)
+      : stage_(stage), start_(std::chrono::steady_clock::now()) {}
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+  ~StageTimer() { stop(); }
+  void stop() {
+    if (stopped_) return;
+    stopped_ = true;
+    addStageTime(stage_,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+  }
+
+ private:
+  std::string stage_;
+  std::chrono::steady_clock::time_point start_;
+  bool stopped_ = false;
+};
+
+}  // namespace lic3d

@@ -1,0 +1,101 @@
+// The CPU work spread over threads (core/parallel.h) gives what one thread gives, bit for bit,
+// and --threads bounds the threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "core/parallel.h"
+#include "core/stage_times.h"
+#include "core/value_histogram.h"
+#include "lic/analytic_fields.h"
+#include "lic/lic_reference.h"
+#include "lic/noise.h"
+
+namespace lic3d {
+namespace {
+
+struct Made {
+  VectorField field;
+  NoiseVolume noise;
+  ValueHistogram speeds;
+  double min = 0.0, max = 0.0, voxelSpeed = 0.0;
+};
+
+Made make(unsigned threads) {
+  setThreadLimit(threads);
+  Made m;
+  m.field = makeAnalyticField(AnalyticField::Tornado, {37, 29, 41}, 3.0);
+  m.noise = makeWhiteNoise(m.field.dims, 7);
+  m.speeds = speedHistogram(m.field);
+  m.min = minMagnitude(m.field);
+  m.max = maxMagnitude(m.field);
+  m.voxelSpeed = maxVoxelSpeedOverVoxels(m.field);
+  setThreadLimit(0);
+  return m;
+}
+
+TEST(Parallel, FieldsNoiseAndStatisticsAreTheSameOnOneThreadAndOnMany) {
+  const Made one = make(1);
+  const Made many = make(8);
+  EXPECT_EQ(one.field.vectors, many.field.vectors);
+  EXPECT_EQ(one.noise.bytes, many.noise.bytes);
+  EXPECT_EQ(one.speeds.counts, many.speeds.counts);
+  EXPECT_EQ(one.speeds.min, many.speeds.min);
+  EXPECT_EQ(one.speeds.max, many.speeds.max);
+  EXPECT_EQ(one.min, many.min);
+  EXPECT_EQ(one.max, many.max);
+  EXPECT_EQ(one.voxelSpeed, many.voxelSpeed);
+  EXPECT_GT(one.max, one.min);
+}
+
+TEST(Parallel, TheThreadLimitBoundsTheThreadsThatRun) {
+  const unsigned all = availableThreads();
+  setThreadLimit(1);
+  EXPECT_EQ(availableThreads(), 1u);
+  std::mutex mutex;
+  std::set<std::thread::id> ids;
+  parallelChunks(
+      1 << 20,
+      [&](std::size_t, std::size_t) {
+        const std::scoped_lock lock(mutex);
+        ids.insert(std::this_thread::get_id());
+      },
+      1024);
+  EXPECT_EQ(ids.size(), 1u);
+  setThreadLimit(0);
+  EXPECT_EQ(availableThreads(), all);
+  // Every item once, in chunks of at least the grain.
+  std::vector<std::atomic<int>> seen(100000);
+  parallelChunks(
+      seen.size(),
+      [&](std::size_t begin, std::size_t end) {
+        EXPECT_TRUE(end - begin >= 1000 || end == seen.size());
+        for (std::size_t i = begin; i < end; ++i) ++seen[i];
+      },
+      1000);
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](const auto& n) { return n == 1; }));
+}
+
+TEST(StageTimes, StagesAddUpInTheOrderTheyFirstRan) {
+  clearStageTimings();
+  addStageTime("field", 0.25);
+  addStageTime("LIC", 1.0);
+  addStageTime("field", 0.5);
+  { const StageTimer timer("write"); }
+  const StageTimings timings = stageTimings();
+  ASSERT_EQ(timings.size(), 3u);
+  EXPECT_EQ(timings[0].first, "field");
+  EXPECT_DOUBLE_EQ(timings[0].second, 0.75);
+  EXPECT_EQ(timings[1].first, "LIC");
+  EXPECT_EQ(timings[2].first, "write");
+  EXPECT_GE(timings[2].second, 0.0);
+  clearStageTimings();
+  EXPECT_TRUE(stageTimings().empty());
+}
+
+}  // namespace
+}  // namespace lic3d
