@@ -4,10 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <future>
 #include <map>
 #include <optional>
 
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 #include "core/stage_times.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
@@ -149,8 +152,12 @@ void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_p
       std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
       covered += seconds;
     }
-    std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other", summary.seconds - covered,
-                 "total", summary.seconds);
+    std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other",
+                 std::max(summary.seconds - covered, 0.0), "total", summary.seconds);
+    if (covered > summary.seconds)
+      std::fprintf(stderr,
+                   "  (stages on worker threads, such as PNG writes of an animation, ran "
+                   "beside the others)\n");
   }
   if (global.quiet) return;
   std::printf("%s\n", summaryLine(summary).c_str());
@@ -241,6 +248,21 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       inputs.sampled && (scalars.color || scalars.opacity) && plan.animation == Animation::Time;
 
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
+  // PNG encoding and writing run on worker threads while the GPU makes the next frames; at most
+  // `inFlight` frames wait, which bounds the host memory they hold.
+  std::deque<std::future<Result<void>>> writes;
+  const std::size_t inFlight = std::max(2u, availableThreads());
+  const auto waitOldest = [&]() -> Result<void> {
+    Result<void> written = writes.front().get();
+    writes.pop_front();
+    return written;
+  };
+  const auto waitAll = [&]() -> Result<void> {
+    Result<void> first;
+    while (!writes.empty())
+      if (Result<void> written = waitOldest(); !written && first) first = std::move(written);
+    return first;
+  };
   for (int frame = plan.first; frame < plan.end; ++frame) {
     const Session frameParams = frameSession(session, plan, frame);
     LIC3D_TRY(moveToTime(inputs, session, frameParams.time, renderer, false, options.cpu));
@@ -249,14 +271,24 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       LIC3D_TRY_ASSIGN(scalars, loadViewScalars(session, inputs));
       LIC3D_TRY(setViewScalars(renderer, scalars));
     }
-    LIC3D_TRY(makeLicVolume(options, inputs, frameParams.lic, renderer, true));
-    LIC3D_TRY_ASSIGN(const RgbaImage image, renderer.render(frameParams.lic, frameParams.view));
-    const std::string path = animated ? framePath(plan.output, frame) : plan.output;
-    LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams));
-    LIC3D_TRY(writePng(path, image, text));
-    outputs.push_back(path);
+    const Result<void> made = makeLicVolume(options, inputs, frameParams.lic, renderer, true);
+    Result<RgbaImage> image =
+        made ? renderer.render(frameParams.lic, frameParams.view) : Result<RgbaImage>(made.error());
+    Result<PngText> text = image ? pngText(frameParams) : Result<PngText>(image.error());
+    if (!image || !text) {
+      (void)waitAll();  // the frames already made are written before the error is reported
+      return !image ? std::move(image).error() : std::move(text).error();
+    }
+    std::string path = animated ? framePath(plan.output, frame) : plan.output;
+    if (writes.size() >= inFlight) LIC3D_TRY(waitOldest());
+    writes.push_back(
+        std::async(std::launch::async, [path, picture = std::move(*image), png = std::move(*text)] {
+          return writePng(path, picture, png);
+        }));
+    outputs.push_back(std::move(path));
     progress.frameDone(frame);
   }
+  LIC3D_TRY(waitAll());
   progress.finish();
   if (inputs.series && !options.cpu && !global.quiet)
     std::fprintf(stderr,

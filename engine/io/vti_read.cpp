@@ -12,12 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 #include "io/vti.h"
 #include "io/vti_file.h"
 
 namespace lic3d {
+
+// Inflated bytes of VTI zlib blocks decoded per batch (their inflation runs in parallel).
+constexpr std::size_t kInflateBatchBytes = std::size_t{32} << 20;
 namespace {
 
 using vti::ArrayRef;
@@ -403,12 +407,10 @@ class ArrayReader {
                   "), expected " + std::to_string(bytes_) + " (" + layoutText() + ")");
     std::vector<std::uint64_t> compressedSizes(static_cast<std::size_t>(blocks));
     std::uint64_t compressedTotal = 0;
-    std::uint64_t largest = 0;
     for (std::uint64_t& size : compressedSizes) {
       LIC3D_TRY_ASSIGN(size, readHeaderNumber(source, "the compressed block sizes"));
       if (__builtin_add_overflow(compressedTotal, size, &compressedTotal))
         return fail("the compressed block sizes overflow");
-      largest = std::max(largest, size);
     }
     if (compressedTotal > source.maxRemaining()) return truncated(source, compressedTotal);
     for (std::size_t i = 0; i < compressedSizes.size(); ++i) {
@@ -419,18 +421,40 @@ class ArrayReader {
     }
     allocate();
     ValueDecoder decoder(*array_.type, file_.order, sink);
-    std::vector<unsigned char> compressed(static_cast<std::size_t>(largest));
-    std::vector<char> inflated(static_cast<std::size_t>(std::min(blockSize, bytes_)));
-    for (std::size_t i = 0; i < compressedSizes.size(); ++i) {
-      const std::size_t size = static_cast<std::size_t>(compressedSizes[i]);
-      if (source.read(compressed.data(), size) != size) return truncated(source, compressedTotal);
-      const std::size_t inflatedSize =
-          static_cast<std::size_t>(i + 1 == compressedSizes.size() ? lastBlock : blockSize);
-      LIC3D_TRY(
-          inflateExactly(file_.path, what_ + " block " + std::to_string(i),
-                         std::string_view(reinterpret_cast<const char*>(compressed.data()), size),
-                         std::span<char>(inflated.data(), inflatedSize)));
-      decoder.add(reinterpret_cast<const unsigned char*>(inflated.data()), inflatedSize);
+    // The blocks are independent zlib streams: a batch of them is read, inflated on the
+    // available threads, and decoded in order. A batch holds at most kInflateBatchBytes
+    // inflated, so memory stays bounded whatever the file.
+    const std::size_t block = static_cast<std::size_t>(std::min(blockSize, bytes_));
+    const std::size_t batch = std::clamp<std::size_t>(
+        kInflateBatchBytes / std::max<std::size_t>(block, 1), 1, 4 * availableThreads());
+    std::vector<unsigned char> compressed;
+    std::vector<char> inflated(batch * block);
+    std::vector<std::size_t> offsets(batch + 1);
+    for (std::size_t first = 0; first < compressedSizes.size(); first += batch) {
+      const std::size_t count = std::min(batch, compressedSizes.size() - first);
+      offsets[0] = 0;
+      for (std::size_t b = 0; b < count; ++b)
+        offsets[b + 1] = offsets[b] + static_cast<std::size_t>(compressedSizes[first + b]);
+      compressed.resize(offsets[count]);
+      if (source.read(compressed.data(), offsets[count]) != offsets[count])
+        return truncated(source, compressedTotal);
+      const auto inflatedSize = [&](std::size_t i) {
+        return static_cast<std::size_t>(i + 1 == compressedSizes.size() ? lastBlock : blockSize);
+      };
+      std::vector<Result<void>> results(count);
+      parallelFor(count, 0, [&](std::size_t b) {
+        const std::size_t i = first + b;
+        results[b] = inflateExactly(
+            file_.path, what_ + " block " + std::to_string(i),
+            std::string_view(reinterpret_cast<const char*>(compressed.data() + offsets[b]),
+                             offsets[b + 1] - offsets[b]),
+            std::span<char>(inflated.data() + b * block, inflatedSize(i)));
+      });
+      for (std::size_t b = 0; b < count; ++b) {
+        LIC3D_TRY(std::move(results[b]));
+        decoder.add(reinterpret_cast<const unsigned char*>(inflated.data() + b * block),
+                    inflatedSize(first + b));
+      }
     }
     return {};
   }
