@@ -582,6 +582,10 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     else if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%s, on %s)\n", options.output.c_str(),
                    fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str());
+    if (renderer) {
+      const StageTimer timer("teardown");
+      const LicRenderer released = std::move(*renderer);
+    }
   }
   status = finish(device, status);
   if (status == kExitOk) {
@@ -646,6 +650,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
                          static_cast<double>(renderer->intensityStatistics().maskedVoxels) /
                              static_cast<double>(voxelCount(renderer->dims())),
                          summary);
+    if (renderer) {
+      const StageTimer timer("teardown");
+      const LicRenderer released = std::move(*renderer);
+    }
   }
   status = finish(*context, status);
   if (status == kExitOk) {

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "core/parallel.h"
 #include "gpu/vk_check.h"
 
 namespace lic3d {
@@ -149,11 +150,26 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+namespace {
+
+// Staging copies of whole volumes (hundreds of MB) on the available threads.
+void copyInParallel(void* to, const void* from, std::size_t bytes) {
+  parallelChunks(
+      bytes,
+      [&](std::size_t begin, std::size_t end) {
+        std::memcpy(static_cast<std::byte*>(to) + begin,
+                    static_cast<const std::byte*>(from) + begin, end - begin);
+      },
+      std::size_t{1} << 20);
+}
+
+}  // namespace
+
 Result<void> uploadImage(const Context& context, const Image& image, const void* data,
                          std::size_t bytes) {
   LIC3D_TRY_ASSIGN(Buffer staging, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                   MemoryUse::Upload, "upload staging"));
-  std::memcpy(staging.mapped(), data, bytes);
+  copyInParallel(staging.mapped(), data, bytes);
   return submitAndWait(
       context,
       [&](VkCommandBuffer cmd) {
@@ -203,7 +219,7 @@ Result<std::vector<std::byte>> readImage(const Context& context, const Image& im
       },
       "image readback"));
   std::vector<std::byte> out(bytes);
-  std::memcpy(out.data(), readback.mapped(), bytes);
+  copyInParallel(out.data(), readback.mapped(), bytes);
   return out;
 }
 

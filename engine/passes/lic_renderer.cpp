@@ -7,6 +7,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/look.h"
+#include "core/parallel.h"
 #include "core/stage_times.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/vk_check.h"
@@ -554,10 +555,12 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
     std::memcpy(image.pixels.data(), targetReadback_.mapped(), image.pixels.size());
   } else {
     const auto* halves = static_cast<const std::uint16_t*>(targetReadback_.mapped());
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-      const float v = std::clamp(glm::unpackHalf1x16(halves[i]), 0.0f, 1.0f);
-      image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
-    }
+    parallelChunks(image.pixels.size(), [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const float v = std::clamp(glm::unpackHalf1x16(halves[i]), 0.0f, 1.0f);
+        image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+      }
+    });
   }
   reading.stop();
   const StageTimer annotating("annotation");
@@ -604,12 +607,14 @@ Result<ScalarVolume> LicRenderer::readLicVolume() const {
   volume.values.resize(voxelCount(field_.dims));
   const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
   if (sparse) volume.drawn.resize(volume.values.size());
-  for (std::size_t i = 0; i < volume.values.size(); ++i) {
-    std::uint16_t texel[2];
-    std::memcpy(texel, bytes.data() + 4 * i, 4);
-    volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
-    if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
-  }
+  parallelChunks(volume.values.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      std::uint16_t texel[2];
+      std::memcpy(texel, bytes.data() + 4 * i, 4);
+      volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
+      if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
+    }
+  });
   return volume;
 }
 

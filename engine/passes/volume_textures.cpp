@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/packing.hpp>
+#include <memory>
 
 #include "core/memory_budget.h"
 #include "core/parallel.h"
@@ -16,9 +17,10 @@ namespace {
 // Interleaves (v in voxel units / its largest length, noise) as RGBA texels of type T, converted
 // by `convert`. `scale` is voxelUnitScale / maxVoxelSpeed.
 template <class T, class Convert>
-std::vector<T> packTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
-                          Convert convert) {
-  std::vector<T> texels(4 * field.vectors.size());
+std::unique_ptr<T[]> packTexels(const VectorField& field, const NoiseVolume& noise,
+                                glm::dvec3 scale, Convert convert) {
+  // Not zeroed first: the threads below touch the pages first (a 512^3 field is 1 GiB of texels).
+  std::unique_ptr<T[]> texels(new T[4 * field.vectors.size()]);
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
@@ -38,9 +40,9 @@ std::int8_t snorm8(double value) {
 
 // FieldPrecision::Byte texels (see volume_textures.h): e = u/M / sqrt(|u|/M), noise shifted into
 // the signed range so all 8 bits of it survive.
-std::vector<std::int8_t> packByteTexels(const VectorField& field, const NoiseVolume& noise,
-                                        glm::dvec3 scale) {
-  std::vector<std::int8_t> texels(4 * field.vectors.size());
+std::unique_ptr<std::int8_t[]> packByteTexels(const VectorField& field, const NoiseVolume& noise,
+                                              glm::dvec3 scale) {
+  std::unique_ptr<std::int8_t[]> texels(new std::int8_t[4 * field.vectors.size()]);
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
@@ -117,34 +119,40 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   if (texture.precision == FieldPrecision::Half) {
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
     StageTimer packing("field packing");
-    const std::vector<std::uint16_t> texels = packTexels<std::uint16_t>(
+    const std::unique_ptr<std::uint16_t[]> texels = packTexels<std::uint16_t>(
         field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
     packing.stop();
+    StageTimer allocating("field texture allocation");
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    allocating.stop();
     const StageTimer uploading("field upload");
-    LIC3D_TRY(
-        uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.get(),
+                          4 * field.vectors.size() * sizeof(texels[0])));
   } else if (texture.precision == FieldPrecision::Byte) {
     desc.format = VK_FORMAT_R8G8B8A8_SNORM;
     StageTimer packing("field packing");
-    const std::vector<std::int8_t> texels = packByteTexels(field, noise, scale);
+    const std::unique_ptr<std::int8_t[]> texels = packByteTexels(field, noise, scale);
     packing.stop();
+    StageTimer allocating("field texture allocation");
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    allocating.stop();
     const StageTimer uploading("field upload");
-    LIC3D_TRY(uploadImage(context, texture.image, texels.data(), texels.size()));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.get(), 4 * field.vectors.size()));
   } else {
     desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
       return unsupportedError(context.deviceInfo().name +
                               " cannot filter RGBA32F textures; use half precision");
     StageTimer packing("field packing");
-    const std::vector<float> texels =
+    const std::unique_ptr<float[]> texels =
         packTexels<float>(field, noise, scale, [](float f) { return f; });
     packing.stop();
+    StageTimer allocating("field texture allocation");
     LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+    allocating.stop();
     const StageTimer uploading("field upload");
-    LIC3D_TRY(
-        uploadImage(context, texture.image, texels.data(), texels.size() * sizeof(texels[0])));
+    LIC3D_TRY(uploadImage(context, texture.image, texels.get(),
+                          4 * field.vectors.size() * sizeof(texels[0])));
   }
   return texture;
 }
