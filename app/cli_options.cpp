@@ -11,6 +11,7 @@
 #include "cli_flags.h"
 #include "core/enum_names.h"
 #include "core/parameter_ranges.h"
+#include "core/stage_times.h"
 #include "io/session_file.h"
 #include "lic/analytic_fields.h"
 
@@ -58,6 +59,22 @@ std::string messageWithFlags(const Error& error) {
 int reportError(const Error& error) {
   std::fprintf(stderr, "lic3d: error: %s\n", messageWithFlags(error).c_str());
   return exitCodeFor(error);
+}
+
+void printTimings(double totalSeconds) {
+  // What the stages do not cover (option parsing, waiting for input) is the rest.
+  double covered = 0.0;
+  std::fprintf(stderr, "lic3d: timings (wall clock, seconds)\n");
+  for (const auto& [stage, seconds] : stageTimings()) {
+    std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
+    covered += seconds;
+  }
+  std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other",
+               std::max(totalSeconds - covered, 0.0), "total", totalSeconds);
+  if (covered > totalSeconds)
+    std::fprintf(stderr,
+                 "  (stages on worker threads, such as PNG writes of an animation, ran beside "
+                 "the others)\n");
 }
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options) {

@@ -26,6 +26,9 @@ inline constexpr char kVersionText[] = "lic3d 0.1.0";
 // Bad input exits with 2; anything the user cannot fix by changing arguments exits with 1.
 int exitCodeFor(const Error& error);
 int reportError(const Error& error);
+// --timings: the stages' seconds (core/stage_times.h) as a table on stderr, with the rest of
+// `totalSeconds` as "other".
+void printTimings(double totalSeconds);
 // The error's message with the flag in place of the parameter's session key (Error::parameter):
 // "--length must be in [0, 4096], got 5000".
 std::string messageWithFlags(const Error& error);

@@ -144,21 +144,7 @@ std::optional<double> hiddenFractionOf(const ScalarVolume& volume) {
 void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_point start) {
   summary.seconds = secondsSince(start);
   summary.timings = stageTimings();
-  if (global.timings) {
-    // What the stages do not cover (option parsing, device creation, waiting) is the rest.
-    double covered = 0.0;
-    std::fprintf(stderr, "lic3d: timings (wall clock, seconds)\n");
-    for (const auto& [stage, seconds] : summary.timings) {
-      std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
-      covered += seconds;
-    }
-    std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other",
-                 std::max(summary.seconds - covered, 0.0), "total", summary.seconds);
-    if (covered > summary.seconds)
-      std::fprintf(stderr,
-                   "  (stages on worker threads, such as PNG writes of an animation, ran "
-                   "beside the others)\n");
-  }
+  if (global.timings) printTimings(summary.seconds);
   if (global.quiet) return;
   std::printf("%s\n", summaryLine(summary).c_str());
   std::fflush(stdout);

@@ -443,8 +443,14 @@ int App::run() {
 
 int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
               const ViewerOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
   App app(global, inputs, options);
-  return app.run();
+  const int status = app.run();
+  // The stages of the whole session: field loads, uploads, LIC volumes, screenshots.
+  if (global.timings)
+    cli::printTimings(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return status;
 }
 
 }  // namespace lic3d::viewer
