@@ -22,9 +22,10 @@ namespace {
 // available threads: min and max do not depend on the order.
 double extremeMagnitude(const VectorField& field, bool smallest) {
   std::mutex mutex;
-  double result = smallest ? std::numeric_limits<double>::max() : 0.0;
+  const double identity = smallest ? std::numeric_limits<double>::max() : 0.0;
+  double result = identity;
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
-    double local = result;
+    double local = identity;  // not `result`: other threads write it under the lock
     for (std::size_t i = begin; i < end; ++i) {
       const glm::vec3& v = field.vectors[i];
       const double x = v.x, y = v.y, z = v.z;
