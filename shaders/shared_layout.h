@@ -178,7 +178,21 @@ struct LerpPushConstants {
   vec4 stepScales;  // x: step A's max|v| (its texels' scale), y: step B's; zw: unused
 };
 
+// Analytic fields made on the device (shaders/analytic_field.comp, passes/analytic_field_pass.h):
+// one slab of z layers per dispatch, the vectors as three floats per voxel, x fastest.
+LIC3D_CONST kAnalyticBindingVectors = 0;  // buffer of 3 floats per voxel of the slab
+LIC3D_CONST kAnalyticConstField = 0;      // the AnalyticField
+LIC3D_CONST kAnalyticLocalSizeX = 8;
+LIC3D_CONST kAnalyticLocalSizeY = 8;
+
+struct AnalyticPushConstants {
+  ivec4 dims;     // xyz: the slab's size; w: its first z layer in the whole grid
+  vec4 origin;    // xyz: the grid's origin; w: the field's time
+  vec4 spacing;   // xyz: the grid's spacing; w: unused
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(AnalyticPushConstants) == 48);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(LerpPushConstants) == 48);

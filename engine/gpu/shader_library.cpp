@@ -5,6 +5,7 @@
 #include "gpu/vk_check.h"
 
 // Generated at build time by glslangValidator --vn (see cmake/Lic3dShaders.cmake).
+#include "analytic_field_comp_spv.h"
 #include "field_lerp_byte_comp_spv.h"
 #include "field_lerp_comp_spv.h"
 #include "field_lerp_half_comp_spv.h"
@@ -42,6 +43,7 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
     case ShaderId::FieldLerp: return field_lerp_comp_spv;
     case ShaderId::FieldLerpHalf: return field_lerp_half_comp_spv;
     case ShaderId::FieldLerpByte: return field_lerp_byte_comp_spv;
+    case ShaderId::AnalyticField: return analytic_field_comp_spv;
   }
   return {};
 }
@@ -66,6 +68,7 @@ const char* shaderName(ShaderId id) {
     case ShaderId::FieldLerp: return "field_lerp.comp";
     case ShaderId::FieldLerpHalf: return "field_lerp.comp (rgba16f)";
     case ShaderId::FieldLerpByte: return "field_lerp.comp (rgba8 snorm)";
+    case ShaderId::AnalyticField: return "analytic_field.comp";
   }
   return "?";
 }

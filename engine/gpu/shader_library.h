@@ -27,6 +27,7 @@ enum class ShaderId {
   FieldLerp,      // time interpolation into an RGBA32F field texture
   FieldLerpHalf,  // the same into RGBA16F
   FieldLerpByte,  // the same into RGBA8 SNORM with its packing (FieldPrecision::Byte)
+  AnalyticField,  // the analytic fields evaluated on the device
 };
 
 // Whether this build embeds the slice shader with runtime mode switches.

@@ -83,6 +83,10 @@ GridGeometry cubicGeometry(Domain domain, Dims dims) {
 
 }  // namespace
 
+GridGeometry analyticGeometry(AnalyticField field, Dims dims) {
+  return cubicGeometry(domainOf(field), dims);
+}
+
 VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
   VectorField result;
   result.dims = dims;

@@ -27,6 +27,8 @@ LIC3D_ENUM_NAMES(AnalyticField, {AnalyticField::Tornado, "tornado"},
 // domain and shorter axes span a centred part of it, so streamlines keep the field's shape on
 // non-cubic grids. `time` is the tornado's time parameter (ignored by the other fields).
 VectorField makeAnalyticField(AnalyticField field, Dims dims, double time = 0.0);
+// Where makeAnalyticField(field, dims) puts its voxels: the field's domain on the longest axis.
+GridGeometry analyticGeometry(AnalyticField field, Dims dims);
 
 // One plane of makeAnalyticField(field, dims, time): voxel layer `index` across `axis` (0, 1, 2
 // for x, y, z), sampled alone, as a 2D field (field_plane.h).
