@@ -69,17 +69,15 @@ Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& dom
   return {};
 }
 
-// `device`: analytic fields are made there (null with --cpu: the CPU oracle).
-Result<SessionInputs> loadInputs(const ComputeOptions& options, const Context* device) {
+Result<SessionInputs> loadInputs(const ComputeOptions& options) {
   const Session& session = options.inputs.session;
   if (session.twoD)
     return inputError(
         "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
   LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
-  return loadSessionInputs(session, {.gridGiven = options.inputs.grid.given(),
-                                     .analyticTimeSteps = session.timeSteps,
-                                     .device = options.cpu ? nullptr : device});
+  return loadSessionInputs(
+      session, {.gridGiven = options.inputs.grid.given(), .analyticTimeSteps = session.timeSteps});
 }
 
 // What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.
@@ -508,7 +506,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     const int status = reportError(error);
     return context ? finish(**context, status) : status;
   };
-  Result<SessionInputs> inputs = loadInputs(options, context ? &**context : nullptr);
+  Result<SessionInputs> inputs = loadInputs(options);
   if (!inputs) return fail(inputs.error());
   reportFieldFile(global, session.field, *inputs);
   if (batch.slice.given()) {
@@ -602,7 +600,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
             {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});
         !r)
       return finish(*context, reportError(r.error()));
-  Result<SessionInputs> inputs = loadInputs(options, &*context);
+  Result<SessionInputs> inputs = loadInputs(options);
   if (!inputs) return finish(*context, reportError(inputs.error()));
   reportFieldFile(global, session.field, *inputs);
   if (inputs->fromFile || inputs->series)

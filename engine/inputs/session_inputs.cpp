@@ -16,7 +16,6 @@
 #include "lic/noise.h"
 #include "lic/resample.h"
 #include "lic/sparsity.h"
-#include "passes/analytic_field_pass.h"
 #include "passes/volume_textures.h"
 
 namespace lic3d {
@@ -74,7 +73,7 @@ Error analyticResolutionError(const FieldSource& source) {
 }  // namespace
 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
-                              double time, const Context* device) {
+                              double time) {
   if (const auto analytic = parseEnum<AnalyticField>(source.field)) {
     if (!source.resolution.empty()) return analyticResolutionError(source);
     if (!source.array.empty())
@@ -82,10 +81,6 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
                                                " is an analytic field; field.array picks a "
                                                "vector array of a .vtk or .vti file");
     LIC3D_TRY(checkHostMemory(source.grid));
-    if (device) {
-      const StageTimer timer("field (analytic, device)");
-      return makeAnalyticFieldOnDevice(*device, *analytic, source.grid, time);
-    }
     const StageTimer timer("field (analytic)");
     return makeAnalyticField(*analytic, source.grid, time);
   }
@@ -172,7 +167,6 @@ Result<NoiseVolume> loadNoise(const NoiseSource& source, const VectorField& fiel
 Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptions& options) {
   SessionInputs inputs;
   inputs.time = session.time;
-  inputs.device = options.device;
   const FieldSource& source = session.field;
   const std::optional<AnalyticField> analytic = parseEnum<AnalyticField>(source.field);
   if (analytic && options.analyticTimeSteps > 0) {
@@ -197,8 +191,8 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
     inputs.fieldStep = first;  // used as the step itself, not read again
     inputs.stepsRead = 1;
   } else {
-    LIC3D_TRY_ASSIGN(inputs.field, loadField(source, options.gridGiven, &inputs.info, session.time,
-                                             options.device));
+    LIC3D_TRY_ASSIGN(inputs.field,
+                     loadField(source, options.gridGiven, &inputs.info, session.time));
     inputs.fromFile = !analytic.has_value();
     if (analytic && timePeriod(*analytic) > 0.0) inputs.sampled = analytic;
   }
@@ -251,14 +245,7 @@ Result<VectorField> stepOf(SessionInputs& inputs, const Session& session, int k)
 }  // namespace
 
 Result<VectorField> hostFieldAt(SessionInputs& inputs, const Session& session, double time) {
-  if (inputs.sampled && inputs.device) {
-    const StageTimer timer("field (analytic, device)");
-    return makeAnalyticFieldOnDevice(*inputs.device, *inputs.sampled, session.field.grid, time);
-  }
-  if (inputs.sampled) {
-    const StageTimer timer("field (analytic)");
-    return makeAnalyticField(*inputs.sampled, session.field.grid, time);
-  }
+  if (inputs.sampled) return makeAnalyticField(*inputs.sampled, session.field.grid, time);
   if (!inputs.series) return inputs.field;
   const TimeBracket b = inputs.series->bracket(time);
   std::erase_if(inputs.hostSteps,

@@ -54,11 +54,9 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
 // One field: an analytic field sampled at `time` (the tornado's time parameter; steady fields
 // ignore it), or a file (`info`, when given, gets the array read, the file's vector arrays and
 // the vectors read as zero). `gridGiven`: the grid was asked for explicitly, which a file
-// refuses. A series of files is not one field: InvalidInput. With `device`, an analytic field is
-// made on that device.
+// refuses. A series of files is not one field: InvalidInput.
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven,
-                              FieldReadInfo* info = nullptr, double time = 0.0,
-                              const Context* device = nullptr);
+                              FieldReadInfo* info = nullptr, double time = 0.0);
 
 // A file's field on the LIC grid of source.resolution (core/resolution.h): resampled, or as it
 // is when none is given. Checks the host memory first.
@@ -75,9 +73,6 @@ struct InputOptions {
   bool gridGiven = false;     // the grid was given explicitly (a file field refuses it)
   int analyticTimeSteps = 0;  // > 0: a time-dependent analytic field is a series of this many
                               // steps (the session's time_steps, or the app's default)
-  // Analytic fields are made on this device (passes/analytic_field_pass.h); without one, on the
-  // CPU in double precision (the oracle, and `--cpu`).
-  const Context* device = nullptr;
 };
 
 // What the frames' fields come from: one steady field; a time-dependent analytic field sampled
@@ -94,7 +89,6 @@ struct SessionInputs {
   std::map<int, VectorField> hostSteps;  // blended on the host: at most the two in use
   int stepsRead = 0;                     // of the series, for the closing report
   std::vector<double> blendMs;           // GPU time of each blend
-  const Context* device = nullptr;       // InputOptions::device: sampled fields are made there
 };
 
 // The field and noise of `session` at session.time (a series: the first step of the bracket
