@@ -1,6 +1,7 @@
 #!/bin/bash
-# Whole-process timings of two lic3d builds on this machine (before/after), into $OUT.
-B=${LIC3D_BINS:-.gl/bin}  # lic3d-before and lic3d-after
+# Whole-process timings of two lic3d builds on this machine (before/after), into $OUT (default .).
+OUT=${OUT:-.}
+B=${LIC3D_BINS:-bin}  # the folder holding lic3d-before and lic3d-after
 W=/tmp/w; mkdir -p $W
 {
 echo "== machine"; nproc; nvidia-smi -L 2>&1 | head -2
