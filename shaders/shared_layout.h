@@ -186,9 +186,9 @@ LIC3D_CONST kAnalyticLocalSizeX = 8;
 LIC3D_CONST kAnalyticLocalSizeY = 8;
 
 struct AnalyticPushConstants {
-  ivec4 dims;     // xyz: the slab's size; w: its first z layer in the whole grid
-  vec4 origin;    // xyz: the grid's origin; w: the field's time
-  vec4 spacing;   // xyz: the grid's spacing; w: unused
+  ivec4 dims;    // xyz: the slab's size; w: its first z layer in the whole grid
+  vec4 origin;   // xyz: the grid's origin; w: the field's time
+  vec4 spacing;  // xyz: the grid's spacing; w: unused
 };
 
 #ifdef __cplusplus
