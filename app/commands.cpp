@@ -630,12 +630,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
                    session.view.height, fieldText(session.field, *inputs).c_str(),
                    context->deviceInfo().name.c_str());
     }
-    // The masked voxels the histogram pass counted (its drawn fraction leaves out empty space).
-    if (done && renderer->volumeFacts().sparsity)
-      noteHiddenFraction(global, session.lic,
-                         static_cast<double>(renderer->intensityStatistics().maskedVoxels) /
-                             static_cast<double>(voxelCount(renderer->dims())),
-                         summary);
+    if (done) noteHiddenFraction(global, session.lic, renderer->hiddenFraction(), summary);
     if (renderer) {
       const StageTimer timer("teardown");
       const LicRenderer released = std::move(*renderer);

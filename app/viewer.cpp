@@ -76,10 +76,8 @@ void App::drawAxes(const PictureLayout& layout) const {
                                           static_cast<float>(area.z) / static_cast<float>(area.w));
   const BoxAxes axes = projectBoxAxes(frame.camera, session_.view.camera.orthographic,
                                       frame.halfExtent, facts.dims, facts.geometry, area);
-  const glm::vec3 bg = session_.view.background;
-  const bool dark = 0.2126f * bg.r + 0.7152f * bg.g + 0.0722f * bg.b > 0.5f;
-  const ImU32 line = dark ? IM_COL32(0, 0, 0, 160) : IM_COL32(255, 255, 255, 160);
-  const ImU32 ink = dark ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
+  const ImU32 line = imguiInk(session_.view.background, 160);
+  const ImU32 ink = imguiInk(session_.view.background);
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const float font = ImGui::GetFontSize();
   for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
@@ -266,12 +264,10 @@ Result<bool> App::frame() {
   const VolumeFacts facts = renderer_->volumeFacts();
   stats_.colorValues = facts.colorValues;
   stats_.opacityValues = facts.opacityValues;
-  stats_.hiddenFraction =
-      facts.sparsity && renderer_->hasVolume()
-          ? static_cast<double>(renderer_->intensityStatistics().maskedVoxels) /
-                static_cast<double>(std::max<std::size_t>(voxelCount(facts.dims), 1))
-          : -1.0;
-  drawAnnotations(viewLayout());
+  stats_.hiddenFraction = renderer_->hiddenFraction().value_or(-1.0);
+  // Laid out once per frame: the annotations and the picture's viewport share it.
+  const PictureLayout layout = viewLayout();
+  drawAnnotations(layout);
   Actions actions = drawUi(session_, ui_, stats_);
   if (stopped_ && actions.dismissAlert) return false;  // the dialog's OK quits
   ImGui::Render();
@@ -333,7 +329,7 @@ Result<bool> App::frame() {
   f.scriptedShot = scriptedShot && !options_.screenshot.empty();
   f.screenshot = actions.screenshot || f.scriptedShot;
 
-  LIC3D_TRY(recordPicture(f, slot));
+  LIC3D_TRY(recordPicture(f, slot, layout));
   LIC3D_TRY_ASSIGN(const bool outOfDate,
                    presenter_->finish(f, *imageIndex, [](VkCommandBuffer cmd) {
                      ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
@@ -347,7 +343,8 @@ Result<bool> App::frame() {
 
 // Records the frame's LIC slab and the picture into the offscreen image, which it leaves ready
 // for the blit to the window.
-Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot) {
+Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
+                                const PictureLayout& layout) {
   LIC3D_TRY_ASSIGN(const VkCommandBuffer cmd, presenter_->begin(f));
   f.timed = f.timer.valid();
   if (f.timed) {
@@ -368,7 +365,7 @@ Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot) {
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
   if (f.timed) f.timer.begin(cmd, 1);
   beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
-  const glm::ivec4 picture = viewLayout().picture;
+  const glm::ivec4 picture = layout.picture;
   const VkRect2D area{
       {picture.x, picture.y},
       {static_cast<std::uint32_t>(picture.z), static_cast<std::uint32_t>(picture.w)}};

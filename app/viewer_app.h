@@ -61,7 +61,8 @@ class App {
   Result<void> finishLoading();
   Result<void> updateTime();
   Result<bool> frame();
-  Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot);
+  Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
+                             const PictureLayout& layout);
   void updateCamera(const Input& in);
   // Where the picture, its legend and its title go in the window: the part left of the panels.
   PictureLayout viewLayout() const;

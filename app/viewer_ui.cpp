@@ -404,11 +404,14 @@ void statusSection(const Stats& stats) {
   ImGui::Separator();
 }
 
-ImU32 inkFor(glm::vec3 background) {
-  const bool light =
-      0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b > 0.5f;
-  return light ? IM_COL32(0, 0, 0, 255) : IM_COL32(255, 255, 255, 255);
+}  // namespace
+
+ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha) {
+  const glm::u8vec4 c = inkFor(background, alpha);
+  return IM_COL32(c.r, c.g, c.b, c.a);
 }
+
+namespace {
 
 void helpPanel(UiState& ui) {
   if (!ui.help) return;
@@ -461,7 +464,7 @@ float panelWidth(const UiState& ui, float displayWidth) {
 void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background) {
   if (area.z <= 0 || area.w <= 0) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const ImU32 ink = inkFor(background);
+  const ImU32 ink = imguiInk(background);
   const float font = ImGui::GetFontSize();
   const float x0 = static_cast<float>(area.x) + 0.5f * font, x1 = x0 + font;
   const float y0 = static_cast<float>(area.y) + static_cast<float>(area.w) / 6.0f + 2.0f * font;
@@ -499,7 +502,7 @@ void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background) 
   ImGui::GetBackgroundDrawList()->AddText(
       ImVec2(static_cast<float>(area.x) + 0.5f * (static_cast<float>(area.z) - size.x),
              static_cast<float>(area.y) + 0.5f * (static_cast<float>(area.w) - size.y)),
-      inkFor(background), title.c_str());
+      imguiInk(background), title.c_str());
 }
 
 Actions drawUi(Session& session, UiState& ui, const Stats& stats) {

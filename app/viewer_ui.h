@@ -3,6 +3,9 @@
 // stats overlay, the colour legend and the help panel. Panels edit the session in place; the
 // caller compares sessions to decide between reloading, recomputing and redrawing.
 
+#include <imgui.h>
+
+#include <cstdint>
 #include <glm/vec4.hpp>
 #include <memory>
 #include <string>
@@ -81,6 +84,8 @@ float panelWidth(const UiState& ui, float displayWidth);
 // of a PictureLayout (x, y, width, height in pixels), in the ink that stands out from
 // `background`.
 void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background);
+// lic/legend.h's inkFor as an ImGui colour.
+ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha = 255);
 void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background);
 
 // The transfer function editor (viewer_transfer.cpp): colour and opacity control points over a

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
+#include <cstring>
 #include <exception>
 #include <system_error>
 #include <thread>
@@ -46,6 +48,16 @@ void parallelChunks(std::size_t count, const std::function<void(std::size_t, std
     return;
   }
   parallelFor(chunks, 0, [&](std::size_t c) { chunk(c * size, std::min(count, (c + 1) * size)); });
+}
+
+void parallelCopy(void* to, const void* from, std::size_t bytes) {
+  parallelChunks(
+      bytes,
+      [&](std::size_t begin, std::size_t end) {
+        std::memcpy(static_cast<std::byte*>(to) + begin,
+                    static_cast<const std::byte*>(from) + begin, end - begin);
+      },
+      std::size_t{1} << 20);
 }
 
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,

@@ -25,5 +25,8 @@ void parallelFor(std::size_t count, unsigned threads, const std::function<void(s
 // availableThreads(). For loops over voxels whose iterations write only their own items.
 void parallelChunks(std::size_t count, const std::function<void(std::size_t, std::size_t)>& chunk,
                     std::size_t grain = std::size_t{1} << 15);
+// memcpy of `bytes` in chunks of at least a MiB on availableThreads() (staging copies of whole
+// volumes).
+void parallelCopy(void* to, const void* from, std::size_t bytes);
 
 }  // namespace lic3d

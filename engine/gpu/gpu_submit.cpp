@@ -150,26 +150,11 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
   vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-namespace {
-
-// Staging copies of whole volumes (hundreds of MB) on the available threads.
-void copyInParallel(void* to, const void* from, std::size_t bytes) {
-  parallelChunks(
-      bytes,
-      [&](std::size_t begin, std::size_t end) {
-        std::memcpy(static_cast<std::byte*>(to) + begin,
-                    static_cast<const std::byte*>(from) + begin, end - begin);
-      },
-      std::size_t{1} << 20);
-}
-
-}  // namespace
-
 Result<void> uploadImage(const Context& context, const Image& image, const void* data,
                          std::size_t bytes) {
   LIC3D_TRY_ASSIGN(Buffer staging, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                   MemoryUse::Upload, "upload staging"));
-  copyInParallel(staging.mapped(), data, bytes);
+  parallelCopy(staging.mapped(), data, bytes);
   return submitAndWait(
       context,
       [&](VkCommandBuffer cmd) {
@@ -219,7 +204,7 @@ Result<std::vector<std::byte>> readImage(const Context& context, const Image& im
       },
       "image readback"));
   std::vector<std::byte> out(bytes);
-  copyInParallel(out.data(), readback.mapped(), bytes);
+  parallelCopy(out.data(), readback.mapped(), bytes);
   return out;
 }
 

@@ -37,16 +37,16 @@ std::string formatValue(float v) {
   return text;
 }
 
-glm::u8vec4 inkFor(glm::vec3 background, std::uint8_t alpha) {
-  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
-  return luminance > 0.5f ? glm::u8vec4(0, 0, 0, alpha) : glm::u8vec4(255, 255, 255, alpha);
-}
-
 }  // namespace
 
 int textWidth(std::string_view text, int scale) {
   std::string copy(text);
   return stb_easy_font_width(copy.data()) * scale;
+}
+
+glm::u8vec4 inkFor(glm::vec3 background, std::uint8_t alpha) {
+  const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
+  return luminance > 0.5f ? glm::u8vec4(0, 0, 0, alpha) : glm::u8vec4(255, 255, 255, alpha);
 }
 
 void drawText(RgbaImage& image, int x, int y, std::string_view text, glm::u8vec4 color, int scale) {

@@ -18,6 +18,10 @@
 
 namespace lic3d {
 
+// Black or white, whichever stands out from `background` (display RGB in [0, 1]): the ink of
+// every annotation, in images and in the app.
+glm::u8vec4 inkFor(glm::vec3 background, std::uint8_t alpha);
+
 // Text in stb's easy font (about 6x12 pixels per character at scale 1), top-left at (x, y).
 void drawText(RgbaImage& image, int x, int y, std::string_view text, glm::u8vec4 color, int scale);
 int textWidth(std::string_view text, int scale);

@@ -85,14 +85,7 @@ Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticFi
     const std::size_t first = voxelIndex(dims, 0, 0, z0);
     const std::size_t bytes =
         static_cast<std::size_t>(layerBytes) * static_cast<std::size_t>(layers);
-    const auto* from = static_cast<const std::byte*>(vectors.mapped());
-    auto* to = reinterpret_cast<std::byte*>(result.vectors.data() + first);
-    parallelChunks(
-        bytes,
-        [&](std::size_t begin, std::size_t end) {
-          std::memcpy(to + begin, from + begin, end - begin);
-        },
-        std::size_t{1} << 20);
+    parallelCopy(result.vectors.data() + first, vectors.mapped(), bytes);
   }
   return result;
 }

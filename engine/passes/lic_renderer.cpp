@@ -169,6 +169,14 @@ const Image& LicRenderer::maskFor(const LicParams& params) const {
   return params.sparsity.distribution == SparsityDistribution::None ? emptyMask_ : mask_;
 }
 
+std::optional<double> LicRenderer::hiddenFraction() const {
+  if (!hasVolume() || !shownParams_ ||
+      shownParams_->sparsity.distribution == SparsityDistribution::None)
+    return std::nullopt;
+  return static_cast<double>(statistics_.maskedVoxels) /
+         static_cast<double>(std::max<std::size_t>(voxelCount(field_.dims), 1));
+}
+
 VolumeFacts LicRenderer::volumeFacts() const {
   VolumeFacts facts;
   facts.dims = field_.dims;

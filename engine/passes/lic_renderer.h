@@ -157,6 +157,9 @@ class LicRenderer {
   std::uint64_t licDispatchCount() const { return licDispatches_; }
   std::uint64_t maskBuildCount() const { return maskBuilds_; }
   const IntensityStatistics& intensityStatistics() const { return statistics_; }
+  // The fraction of the voxels the shown volume's sparsity mask hid (the histogram pass' count of
+  // masked voxels; its drawn fraction leaves out empty space too); nullopt without a mask.
+  std::optional<double> hiddenFraction() const;
   Dims dims() const { return field_.dims; }
   const GridGeometry& geometry() const { return field_.geometry; }
   double fieldMaxMagnitude() const { return field_.maxMagnitude; }
