@@ -317,6 +317,51 @@ TEST_F(VtiTest, ReadsIntegerVectorsAndLargeCompressedArrays) {
   expectRamp(*intField, -18, 1);
 }
 
+// Files larger than the reader's head (64 KiB) with appended data are streamed from the file
+// into the arrays rather than read whole: every encoding of it reads the same, a second array's
+// offset is honoured, and a file cut short is refused without reading past its end.
+TEST_F(VtiTest, LargeAppendedDataIsStreamedAndReadsAsTheWholeFile) {
+  Image image;
+  image.wholeExtent = "0 63 0 47 0 23";  // 73,728 points: 864 KiB of Float32 vectors
+  const std::size_t points = 64 * 48 * 24;
+  image.arrays.push_back({"density", "Float64", 1, false, ramp(points, 0.0, 1.0)});
+  image.arrays.push_back({"velocity", "Float32", 3, false, ramp(3 * points, -7.5, 0.125)});
+  for (const bool zlib : {false, true})
+    for (const bool bigEndian : {false, true})
+      for (const bool appendedBase64 : {false, true}) {
+        Encoding encoding;
+        encoding.format = "appended";
+        encoding.zlib = zlib;
+        encoding.bigEndian = bigEndian;
+        encoding.appendedBase64 = appendedBase64;
+        encoding.header64 = true;
+        encoding.blockSize = 20000;  // not a multiple of 12: values span blocks
+        SCOPED_TRACE(encoding.label());
+        const std::string bytes = makeVti(image, encoding);
+        ASSERT_GT(bytes.size(), std::size_t{64} << 10);
+        const fs::path file = writeBytes("streamed.vti", bytes);
+        const Result<VectorField> field = readVectorFieldVti(file, "velocity");
+        ASSERT_TRUE(field.ok()) << field.error().message;
+        ASSERT_EQ(field->vectors.size(), points);
+        for (std::size_t i = 0; i < 3 * points; i += 997)
+          ASSERT_EQ(field->vectors[i / 3][static_cast<glm::length_t>(i % 3)],
+                    static_cast<float>(-7.5 + 0.125 * static_cast<double>(i)))
+              << i;
+        EXPECT_EQ(field->vectors.back().z,
+                  static_cast<float>(-7.5 + 0.125 * static_cast<double>(3 * points - 1)));
+        const Result<PointScalars> density = readPointScalarsVti(file, "density");
+        ASSERT_TRUE(density.ok()) << density.error().message;
+        EXPECT_EQ(density->values[points - 1], static_cast<float>(points - 1));
+
+        // Cut inside the vectors' data: an error naming the file, no crash.
+        const fs::path cut = writeBytes("cut.vti", bytes.substr(0, bytes.size() - 40000));
+        const Result<VectorField> truncated = readVectorFieldVti(cut, "velocity");
+        ASSERT_FALSE(truncated.ok());
+        EXPECT_NE(truncated.error().message.find("cut.vti"), std::string::npos)
+            << truncated.error().message;
+      }
+}
+
 TEST_F(VtiTest, WholeExtentOffsetMovesTheOrigin) {
   Image image = testImage();
   image.wholeExtent = "-2 0 4 5 10 11";

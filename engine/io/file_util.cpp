@@ -15,6 +15,8 @@
 #include <streambuf>
 #include <utility>
 
+#include "core/parallel.h"
+
 namespace lic3d {
 namespace {
 
@@ -209,7 +211,10 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
   if (reader.size() > maxBytes)
     return fileError(path, "file is too large (" + std::to_string(reader.size()) +
                                " bytes, the limit is " + std::to_string(maxBytes) + ")");
-  std::string bytes(static_cast<std::size_t>(reader.size()), '\0');
+  std::string bytes;
+  bytes.reserve(static_cast<std::size_t>(reader.size()));
+  adviseHugePages(bytes.data(), bytes.capacity());
+  bytes.resize(static_cast<std::size_t>(reader.size()));
   const std::size_t got = reader.read(bytes.data(), bytes.size());
   if (got != bytes.size()) return fileError(path, "cannot read: " + reader.failureReason());
   // The file may have grown since it was opened; the limit still holds.

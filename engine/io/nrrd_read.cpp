@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/nrrd_header.h"
@@ -245,7 +246,7 @@ Result<ScalarVolume> readScalars(const std::filesystem::path& path, const Expect
   ScalarVolume volume;
   volume.dims = layout.dims;
   volume.geometry = layout.geometry;
-  volume.values.resize(static_cast<std::size_t>(layout.voxels));
+  resizeLarge(volume.values, static_cast<std::size_t>(layout.voxels));
   std::size_t next = 0;
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
     forEachValue(layout.type, data, bytes,
@@ -270,7 +271,7 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
   VectorField field;
   field.dims = layout.dims;
   field.geometry = layout.geometry;
-  field.vectors.resize(static_cast<std::size_t>(layout.voxels));
+  resizeLarge(field.vectors, static_cast<std::size_t>(layout.voxels));
 
   // 3 components per voxel, or 2 on a 2D grid (z stays 0).
   const glm::length_t components = static_cast<glm::length_t>(layout.components);

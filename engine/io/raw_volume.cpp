@@ -10,6 +10,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/parallel.h"
 #include "io/file_util.h"
 
 namespace lic3d {
@@ -182,7 +183,7 @@ Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldR
   VectorField field;
   field.dims = sidecar.dims;
   field.geometry = sidecar.geometry;
-  field.vectors.resize(static_cast<std::size_t>(voxels));
+  resizeLarge(field.vectors, static_cast<std::size_t>(voxels));
   std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, expected)));
   std::uint64_t next = 0;  // the index of the next value in the file
   for (std::uint64_t left = expected; left > 0;) {

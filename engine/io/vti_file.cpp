@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "io/file_util.h"
@@ -17,6 +18,8 @@ namespace {
 // A whole .vti is read into memory (pugixml parses it in place). The largest grid lic3d reads,
 // as base64 doubles, stays below this; a larger file is refused from its size.
 constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
+// Files larger than this whose XML fits in it are read as a head and streamed (openHead).
+constexpr std::size_t kHeadBytes = std::size_t{64} << 10;
 
 constexpr TypeInfo kTypes[] = {
     {"Int8", NumberType::Int8, 1},       {"UInt8", NumberType::UInt8, 1},
@@ -46,24 +49,50 @@ struct Extent {
   bool operator==(const Extent&) const = default;
 };
 
-// Appended raw data is binary, not XML: pugixml gets only what precedes it, closed by hand.
-Result<void> splitAppendedData(VtiFile& file) {
-  const std::string_view bytes = file.bytes;
+// Where AppendedData's data starts in `bytes`: the end of its opening tag and the byte after its
+// '_'. Empty when there is no AppendedData or it is empty (<AppendedData/>).
+struct AppendedSplit {
+  std::size_t tagEnd = 0;
+  std::size_t data = 0;
+};
+
+Result<std::optional<AppendedSplit>> findAppended(const VtiFile& file, std::string_view bytes) {
   const std::size_t tag = bytes.find("<AppendedData");
-  if (tag == std::string_view::npos) return {};
+  if (tag == std::string_view::npos) return std::optional<AppendedSplit>();
   const std::size_t close = bytes.find('>', tag);
   if (close == std::string_view::npos) return file.fail("the AppendedData tag is not closed");
-  if (bytes[close - 1] == '/') return {};  // <AppendedData .../>: empty
+  if (bytes[close - 1] == '/') return std::optional<AppendedSplit>();  // <AppendedData .../>
   std::size_t underscore = close + 1;
   while (underscore < bytes.size() && isAsciiSpace(bytes[underscore])) ++underscore;
   if (underscore == bytes.size() || bytes[underscore] != '_')
     return file.fail("AppendedData: expected '_' before the data, found " +
                      quoteForMessage(bytes.substr(underscore, 16)));
+  return std::optional<AppendedSplit>(AppendedSplit{close, underscore + 1});
+}
+
+// Appended raw data is binary, not XML: pugixml gets only what precedes it, closed by hand.
+void useAppended(VtiFile& file, std::string_view bytes, const AppendedSplit& split) {
   file.hasAppended = true;
-  file.appended = bytes.substr(underscore + 1);
-  file.xml.assign(bytes.substr(0, close + 1));
+  file.xml.assign(bytes.substr(0, split.tagEnd + 1));
   file.xml += "</AppendedData></VTKFile>";
-  return {};
+}
+
+// A large file whose XML, up to AppendedData's '_', lies in its first kHeadBytes: only that head
+// is read (into file.bytes), the appended data stays in the file. False when the file is not such
+// a file; it is then read whole.
+bool openHead(VtiFile& file) {
+  Result<FileReader> reader = FileReader::open(file.path);
+  if (!reader || reader->size() <= kHeadBytes || reader->size() > kMaxFileBytes) return false;
+  std::string head(kHeadBytes, '\0');
+  if (reader->read(head.data(), head.size()) != head.size()) return false;
+  const Result<std::optional<AppendedSplit>> split = findAppended(file, head);
+  if (!split || !*split) return false;
+  file.bytes = std::move(head);
+  useAppended(file, file.bytes, **split);
+  file.appendedInFile = true;
+  file.appendedAt = (*split)->data;
+  file.appendedSize = reader->size() - file.appendedAt;
+  return true;
 }
 
 Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, const char* name,
@@ -119,7 +148,10 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
 Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
   auto file = std::make_unique<VtiFile>();
   file->path = path;
-  LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
+  const bool head = openHead(*file);
+  if (!head) {
+    LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
+  }
   const std::size_t first = file->bytes.find_first_not_of(" \t\r\n");
   if (first == std::string::npos || file->bytes[first] != '<')
     return file->fail(first == std::string::npos
@@ -127,7 +159,14 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
                           : "not an XML file: it starts with " +
                                 quoteForMessage(std::string_view(file->bytes).substr(first, 16)) +
                                 ", expected '<?xml' or '<VTKFile'");
-  LIC3D_TRY(splitAppendedData(*file));
+  if (!head) {
+    LIC3D_TRY_ASSIGN(const std::optional<AppendedSplit> split, findAppended(*file, file->bytes));
+    if (split) {
+      useAppended(*file, file->bytes, *split);
+      file->appended = std::string_view(file->bytes).substr(split->data);
+      file->appendedSize = file->appended.size();
+    }
+  }
   std::string& xml = file->hasAppended ? file->xml : file->bytes;
   const pugi::xml_parse_result parsed = file->document.load_buffer_inplace(
       xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
@@ -168,6 +207,13 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
       return file->fail("AppendedData encoding: expected raw or base64, found " +
                         quoteForMessage(encoding));
     file->appendedBase64 = encoding == "base64";
+    if (file->appendedInFile && file->appendedBase64) {
+      // Base64 is decoded from memory: the rest of the file is read after all.
+      LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
+      file->appended = std::string_view(file->bytes).substr(file->appendedAt);
+      file->appendedSize = file->appended.size();
+      file->appendedInFile = false;
+    }
   }
 
   const pugi::xml_node image = root.child("ImageData");

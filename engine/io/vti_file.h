@@ -44,8 +44,13 @@ struct VtiFile {
   std::string bytes;  // the whole file
   std::string xml;    // the XML before the appended data, closed; empty when `bytes` is all XML
   pugi::xml_document document;
-  std::string_view appended;  // the bytes after AppendedData's '_'
+  std::string_view appended;  // the bytes after AppendedData's '_' (when read with the XML)
   bool hasAppended = false;
+  // The appended raw data of a large file is not read with the XML: readers stream it from the
+  // file into their arrays, so the host holds an array once rather than the file and the array.
+  bool appendedInFile = false;
+  std::uint64_t appendedAt = 0;    // where it starts in the file (appendedInFile)
+  std::uint64_t appendedSize = 0;  // its bytes, up to the end of the file (either way)
   bool appendedBase64 = false;
   std::endian order = std::endian::little;
   bool header64 = false;

@@ -35,6 +35,9 @@ using vti::VtiFile;
 
 // Values are converted in chunks of this many.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
+// Uncompressed data not in memory (a large file's appended data, base64) is read in chunks of at
+// most this many bytes.
+constexpr std::size_t kStreamChunkBytes = std::size_t{32} << 20;
 
 template <class T>
 double load(const unsigned char* data) {
@@ -155,16 +158,37 @@ class ByteSource {
  public:
   static ByteSource raw(std::string_view bytes) { return ByteSource(bytes, false); }
   static ByteSource base64(std::string_view text) { return ByteSource(text, true); }
+  // `size` bytes of an open file from its current position on.
+  static ByteSource file(FileReader reader, std::uint64_t size) {
+    ByteSource source({}, false);
+    source.fileSize_ = std::min(size, reader.remaining());
+    source.file_.emplace(std::move(reader));
+    return source;
+  }
 
   std::size_t read(unsigned char* out, std::size_t count) {
     if (decoder_) return decoder_->read(out, count);
+    if (file_) {
+      const auto take = static_cast<std::size_t>(std::min<std::uint64_t>(count, maxRemaining()));
+      const std::size_t got = file_->read(out, take);
+      fileRead_ += got;
+      return got;
+    }
     const std::size_t take = std::min(count, raw_.size() - position_);
     std::memcpy(out, raw_.data() + position_, take);
     position_ += take;
     return take;
   }
   std::uint64_t maxRemaining() const {
+    if (file_) return fileSize_ - fileRead_;
     return decoder_ ? decoder_->maxRemaining() : raw_.size() - position_;
+  }
+  // The next `count` bytes in place, when they are raw bytes in memory (not base64) and present.
+  std::optional<std::string_view> take(std::size_t count) {
+    if (decoder_ || file_ || count > raw_.size() - position_) return std::nullopt;
+    const std::string_view bytes = raw_.substr(position_, count);
+    position_ += count;
+    return bytes;
   }
   bool invalid() const { return decoder_ && decoder_->invalid(); }
 
@@ -180,10 +204,59 @@ class ByteSource {
   std::string_view raw_;
   std::size_t position_ = 0;
   std::optional<Base64Reader> decoder_;
+  std::optional<FileReader> file_;
+  std::uint64_t fileSize_ = 0;
+  std::uint64_t fileRead_ = 0;
 };
 
-// Receives an array's values in order, in chunks.
-using ValueSink = std::function<void(const double* values, std::size_t count)>;
+// Receives an array's values in chunks: `count` values from value number `first` on. Called
+// from several threads at once for disjoint ranges (sinks write into storage sized by allocate).
+using ValueSink = std::function<void(std::uint64_t first, const double* values, std::size_t count)>;
+
+// Converts `count` whole values of `type` in byte order `order` at `data` into `out`.
+template <class T>
+void convertValues(const unsigned char* data, std::size_t count, std::endian order, double* out) {
+  for (std::size_t i = 0; i < count; ++i) {
+    std::array<unsigned char, sizeof(T)> bytes;
+    std::memcpy(bytes.data(), data + i * sizeof(T), sizeof(T));
+    if (order != std::endian::native) std::reverse(bytes.begin(), bytes.end());
+    T value;
+    std::memcpy(&value, bytes.data(), sizeof(T));
+    out[i] = static_cast<double>(value);
+  }
+}
+
+void convertValues(const TypeInfo& type, const unsigned char* data, std::size_t count,
+                   std::endian order, double* out) {
+  switch (type.type) {
+    case NumberType::Int8: return convertValues<std::int8_t>(data, count, order, out);
+    case NumberType::UInt8: return convertValues<std::uint8_t>(data, count, order, out);
+    case NumberType::Int16: return convertValues<std::int16_t>(data, count, order, out);
+    case NumberType::UInt16: return convertValues<std::uint16_t>(data, count, order, out);
+    case NumberType::Int32: return convertValues<std::int32_t>(data, count, order, out);
+    case NumberType::UInt32: return convertValues<std::uint32_t>(data, count, order, out);
+    case NumberType::Int64: return convertValues<std::int64_t>(data, count, order, out);
+    case NumberType::UInt64: return convertValues<std::uint64_t>(data, count, order, out);
+    case NumberType::Float32: return convertValues<float>(data, count, order, out);
+    case NumberType::Float64: return convertValues<double>(data, count, order, out);
+  }
+}
+
+// Whole values in memory, from value number `first` on, converted and delivered on the available
+// threads in chunks of kChunkValues.
+void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned char* data,
+                      std::uint64_t count, std::uint64_t first, const ValueSink& sink) {
+  const std::size_t chunks = static_cast<std::size_t>((count + kChunkValues - 1) / kChunkValues);
+  parallelChunks(chunks, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> values(kChunkValues);
+    for (std::size_t c = begin; c < end; ++c) {
+      const std::uint64_t at = std::uint64_t{c} * kChunkValues;
+      const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(kChunkValues, count - at));
+      convertValues(type, data + at * type.bytes, n, order, values.data());
+      sink(first + at, values.data(), n);
+    }
+  });
+}
 
 // Turns bytes, split anywhere, into values: a value cut between two zlib blocks is completed by
 // the next one.
@@ -221,7 +294,8 @@ class ValueDecoder {
     if (values_.size() == kChunkValues) flush();
   }
   void flush() {
-    if (!values_.empty()) sink_(values_.data(), values_.size());
+    if (!values_.empty()) sink_(next_, values_.data(), values_.size());
+    next_ += values_.size();
     values_.clear();
   }
 
@@ -231,6 +305,7 @@ class ValueDecoder {
   std::array<unsigned char, 8> carry_{};
   std::size_t carried_ = 0;
   std::vector<double> values_;
+  std::uint64_t next_ = 0;  // the number of the first value in values_
 };
 
 // Reads one array of `tuples` tuples into `sink`, calling `allocate` once its size has been
@@ -266,9 +341,16 @@ class ArrayReader {
       if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
         return fail("an appended array needs a whole-number offset, found " +
                     quoteForMessage(offsetAttribute.value()));
-      if (offset > file_.appended.size())
+      if (offset > file_.appendedSize)
         return fail("offset " + std::to_string(offset) + " is beyond the " +
-                    std::to_string(file_.appended.size()) + " bytes of AppendedData");
+                    std::to_string(file_.appendedSize) + " bytes of AppendedData");
+      if (file_.appendedInFile) {
+        LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(file_.path));
+        if (reader.skip(file_.appendedAt + offset) != file_.appendedAt + offset)
+          return fail("the AppendedData ends before offset " + std::to_string(offset));
+        ByteSource source = ByteSource::file(std::move(reader), file_.appendedSize - offset);
+        return readBinary(source, allocate, sink);
+      }
       const std::string_view data = file_.appended.substr(static_cast<std::size_t>(offset));
       ByteSource source = file_.appendedBase64 ? ByteSource::base64(data) : ByteSource::raw(data);
       return readBinary(source, allocate, sink);
@@ -318,14 +400,14 @@ class ArrayReader {
       chunk.push_back(value);
       ++count;
       if (chunk.size() == kChunkValues) {
-        sink(chunk.data(), chunk.size());
+        sink(count - chunk.size(), chunk.data(), chunk.size());
         chunk.clear();
       }
     }
     if (count != values_)
       return fail("holds " + std::to_string(count) + " numbers, expected " +
                   std::to_string(values_) + " (" + layoutText() + ")");
-    if (!chunk.empty()) sink(chunk.data(), chunk.size());
+    if (!chunk.empty()) sink(count - chunk.size(), chunk.data(), chunk.size());
     return {};
   }
 
@@ -368,15 +450,23 @@ class ArrayReader {
                   std::to_string(bytes_) + " (" + layoutText() + ")");
     if (size > source.maxRemaining()) return truncated(source, size);
     allocate();
-    ValueDecoder decoder(*array_.type, file_.order, sink);
-    std::vector<unsigned char> chunk(
-        static_cast<std::size_t>(std::min<std::uint64_t>(bytes_, kChunkValues * 8)));
-    for (std::uint64_t left = bytes_; left > 0;) {
-      const std::size_t want =
-          static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
+    if (const std::optional<std::string_view> bytes =
+            source.take(static_cast<std::size_t>(bytes_))) {
+      decodeInParallel(*array_.type, file_.order,
+                       reinterpret_cast<const unsigned char*>(bytes->data()), values_, 0, sink);
+      return {};
+    }
+    // From a file or base64: read in chunks of whole values, each decoded on the threads.
+    const std::size_t valueBytes = array_.type->bytes;
+    std::vector<unsigned char> chunk(static_cast<std::size_t>(
+        std::min<std::uint64_t>(bytes_, kStreamChunkBytes / valueBytes * valueBytes)));
+    for (std::uint64_t done = 0; done < bytes_;) {
+      const auto want =
+          static_cast<std::size_t>(std::min<std::uint64_t>(bytes_ - done, chunk.size()));
       if (source.read(chunk.data(), want) != want) return truncated(source, bytes_);
-      decoder.add(chunk.data(), want);
-      left -= want;
+      decodeInParallel(*array_.type, file_.order, chunk.data(), want / valueBytes,
+                       done / valueBytes, sink);
+      done += want;
     }
     return {};
   }
@@ -450,10 +540,16 @@ class ArrayReader {
                              offsets[b + 1] - offsets[b]),
             std::span<char>(inflated.data() + b * block, inflatedSize(i)));
       });
-      for (std::size_t b = 0; b < count; ++b) {
-        LIC3D_TRY(std::move(results[b]));
-        decoder.add(reinterpret_cast<const unsigned char*>(inflated.data() + b * block),
-                    inflatedSize(first + b));
+      for (std::size_t b = 0; b < count; ++b) LIC3D_TRY(std::move(results[b]));
+      const auto* data = reinterpret_cast<const unsigned char*>(inflated.data());
+      if (block % array_.type->bytes == 0) {
+        // Every block holds whole values: the batch is one run of values, decoded in parallel.
+        const std::size_t bytes = (count - 1) * block + inflatedSize(first + count - 1);
+        decodeInParallel(*array_.type, file_.order, data, bytes / array_.type->bytes,
+                         std::uint64_t{first} * (block / array_.type->bytes), sink);
+      } else {
+        for (std::size_t b = 0; b < count; ++b)
+          decoder.add(data + b * block, inflatedSize(first + b));
       }
     }
     return {};
@@ -484,10 +580,10 @@ Result<std::size_t> applyValidPointMask(const VtiFile& file, const std::vector<A
   if (mask == arrays.end()) return std::size_t{0};
   std::vector<std::uint8_t> valid;
   LIC3D_TRY(ArrayReader(file, *mask, voxelCount(file.dims))
-                .read([&] { valid.reserve(voxelCount(file.dims)); },
-                      [&](const double* values, std::size_t count) {
+                .read([&] { valid.resize(voxelCount(file.dims)); },
+                      [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
-                          valid.push_back(values[i] != 0.0 ? 1 : 0);
+                          valid[first + i] = values[i] != 0.0 ? 1 : 0;
                       }));
   return maskVectors(valid, field.vectors);
 }
@@ -499,10 +595,10 @@ Result<ScalarVolume> readScalarArray(const VtiFile& file, const ArrayRef& array)
   volume.dims = grid.dims;
   volume.geometry = grid.geometry;
   LIC3D_TRY(ArrayReader(file, array, voxelCount(grid.dims))
-                .read([&] { volume.values.reserve(voxelCount(grid.dims)); },
-                      [&](const double* values, std::size_t count) {
+                .read([&] { resizeLarge(volume.values, voxelCount(grid.dims)); },
+                      [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
-                          volume.values.push_back(vectorComponent(values[i]));
+                          volume.values[first + i] = vectorComponent(values[i]);
                       }));
   return volume;
 }
@@ -524,14 +620,18 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
   VectorField field;
   field.dims = grid.dims;
   field.geometry = grid.geometry;
-  std::uint64_t next = 0;
   LIC3D_TRY(ArrayReader(*file, array, voxelCount(grid.dims))
-                .read([&] { field.vectors.resize(voxelCount(grid.dims)); },
-                      [&](const double* values, std::size_t count) {
-                        for (std::size_t i = 0; i < count; ++i, ++next)
-                          field.vectors[static_cast<std::size_t>(next / components)]
-                                       [static_cast<glm::length_t>(next % components)] =
-                              vectorComponent(values[i]);
+                .read([&] { resizeLarge(field.vectors, voxelCount(grid.dims)); },
+                      [&](std::uint64_t first, const double* values, std::size_t count) {
+                        auto tuple = static_cast<std::size_t>(first / components);
+                        auto component = static_cast<glm::length_t>(first % components);
+                        for (std::size_t i = 0; i < count; ++i) {
+                          field.vectors[tuple][component] = vectorComponent(values[i]);
+                          if (++component == static_cast<glm::length_t>(components)) {
+                            component = 0;
+                            ++tuple;
+                          }
+                        }
                       }));
   // The mask is on the points: it says nothing about cell-centred vectors.
   std::size_t masked = 0;
@@ -587,10 +687,10 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {
   volume.dims = file->dims;
   volume.geometry = file->geometry;
   LIC3D_TRY(ArrayReader(*file, array, voxelCount(file->dims))
-                .read([&] { volume.rgba.reserve(4 * voxelCount(file->dims)); },
-                      [&](const double* values, std::size_t count) {
+                .read([&] { volume.rgba.resize(4 * voxelCount(file->dims)); },
+                      [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
-                          volume.rgba.push_back(static_cast<std::uint8_t>(values[i]));
+                          volume.rgba[first + i] = static_cast<std::uint8_t>(values[i]);
                       }));
   return volume;
 }

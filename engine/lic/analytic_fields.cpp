@@ -91,7 +91,7 @@ VectorField makeAnalyticField(AnalyticField field, Dims dims, double time) {
   VectorField result;
   result.dims = dims;
   result.geometry = cubicGeometry(domainOf(field), dims);
-  result.vectors.resize(voxelCount(dims));
+  resizeLarge(result.vectors, voxelCount(dims));
   // One z layer per task: each voxel's value depends on its position alone.
   parallelFor(static_cast<std::size_t>(dims.z), 0, [&](std::size_t layer) {
     const int k = static_cast<int>(layer);

@@ -13,7 +13,7 @@ NoiseVolume makeWhiteNoise(Dims dims, std::uint64_t seed) {
   NoiseVolume noise;
   noise.dims = dims;
   noise.type = NoiseType::UInt8;
-  noise.bytes.resize(voxelCount(dims));
+  resizeLarge(noise.bytes, voxelCount(dims));
   parallelChunks(noise.bytes.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
       noise.bytes[i] = static_cast<std::uint8_t>(noiseHash(seed, i) >> 56);
@@ -25,7 +25,7 @@ NoiseVolume makeWhiteNoisePiece(Dims wholeDims, Dims offset, Dims dims, std::uin
   NoiseVolume noise;
   noise.dims = dims;
   noise.type = NoiseType::UInt8;
-  noise.bytes.resize(voxelCount(dims));
+  resizeLarge(noise.bytes, voxelCount(dims));
   for (int k = 0; k < dims.z; ++k)
     for (int j = 0; j < dims.y; ++j)
       for (int i = 0; i < dims.x; ++i) {
