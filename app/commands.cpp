@@ -20,6 +20,7 @@
 #include "io/png_writer.h"
 #include "lic/analytic_fields.h"
 #include "lic/colouring.h"
+#include "lic/derived_fields.h"
 #include "lic/field_plane.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
@@ -69,15 +70,17 @@ Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& dom
   return {};
 }
 
-Result<SessionInputs> loadInputs(const ComputeOptions& options) {
+// `fieldOnDevice`: the run needs no host copy of an analytic field (InputOptions::fieldOnDevice).
+Result<SessionInputs> loadInputs(const ComputeOptions& options, bool fieldOnDevice) {
   const Session& session = options.inputs.session;
   if (session.twoD)
     return inputError(
         "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
   LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
-  return loadSessionInputs(
-      session, {.gridGiven = options.inputs.grid.given(), .analyticTimeSteps = session.timeSteps});
+  return loadSessionInputs(session, {.gridGiven = options.inputs.grid.given(),
+                                     .analyticTimeSteps = session.timeSteps,
+                                     .fieldOnDevice = fieldOnDevice});
 }
 
 // What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.
@@ -192,6 +195,22 @@ struct ViewScalars {
   }
 };
 
+// Whether opacity follows a scalar: the magnitude ramp, a threshold or a transfer function.
+bool opacityWeighted(const ViewParams& view) {
+  return view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
+         !view.transfer.opacities.empty();
+}
+
+// Whether colour or opacity follow a quantity derived from the field's vectors on the host.
+bool viewDerivesFromField(const ViewParams& view) {
+  const auto derived = [](const std::string& name) {
+    const std::optional<DerivedQuantity> quantity = derivedQuantity(name);
+    return quantity && *quantity != DerivedQuantity::Speed;
+  };
+  return (view.color == ColorMode::Magnitude && derived(view.colorBy)) ||
+         (opacityWeighted(view) && derived(view.opacityBy));
+}
+
 Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs) {
   const StageTimer timer("scalars");
   const ViewParams& view = session.view;
@@ -199,8 +218,7 @@ Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs&
   if (view.color == ColorMode::Magnitude) {
     LIC3D_TRY_ASSIGN(scalars.color, loadScalars(view.colorBy, "view.color_by", session, inputs));
   }
-  const bool weighted = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
-                        !view.transfer.opacities.empty();
+  const bool weighted = opacityWeighted(view);
   if (weighted && view.opacityBy == view.colorBy && view.color == ColorMode::Magnitude) {
     scalars.opacity = scalars.color;
   } else if (weighted) {
@@ -506,7 +524,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     const int status = reportError(error);
     return context ? finish(**context, status) : status;
   };
-  Result<SessionInputs> inputs = loadInputs(options);
+  Result<SessionInputs> inputs = loadInputs(options, !options.cpu);
   if (!inputs) return fail(inputs.error());
   reportFieldFile(global, session.field, *inputs);
   if (batch.slice.given()) {
@@ -600,7 +618,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
             {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});
         !r)
       return finish(*context, reportError(r.error()));
-  Result<SessionInputs> inputs = loadInputs(options);
+  // The field is made on the device unless the host needs it: for the CPU LIC, colour or opacity
+  // derived from the vectors, or the RGBA volume.
+  Result<SessionInputs> inputs = loadInputs(
+      options, !options.cpu && batch.rgbaVolume.empty() && !viewDerivesFromField(session.view));
   if (!inputs) return finish(*context, reportError(inputs.error()));
   reportFieldFile(global, session.field, *inputs);
   if (inputs->fromFile || inputs->series)

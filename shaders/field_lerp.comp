@@ -4,8 +4,7 @@
 // max|u|, u the field in voxel units; w = noise; engine/volume_textures.h). Two phases, one
 // pipeline each: phase 0 measures the interpolated field (max |u|, min and max |v|) with one
 // atomic per workgroup and value; phase 1 writes the texture, normalised by phase 0's max |u|.
-// Compiled three times, one per field texture format: rgba32f, rgba16f (LIC3D_HALF_FIELD) and
-// rgba8_snorm with its square-root packing (LIC3D_BYTE_FIELD).
+// Compiled three times, one per field texture format (field_texel.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
@@ -16,13 +15,8 @@ layout(constant_id = kLerpConstPhase) const uint PHASE = 0;
 layout(set = 0, binding = kLerpBindingStepA) uniform sampler3D stepA;
 layout(set = 0, binding = kLerpBindingStepB) uniform sampler3D stepB;
 layout(set = 0, binding = kLerpBindingNoise) uniform sampler3D noiseVolume;
-#if defined(LIC3D_HALF_FIELD)
-layout(set = 0, binding = kLerpBindingTarget, rgba16f) uniform writeonly image3D target;
-#elif defined(LIC3D_BYTE_FIELD)
-layout(set = 0, binding = kLerpBindingTarget, rgba8_snorm) uniform writeonly image3D target;
-#else
-layout(set = 0, binding = kLerpBindingTarget, rgba32f) uniform writeonly image3D target;
-#endif
+#define FIELD_TEXEL_BINDING kLerpBindingTarget
+#include "field_texel.glsl"
 layout(set = 0, binding = kLerpBindingRanges) buffer Ranges { uint ranges[kLerpRangeCount]; };
 
 layout(push_constant) uniform Push { LerpPushConstants pc; };
@@ -48,14 +42,7 @@ void main() {
     float maxSpeed = uintBitsToFloat(ranges[kLerpRangeMaxSpeed]);
     vec3 texel = maxSpeed > 0.0 ? u / maxSpeed : u;
     float noise = texelFetch(noiseVolume, voxel, 0).r;
-#ifdef LIC3D_BYTE_FIELD
-    // volume_textures.h, FieldPrecision::Byte: e with e |e| = u / max|u|, noise shifted into the
-    // signed range.
-    float speed = length(texel);
-    texel = speed > 0.0 ? texel / sqrt(speed) : vec3(0.0);
-    noise = (round(clamp(noise, 0.0, 1.0) * 255.0) - 128.0) / 127.0;
-#endif
-    imageStore(target, voxel, vec4(texel, noise));
+    imageStore(fieldTexels, voxel, fieldTexel(texel, noise));
     return;
   }
 

@@ -178,21 +178,41 @@ struct LerpPushConstants {
   vec4 stepScales;  // x: step A's max|v| (its texels' scale), y: step B's; zw: unused
 };
 
-// Analytic fields made on the device (shaders/analytic_field.comp, passes/analytic_field_pass.h):
-// one slab of z layers per dispatch, the vectors as three floats per voxel, x fastest.
-LIC3D_CONST kAnalyticBindingVectors = 0;  // buffer of 3 floats per voxel of the slab
-LIC3D_CONST kAnalyticConstField = 0;      // the AnalyticField
+// Analytic fields made on the device (shaders/analytic_fields.glsl, passes/analytic_field_pass.h).
+// analytic_field.comp writes the vectors of one slab of z layers per dispatch, three floats per
+// voxel, x fastest (the oracle's layout: tests, and hosts that need the field).
+// analytic_texels.comp writes the packed field and noise texture (passes/volume_textures.h) in two
+// phases, as field_lerp.comp does: phase 0 measures max |u| (u: v in voxel units) and min and max
+// |v|; phase 1 writes the texels normalised by phase 0's max |u|, the noise of lic/noise.h hashed
+// from each voxel's index in the grid, and the histogram of |v| over [min, max].
+LIC3D_CONST kAnalyticBindingVectors = 0;     // buffer of 3 floats per voxel of the slab
+LIC3D_CONST kAnalyticBindingTexels = 0;      // image3D: the field and noise texture
+LIC3D_CONST kAnalyticBindingStatistics = 1;  // AnalyticStatistics
+LIC3D_CONST kAnalyticConstField = 0;         // the AnalyticField
+LIC3D_CONST kAnalyticConstPhase = 1;         // analytic_texels.comp: 0 measure, 1 write
 LIC3D_CONST kAnalyticLocalSizeX = 8;
 LIC3D_CONST kAnalyticLocalSizeY = 8;
+LIC3D_CONST kAnalyticLayersPerGroup = 16;   // z layers one texel workgroup walks
+LIC3D_CONST kAnalyticHistogramBins = 4096;  // ValueHistogram::kBins
 
 struct AnalyticPushConstants {
-  ivec4 dims;    // xyz: the slab's size; w: its first z layer in the whole grid
-  vec4 origin;   // xyz: the grid's origin; w: the field's time
-  vec4 spacing;  // xyz: the grid's spacing; w: unused
+  ivec4 dims;      // xyz: the slab's (vectors) or the grid's (texels) size; w: first z layer
+  vec4 origin;     // xyz: the grid's origin; w: the field's time
+  vec4 spacing;    // xyz: the grid's spacing; w: unused
+  vec4 unitScale;  // xyz: voxelUnitScale of the grid; w: unused
+  uvec4 seed;      // xy: the noise seed (low, high word); zw: unused
 };
 
+// Unsigned integers of non-negative floats order as the floats do: atomicMin and atomicMax on
+// their bits reduce the speeds.
+LIC3D_CONST kAnalyticMaxSpeed = 0;      // max |u|
+LIC3D_CONST kAnalyticMaxMagnitude = 1;  // max |v|
+LIC3D_CONST kAnalyticMinMagnitude = 2;  // min |v|
+LIC3D_CONST kAnalyticFirstBin = 4;      // then kAnalyticHistogramBins counts
+LIC3D_CONST kAnalyticStatisticsWords = kAnalyticFirstBin + kAnalyticHistogramBins;
+
 #ifdef __cplusplus
-static_assert(sizeof(AnalyticPushConstants) == 48);
+static_assert(sizeof(AnalyticPushConstants) == 80);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(LerpPushConstants) == 48);

@@ -152,9 +152,15 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
 
 Result<void> uploadImage(const Context& context, const Image& image, const void* data,
                          std::size_t bytes) {
+  return uploadImageFilled(context, image, bytes,
+                           [&](void* staging) { parallelCopy(staging, data, bytes); });
+}
+
+Result<void> uploadImageFilled(const Context& context, const Image& image, std::size_t bytes,
+                               const std::function<void(void*)>& fill) {
   LIC3D_TRY_ASSIGN(Buffer staging, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                                   MemoryUse::Upload, "upload staging"));
-  parallelCopy(staging.mapped(), data, bytes);
+  fill(staging.mapped());
   return submitAndWait(
       context,
       [&](VkCommandBuffer cmd) {

@@ -42,6 +42,10 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
 // leaves it in SHADER_READ_ONLY_OPTIMAL, visible to compute and fragment shaders.
 Result<void> uploadImage(const Context& context, const Image& image, const void* data,
                          std::size_t bytes);
+// The same with the staging buffer filled by `fill(staging)` (`bytes` of tightly packed texels):
+// data made straight into the buffer the device copies from, with no host array between.
+Result<void> uploadImageFilled(const Context& context, const Image& image, std::size_t bytes,
+                               const std::function<void(void*)>& fill);
 
 // Reads the whole of `image`, which must be in `layout` after work that `srcStage`/`srcAccess`
 // describe, back into tightly packed texels of `bytesPerTexel`. The image returns to `layout`.

@@ -6,6 +6,9 @@
 
 // Generated at build time by glslangValidator --vn (see cmake/Lic3dShaders.cmake).
 #include "analytic_field_comp_spv.h"
+#include "analytic_texels_byte_comp_spv.h"
+#include "analytic_texels_comp_spv.h"
+#include "analytic_texels_half_comp_spv.h"
 #include "field_lerp_byte_comp_spv.h"
 #include "field_lerp_comp_spv.h"
 #include "field_lerp_half_comp_spv.h"
@@ -44,6 +47,9 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
     case ShaderId::FieldLerpHalf: return field_lerp_half_comp_spv;
     case ShaderId::FieldLerpByte: return field_lerp_byte_comp_spv;
     case ShaderId::AnalyticField: return analytic_field_comp_spv;
+    case ShaderId::AnalyticTexels: return analytic_texels_comp_spv;
+    case ShaderId::AnalyticTexelsHalf: return analytic_texels_half_comp_spv;
+    case ShaderId::AnalyticTexelsByte: return analytic_texels_byte_comp_spv;
   }
   return {};
 }
@@ -69,6 +75,9 @@ const char* shaderName(ShaderId id) {
     case ShaderId::FieldLerpHalf: return "field_lerp.comp (rgba16f)";
     case ShaderId::FieldLerpByte: return "field_lerp.comp (rgba8 snorm)";
     case ShaderId::AnalyticField: return "analytic_field.comp";
+    case ShaderId::AnalyticTexels: return "analytic_texels.comp";
+    case ShaderId::AnalyticTexelsHalf: return "analytic_texels.comp (rgba16f)";
+    case ShaderId::AnalyticTexelsByte: return "analytic_texels.comp (rgba8 snorm)";
   }
   return "?";
 }

@@ -70,16 +70,26 @@ Error analyticResolutionError(const FieldSource& source) {
                                                 " is an analytic field; field.grid sets its grid");
 }
 
+// What an analytic field's source may not name.
+Result<void> checkAnalyticSource(const FieldSource& source) {
+  if (!source.resolution.empty()) return analyticResolutionError(source);
+  if (!source.array.empty())
+    return parameterError("field.array", source.array + ": " + source.field +
+                                             " is an analytic field; field.array picks a "
+                                             "vector array of a .vtk or .vti file");
+  return {};
+}
+
+bool isWhiteNoise(const NoiseSource& source) {
+  return source.file.empty() && source.seedSpots == 0 && source.seedFraction <= 0.0f;
+}
+
 }  // namespace
 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
                               double time) {
   if (const auto analytic = parseEnum<AnalyticField>(source.field)) {
-    if (!source.resolution.empty()) return analyticResolutionError(source);
-    if (!source.array.empty())
-      return parameterError("field.array", source.array + ": " + source.field +
-                                               " is an analytic field; field.array picks a "
-                                               "vector array of a .vtk or .vti file");
+    LIC3D_TRY(checkAnalyticSource(source));
     LIC3D_TRY(checkHostMemory(source.grid));
     const StageTimer timer("field (analytic)");
     return makeAnalyticField(*analytic, source.grid, time);
@@ -185,6 +195,18 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
     LIC3D_TRY_ASSIGN(inputs.series, fileSeries(source.field));
     inputs.fromFile = true;
   }
+  if (analytic && !inputs.series && options.fieldOnDevice && isWhiteNoise(session.noise)) {
+    LIC3D_TRY(checkAnalyticSource(source));
+    inputs.field.dims = source.grid;
+    inputs.field.geometry = analyticGeometry(*analytic, source.grid);
+    inputs.noise.dims = source.grid;
+    inputs.noise.type = NoiseType::UInt8;
+    if (timePeriod(*analytic) > 0.0) inputs.sampled = analytic;
+    inputs.device = AnalyticInputs{*analytic, source.grid, inputs.sampled ? session.time : 0.0,
+                                   session.noise.seed};
+    LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
+    return inputs;
+  }
   if (inputs.series) {
     const int first = inputs.series->bracket(session.time).first;
     LIC3D_TRY_ASSIGN(inputs.field, inputs.series->loadStep(first, source.array, &inputs.info));
@@ -245,6 +267,9 @@ Result<VectorField> stepOf(SessionInputs& inputs, const Session& session, int k)
 }  // namespace
 
 Result<VectorField> hostFieldAt(SessionInputs& inputs, const Session& session, double time) {
+  if (inputs.device)
+    return makeAnalyticField(inputs.device->field, inputs.device->dims,
+                             inputs.sampled ? time : 0.0);
   if (inputs.sampled) return makeAnalyticField(*inputs.sampled, session.field.grid, time);
   if (!inputs.series) return inputs.field;
   const TimeBracket b = inputs.series->bracket(time);
@@ -260,6 +285,14 @@ Result<VectorField> hostFieldAt(SessionInputs& inputs, const Session& session, d
 
 Result<void> moveToTime(SessionInputs& inputs, const Session& session, double time,
                         LicRenderer& renderer, bool first, bool onHost) {
+  if (inputs.device) {
+    if (onHost)
+      return inputError("the field is made on the device; the CPU reference needs it on the host");
+    if (!first && (!inputs.sampled || time == inputs.time)) return {};
+    inputs.time = time;
+    if (inputs.sampled) inputs.device->time = time;
+    return renderer.setAnalyticInputs(*inputs.device);
+  }
   if (!inputs.sampled && !inputs.series) {
     if (first) return renderer.setInputs(inputs.field, inputs.noise);
     return {};

@@ -18,6 +18,7 @@
 #include "io/volume_io.h"
 #include "lic/analytic_fields.h"
 #include "lic/time_series.h"
+#include "passes/analytic_field_pass.h"
 #include "passes/lic_renderer.h"
 
 namespace lic3d {
@@ -73,6 +74,10 @@ struct InputOptions {
   bool gridGiven = false;     // the grid was given explicitly (a file field refuses it)
   int analyticTimeSteps = 0;  // > 0: a time-dependent analytic field is a series of this many
                               // steps (the session's time_steps, or the app's default)
+  // An analytic field with white noise is made on the device (SessionInputs::device) rather
+  // than on the host: for front ends that need no host copy of the field (no CPU LIC, no derived
+  // scalars, no RGBA volume).
+  bool fieldOnDevice = false;
 };
 
 // What the frames' fields come from: one steady field; a time-dependent analytic field sampled
@@ -83,6 +88,9 @@ struct SessionInputs {
   FieldReadInfo info;  // of a file field (a series: non-finite vectors of every step read)
   bool fromFile = false;
   std::optional<AnalyticField> sampled;
+  // Made on the device (InputOptions::fieldOnDevice): `field` and `noise` then hold the grid and
+  // geometry but no vectors or bytes; hostFieldAt still makes the field on the host.
+  std::optional<AnalyticInputs> device;
   std::optional<TimeSeries> series;
   std::optional<int> fieldStep;  // the step of the series `field` is, until it is replaced
   double time = 0.0;

@@ -1,13 +1,18 @@
 #include "passes/analytic_field_pass.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
+#include <memory>
 
+#include "core/memory_budget.h"
 #include "core/parallel.h"
+#include "core/stage_times.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/pipelines.h"
 #include "gpu/shader_library.h"
+#include "lic/lic_reference.h"
 #include "passes/lic_push.h"
 #include "shared_layout.h"
 
@@ -19,6 +24,22 @@ struct AnalyticSpecialization {
   std::uint32_t field = 0;
 };
 static_assert(sizeof(AnalyticSpecialization) == 4);
+
+// constant_id 0: the field, 1: the phase (shaders/analytic_texels.comp).
+struct TexelSpecialization {
+  std::uint32_t field = 0;
+  std::uint32_t phase = 0;
+};
+static_assert(sizeof(TexelSpecialization) == 8);
+
+// The variant of analytic_texels.comp that writes a resolved precision's texture.
+int variantOf(FieldPrecision precision) {
+  switch (precision) {
+    case FieldPrecision::Float: return 0;
+    case FieldPrecision::Byte: return 2;
+    default: return 1;
+  }
+}
 
 // The slab buffer: at most this many bytes (and the device's storage buffer range), so that
 // memory stays bounded whatever the grid.
@@ -58,6 +79,7 @@ Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticFi
 
   result.vectors.resize(voxelCount(dims));
   gpu::AnalyticPushConstants push{};
+  push.unitScale = glm::vec4(1.0f);
   push.origin = glm::vec4(glm::vec3(result.geometry.origin), static_cast<float>(time));
   push.spacing = glm::vec4(glm::vec3(result.geometry.spacing), 0.0f);
   for (int z0 = 0; z0 < dims.z; z0 += slab) {
@@ -88,6 +110,146 @@ Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticFi
     parallelCopy(result.vectors.data() + first, vectors.mapped(), bytes);
   }
   return result;
+}
+
+Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
+  AnalyticTexels pass;
+  pass.context_ = &context;
+  constexpr Binding bindings[] = {
+      {gpu::kAnalyticBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+      {gpu::kAnalyticBindingStatistics, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+  };
+  LIC3D_TRY_ASSIGN(pass.layout_,
+                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
+                                          sizeof(gpu::AnalyticPushConstants), "analytic texels"));
+  const ShaderId ids[3] = {ShaderId::AnalyticTexels, ShaderId::AnalyticTexelsHalf,
+                           ShaderId::AnalyticTexelsByte};
+  for (int variant = 0; variant < 3; ++variant) {
+    LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
+  }
+  LIC3D_TRY_ASSIGN(
+      pass.statistics_,
+      Buffer::create(context, VkDeviceSize{gpu::kAnalyticStatisticsWords} * sizeof(std::uint32_t),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                         VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                     MemoryUse::DeviceLocal, "analytic field statistics"));
+  LIC3D_TRY_ASSIGN(
+      pass.readback_,
+      Buffer::create(context, pass.statistics_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     MemoryUse::Readback, "analytic field statistics readback"));
+  return pass;
+}
+
+Result<VkPipeline> AnalyticTexels::pipeline(Key key) {
+  return pipelines_.get(key, [&](const Key& k) {
+    const Specialization<TexelSpecialization> constants(TexelSpecialization{k.field, k.phase});
+    const char* formats[3] = {"rgba32f", "rgba16f", "rgba8 snorm"};
+    return createComputePipeline(
+        *context_, shaders_[k.variant], layout_, constants.info(),
+        std::string("analytic texels ") + (k.phase == 0 ? "measure " : "write ") +
+            std::string(enumName(static_cast<AnalyticField>(k.field))) + " " + formats[k.variant]);
+  });
+}
+
+Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
+                                                  FieldPrecision precision) const {
+  LIC3D_TRY(checkVolumeDims(*context_, inputs.dims, "field"));
+  // The texture and the LIC volume must fit (a CPU driver would otherwise accept the allocation
+  // and fail when the memory is first touched), as uploadLicInputs checks.
+  MemoryRequest request;
+  request.dims = inputs.dims;
+  request.precision = resolvePrecision(*context_, precision);
+  LIC3D_TRY(checkMemoryBudget(request, queryMemoryBudget(*context_), "the field"));
+  return createWritableFieldTexture(*context_, inputs.dims,
+                                    analyticGeometry(inputs.field, inputs.dims), precision,
+                                    "analytic field and noise texture");
+}
+
+Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& target) {
+  if (target.dims != inputs.dims || !target.image)
+    return inputError("the analytic field's texture must be made for its grid " +
+                      gridText(inputs.dims));
+  const StageTimer timer("field and noise (on the device)");
+  const auto field = static_cast<std::uint32_t>(inputs.field);
+  const int variant = variantOf(target.precision);
+  LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
+  LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
+
+  const GridGeometry& geometry = target.geometry;
+  const glm::dvec3 unit = voxelUnitScale(geometry);
+  gpu::AnalyticPushConstants push{};
+  push.dims = glm::ivec4(inputs.dims, 0);
+  push.origin = glm::vec4(glm::vec3(geometry.origin), static_cast<float>(inputs.time));
+  push.spacing = glm::vec4(glm::vec3(geometry.spacing), 0.0f);
+  push.unitScale = glm::vec4(glm::vec3(unit), 0.0f);
+  push.seed = glm::uvec4(static_cast<std::uint32_t>(inputs.noiseSeed),
+                         static_cast<std::uint32_t>(inputs.noiseSeed >> 32), 0u, 0u);
+  DescriptorWrites writes;
+  writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
+      .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
+  const std::uint32_t groupsX = groupCount(inputs.dims.x, gpu::kAnalyticLocalSizeX);
+  const std::uint32_t groupsY = groupCount(inputs.dims.y, gpu::kAnalyticLocalSizeY);
+  const std::uint32_t groupsZ = groupCount(inputs.dims.z, gpu::kAnalyticLayersPerGroup);
+  constexpr VkPipelineStageFlags2 kReaders =
+      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        // max |u|, max |v| and the counts start at 0, min |v| at the largest float.
+        constexpr VkDeviceSize word = sizeof(std::uint32_t);
+        constexpr VkDeviceSize minimum = gpu::kAnalyticMinMagnitude * word;
+        vkCmdFillBuffer(cmd, statistics_.handle(), 0, minimum, 0u);
+        vkCmdFillBuffer(cmd, statistics_.handle(), minimum, word, 0x7F7FFFFFu);
+        vkCmdFillBuffer(cmd, statistics_.handle(), minimum + word, VK_WHOLE_SIZE, 0u);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        // The old contents are replaced whole: earlier readers must be done.
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     kReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
+        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
+        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+        const VkBufferCopy copy{0, 0, statistics_.size()};
+        vkCmdCopyBuffer(cmd, statistics_.handle(), readback_.handle(), 1, &copy);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     kReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      },
+      "analytic field texels"));
+
+  std::array<std::uint32_t, gpu::kAnalyticStatisticsWords> words{};
+  std::memcpy(words.data(), readback_.mapped(), sizeof(words));
+  const auto asFloat = [&](std::uint32_t index) {
+    float value = 0.0f;
+    std::memcpy(&value, &words[index], sizeof(value));
+    return static_cast<double>(value);
+  };
+  target.maxVoxelSpeed = asFloat(gpu::kAnalyticMaxSpeed);
+  target.maxMagnitude = asFloat(gpu::kAnalyticMaxMagnitude);
+  target.minMagnitude = std::min(asFloat(gpu::kAnalyticMinMagnitude), target.maxMagnitude);
+  // As uploadLicInputs: a texel's xyz times this is the physical vector.
+  const double speed = target.maxVoxelSpeed > 0.0 ? target.maxVoxelSpeed : 1.0;
+  target.texelToPhysical = speed / unit;
+  target.speeds = std::make_shared<const ValueHistogram>(
+      histogramOfCounts(std::span<const std::uint32_t>(words).subspan(gpu::kAnalyticFirstBin),
+                        target.minMagnitude, target.maxMagnitude));
+  target.unit.clear();
+  return {};
 }
 
 }  // namespace lic3d

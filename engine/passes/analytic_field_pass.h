@@ -1,19 +1,66 @@
 #pragma once
-// The analytic fields (lic/analytic_fields.h) made on the device: shaders/analytic_field.comp
-// evaluates them in float, slab by slab, and the host reads each slab into the field. The CPU
-// version stays the oracle; the device's differs by float rounding (tests/
-// test_analytic_device.cpp). Not yet what the front ends use: read back to the host it was no
-// faster on the H100 (tornado 512^3: 1.88 s against 1.76 s on 16 cores, docs/BENCHMARKS.md); the
-// shader is the first part of making the packed field texture on the device directly.
+// The analytic fields (lic/analytic_fields.h) made on the device, in float; the CPU versions in
+// double stay the oracle (tests/test_analytic_device.cpp holds the device's to them).
+// - makeAnalyticFieldOnDevice: the vectors, slab by slab, read back into a VectorField (for tests
+//   and hosts that need the field itself; read back it was no faster than the CPU on the H100).
+// - AnalyticTexels: the field and its white noise written straight into the LIC pass' field
+//   texture, with the statistics uploadLicInputs measures on the host (min and max |v|, max |u|,
+//   the histogram of |v|): nothing of the field passes through the host, which is what the front
+//   ends use for an analytic field with white noise (docs/BENCHMARKS.md, "End to end").
+#include <cstdint>
+
 #include "core/error.h"
 #include "core/volume.h"
+#include "gpu/gpu_resources.h"
+#include "gpu/pipelines.h"
 #include "gpu/vulkan_context.h"
 #include "lic/analytic_fields.h"
+#include "passes/volume_textures.h"
 
 namespace lic3d {
 
 // makeAnalyticField(field, dims, time) evaluated on `context`'s device.
 Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticField field,
                                               Dims dims, double time = 0.0);
+
+// An analytic field at a time on a grid, and the seed of its white noise (lic/noise.h): what
+// AnalyticTexels makes the LIC inputs from.
+struct AnalyticInputs {
+  AnalyticField field = AnalyticField::Tornado;
+  Dims dims{0};
+  double time = 0.0;
+  std::uint64_t noiseSeed = 1;
+  bool operator==(const AnalyticInputs&) const = default;
+};
+
+class AnalyticTexels {
+ public:
+  // `context` must outlive the pass.
+  static Result<AnalyticTexels> create(const Context& context);
+
+  // A texture write() can fill: the field's grid and geometry (analyticGeometry), `precision`
+  // resolved as uploadLicInputs does. Checks the device's limits and memory first.
+  Result<FieldTexture> createTarget(const AnalyticInputs& inputs, FieldPrecision precision) const;
+
+  // Fills `target` (from createTarget, on the inputs' grid) with the inputs' texels and sets its
+  // statistics. Blocking; the caller makes sure no work in flight reads the texture.
+  Result<void> write(const AnalyticInputs& inputs, FieldTexture& target);
+
+ private:
+  struct Key {
+    std::uint32_t field = 0;
+    std::uint32_t phase = 0;
+    int variant = 0;  // the texture format: RGBA32F, RGBA16F, RGBA8 SNORM
+    bool operator==(const Key&) const = default;
+  };
+  Result<VkPipeline> pipeline(Key key);
+
+  const Context* context_ = nullptr;
+  PipelineLayout layout_;
+  ShaderModule shaders_[3];
+  PipelineCache<Key> pipelines_;
+  Buffer statistics_;  // device-local: kAnalyticStatisticsWords uints
+  Buffer readback_;    // its copy for the host
+};
 
 }  // namespace lic3d

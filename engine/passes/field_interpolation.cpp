@@ -20,15 +20,7 @@ struct LerpSpecialization {
 };
 static_assert(sizeof(LerpSpecialization) == 4);
 
-// The field texture's format per resolved precision (volume_textures.cpp), and the variant of
-// field_lerp.comp that writes it.
-VkFormat targetFormat(FieldPrecision precision) {
-  switch (precision) {
-    case FieldPrecision::Float: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case FieldPrecision::Byte: return VK_FORMAT_R8G8B8A8_SNORM;
-    default: return VK_FORMAT_R16G16B16A16_SFLOAT;
-  }
-}
+// The variant of field_lerp.comp that writes a resolved precision's texture.
 int variantOf(FieldPrecision precision) {
   switch (precision) {
     case FieldPrecision::Float: return 0;
@@ -42,24 +34,13 @@ VkFormat stepFormat(FieldPrecision precision) {
                                             : VK_FORMAT_R16G16B16A16_SFLOAT;
 }
 
-// Every precision but Half and Float is resolved by the caller; a Float texture must be filterable.
-Result<FieldPrecision> checkPrecision(const Context& context, FieldPrecision precision) {
-  const FieldPrecision resolved = resolvePrecision(context, precision);
-  if (resolved == FieldPrecision::Float &&
-      !supportsFormat(context, VK_FORMAT_R32G32B32A32_SFLOAT,
-                      VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
-    return unsupportedError(context.deviceInfo().name +
-                            " cannot filter RGBA32F textures; use half precision");
-  return resolved;
-}
-
 }  // namespace
 
 Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& field, int index,
                                   FieldPrecision precision) {
   LIC3D_TRY(checkVolumeDims(context, field.dims, "time step"));
   LIC3D_TRY(checkSpacing(field.geometry));
-  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkPrecision(context, precision));
+  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkFieldPrecision(context, precision));
   FieldStep step;
   step.index = index;
   step.dims = field.dims;
@@ -137,25 +118,8 @@ Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
 
 Result<FieldTexture> FieldInterpolation::createTarget(Dims dims, const GridGeometry& geometry,
                                                       FieldPrecision precision) const {
-  LIC3D_TRY(checkVolumeDims(*context_, dims, "field"));
-  LIC3D_TRY(checkSpacing(geometry));
-  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkPrecision(*context_, precision));
-  FieldTexture texture;
-  texture.dims = dims;
-  texture.geometry = geometry;
-  texture.precision = resolved;
-  ImageDesc desc;
-  desc.format = targetFormat(resolved);
-  if (!supportsFormat(*context_, desc.format, VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT))
-    return unsupportedError(context_->deviceInfo().name + " cannot write " +
-                            std::string(fieldTextureFormatName(resolved)) +
-                            " storage images, which the time interpolation needs");
-  desc.extent = extentOf(dims);
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = "interpolated field and noise texture";
-  LIC3D_TRY_ASSIGN(texture.image, Image::create(*context_, desc));
-  return texture;
+  return createWritableFieldTexture(*context_, dims, geometry, precision,
+                                    "interpolated field and noise texture");
 }
 
 Result<void> FieldInterpolation::setNoise(const NoiseVolume& noise) {

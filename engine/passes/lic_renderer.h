@@ -24,6 +24,7 @@
 #include "lic/legend.h"
 #include "lic/lic_reference.h"
 #include "lic/sparsity.h"
+#include "passes/analytic_field_pass.h"
 #include "passes/field_interpolation.h"
 #include "passes/lic_histogram.h"
 #include "passes/lic_pass.h"
@@ -70,6 +71,10 @@ class LicRenderer {
   // The field and the noise that LIC smears along it; they share one texture, so they are set
   // together (the noise must be on the field's grid). Waits for the device to be idle.
   Result<void> setInputs(const VectorField& field, const NoiseVolume& noise);
+  // The same for an analytic field with white noise, made on the device straight into the field
+  // texture (passes/analytic_field_pass.h): no host arrays at all. A texture of the same grid is
+  // rewritten in place (a time animation of the tornado).
+  Result<void> setAnalyticInputs(const AnalyticInputs& inputs);
   // What colour and opacity follow when not the speed (inputs/scalars.h): scalars on the field's
   // grid, null for the speed. Kept until set again or until a field of another grid is set.
   // Redraws only; waits for the device to be idle.
@@ -180,6 +185,9 @@ class LicRenderer {
   };
 
   LicRenderer() = default;
+  // What any new field resets (the job, the shown volume, a series' steps; the mask, the
+  // volumes and the scalars of another grid or piece). Waits for the device to be idle.
+  Result<void> replaceField(Dims dims, const std::optional<FieldPiece>& piece);
   Result<void> ensureVolumes();
   Result<void> startJob(const LicParams& params, bool force);
   Result<bool> prepareMask();
@@ -233,6 +241,8 @@ class LicRenderer {
   std::optional<TimeKey> interpolated_;
   bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
   bool timeTexture_ = false;   // field_ is written by interpolation_ (not uploaded)
+  std::optional<AnalyticTexels> analytic_;
+  bool analyticTexture_ = false;  // field_ is written by analytic_ (not uploaded)
   Image target_;
   Buffer targetReadback_;
 };

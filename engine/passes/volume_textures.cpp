@@ -1,6 +1,7 @@
 #include "passes/volume_textures.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <glm/gtc/packing.hpp>
 #include <memory>
@@ -14,13 +15,11 @@
 namespace lic3d {
 namespace {
 
-// Interleaves (v in voxel units / its largest length, noise) as RGBA texels of type T, converted
-// by `convert`. `scale` is voxelUnitScale / maxVoxelSpeed.
+// Interleaves (v in voxel units / its largest length, noise) as RGBA texels of type T into
+// `texels`, converted by `convert`. `scale` is voxelUnitScale / maxVoxelSpeed.
 template <class T, class Convert>
-std::unique_ptr<T[]> packTexels(const VectorField& field, const NoiseVolume& noise,
-                                glm::dvec3 scale, Convert convert) {
-  // Not zeroed first: the threads below touch the pages first (a 512^3 field is 1 GiB of texels).
-  std::unique_ptr<T[]> texels(new T[4 * field.vectors.size()]);
+void packTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
+                Convert convert, T* texels) {
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
@@ -30,7 +29,6 @@ std::unique_ptr<T[]> packTexels(const VectorField& field, const NoiseVolume& noi
       texels[4 * i + 3] = convert(noise.value(i));
     }
   });
-  return texels;
 }
 
 // FieldPrecision::Byte: a component in [-1, 1] as SNORM8.
@@ -40,9 +38,8 @@ std::int8_t snorm8(double value) {
 
 // FieldPrecision::Byte texels (see volume_textures.h): e = u/M / sqrt(|u|/M), noise shifted into
 // the signed range so all 8 bits of it survive.
-std::unique_ptr<std::int8_t[]> packByteTexels(const VectorField& field, const NoiseVolume& noise,
-                                              glm::dvec3 scale) {
-  std::unique_ptr<std::int8_t[]> texels(new std::int8_t[4 * field.vectors.size()]);
+void packByteTexels(const VectorField& field, const NoiseVolume& noise, glm::dvec3 scale,
+                    std::int8_t* texels) {
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const glm::dvec3 v = glm::dvec3(field.vectors[i]) * scale;
@@ -56,7 +53,6 @@ std::unique_ptr<std::int8_t[]> packByteTexels(const VectorField& field, const No
       texels[4 * i + 3] = static_cast<std::int8_t>(n - 128.0);
     }
   });
-  return texels;
 }
 
 }  // namespace
@@ -79,11 +75,53 @@ FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested
                                                                   : FieldPrecision::Half;
 }
 
+Result<FieldPrecision> checkFieldPrecision(const Context& context, FieldPrecision requested) {
+  const FieldPrecision resolved = resolvePrecision(context, requested);
+  if (resolved == FieldPrecision::Float &&
+      !supportsFormat(context, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+    return unsupportedError(context.deviceInfo().name +
+                            " cannot filter RGBA32F textures; use half precision");
+  return resolved;
+}
+
+VkFormat fieldTextureFormat(FieldPrecision resolved) {
+  switch (resolved) {
+    case FieldPrecision::Float: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case FieldPrecision::Byte: return VK_FORMAT_R8G8B8A8_SNORM;
+    default: return VK_FORMAT_R16G16B16A16_SFLOAT;
+  }
+}
+
+Result<FieldTexture> createWritableFieldTexture(const Context& context, Dims dims,
+                                                const GridGeometry& geometry,
+                                                FieldPrecision precision, const std::string& name) {
+  LIC3D_TRY(checkVolumeDims(context, dims, "field"));
+  LIC3D_TRY(checkSpacing(geometry));
+  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkFieldPrecision(context, precision));
+  FieldTexture texture;
+  texture.dims = dims;
+  texture.geometry = geometry;
+  texture.precision = resolved;
+  ImageDesc desc;
+  desc.format = fieldTextureFormat(resolved);
+  if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT))
+    return unsupportedError(context.deviceInfo().name + " cannot write " +
+                            std::string(fieldTextureFormatName(resolved)) + " storage images (" +
+                            name + ")");
+  desc.extent = extentOf(dims);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = name;
+  LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+  return texture;
+}
+
 Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& field,
                                      const NoiseVolume& noise, FieldPrecision precision) {
   LIC3D_TRY(checkVolumeDims(context, field.dims, "field"));
   LIC3D_TRY(checkSpacing(field.geometry));
-  const FieldPrecision resolved = resolvePrecision(context, precision);
+  LIC3D_TRY_ASSIGN(const FieldPrecision resolved, checkFieldPrecision(context, precision));
   // The texture, its staging copy and the LIC volume must fit (a CPU driver would otherwise
   // accept the allocation and fail when the memory is first touched). Front ends check their
   // whole request earlier; this guards every other caller.
@@ -97,63 +135,60 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
   FieldTexture texture;
   texture.dims = field.dims;
   texture.geometry = field.geometry;
-  StageTimer statistics("field statistics");
-  texture.maxMagnitude = maxMagnitude(field);
-  texture.minMagnitude = minMagnitude(field);
-  texture.speeds = std::make_shared<const ValueHistogram>(speedHistogram(field));
-  texture.unit = field.unit;
-  texture.maxVoxelSpeed = maxVoxelSpeed(field);
-  statistics.stop();
-  texture.precision = resolved;
   // On isotropic grids voxelUnitScale is exactly 1 and maxVoxelSpeed is max|v|: the texels are
   // v / max|v| bit for bit, as before anisotropic grids were converted.
   const glm::dvec3 unit = voxelUnitScale(field.geometry);
+  StageTimer statistics("field statistics");
+  // The histogram's range is min and max |v| (the same arithmetic as min/maxMagnitude): two
+  // passes over the field rather than five.
+  texture.speeds = std::make_shared<const ValueHistogram>(speedHistogram(field));
+  texture.maxMagnitude = texture.speeds->max;
+  texture.minMagnitude = texture.speeds->min;
+  texture.unit = field.unit;
+  texture.maxVoxelSpeed =
+      !field.piece && unit == glm::dvec3(1.0) ? texture.maxMagnitude : maxVoxelSpeed(field);
+  statistics.stop();
+  texture.precision = resolved;
   const double speed = texture.maxVoxelSpeed > 0.0 ? texture.maxVoxelSpeed : 1.0;
   const glm::dvec3 scale = unit / speed;
   texture.texelToPhysical = speed / unit;
 
   ImageDesc desc;
+  desc.format = fieldTextureFormat(resolved);
   desc.extent = extentOf(field.dims);
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // read back by tests
   desc.name = "field and noise texture";
-  if (texture.precision == FieldPrecision::Half) {
-    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    StageTimer packing("field packing");
-    const std::unique_ptr<std::uint16_t[]> texels = packTexels<std::uint16_t>(
-        field, noise, scale, [](float f) { return glm::packHalf1x16(f); });
-    packing.stop();
-    StageTimer allocating("field texture allocation");
-    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
-    allocating.stop();
-    const StageTimer uploading("field upload");
-    LIC3D_TRY(uploadImage(context, texture.image, texels.get(),
-                          4 * field.vectors.size() * sizeof(texels[0])));
-  } else if (texture.precision == FieldPrecision::Byte) {
-    desc.format = VK_FORMAT_R8G8B8A8_SNORM;
-    StageTimer packing("field packing");
-    const std::unique_ptr<std::int8_t[]> texels = packByteTexels(field, noise, scale);
-    packing.stop();
-    StageTimer allocating("field texture allocation");
-    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
-    allocating.stop();
-    const StageTimer uploading("field upload");
-    LIC3D_TRY(uploadImage(context, texture.image, texels.get(), 4 * field.vectors.size()));
-  } else {
-    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    if (!supportsFormat(context, desc.format, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
-      return unsupportedError(context.deviceInfo().name +
-                              " cannot filter RGBA32F textures; use half precision");
-    StageTimer packing("field packing");
-    const std::unique_ptr<float[]> texels =
-        packTexels<float>(field, noise, scale, [](float f) { return f; });
-    packing.stop();
-    StageTimer allocating("field texture allocation");
-    LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
-    allocating.stop();
-    const StageTimer uploading("field upload");
-    LIC3D_TRY(uploadImage(context, texture.image, texels.get(),
-                          4 * field.vectors.size() * sizeof(texels[0])));
-  }
+  StageTimer allocating("field texture allocation");
+  LIC3D_TRY_ASSIGN(texture.image, Image::create(context, desc));
+  allocating.stop();
+  // The texels are packed straight into the staging buffer: no host array of the texture's size.
+  double packingSeconds = 0.0;
+  const auto pack = [&](void* staging) {
+    const auto start = std::chrono::steady_clock::now();
+    switch (resolved) {
+      case FieldPrecision::Byte:
+        packByteTexels(field, noise, scale, static_cast<std::int8_t*>(staging));
+        break;
+      case FieldPrecision::Float:
+        packTexels(
+            field, noise, scale, [](float f) { return f; }, static_cast<float*>(staging));
+        break;
+      default:
+        packTexels(
+            field, noise, scale, [](float f) { return glm::packHalf1x16(f); },
+            static_cast<std::uint16_t*>(staging));
+    }
+    packingSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const auto start = std::chrono::steady_clock::now();
+  LIC3D_TRY(uploadImageFilled(context, texture.image,
+                              field.vectors.size() * fieldTexelBytes(resolved), pack));
+  addStageTime("field packing", packingSeconds);
+  addStageTime("field upload",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                   packingSeconds);
   return texture;
 }
 

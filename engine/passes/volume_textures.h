@@ -59,6 +59,16 @@ Result<ScalarTexture> uploadScalars(const Context& context, Dims dims, const Poi
                                     const PointScalars* opacity);
 
 FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested);
+// resolvePrecision, refusing Float where the device cannot filter RGBA32F textures.
+Result<FieldPrecision> checkFieldPrecision(const Context& context, FieldPrecision requested);
+// The field texture's format for a resolved precision.
+VkFormat fieldTextureFormat(FieldPrecision resolved);
+
+// A field texture for shaders to write (a storage image as well as sampled, in the format of
+// `precision`, resolved): its image, grid and precision; the statistics are the writer's.
+Result<FieldTexture> createWritableFieldTexture(const Context& context, Dims dims,
+                                                const GridGeometry& geometry,
+                                                FieldPrecision precision, const std::string& name);
 
 // Fails with InvalidInput when the grid exceeds the device's 3D image limit, its spacing is not
 // positive or the noise is on another grid than the field.
