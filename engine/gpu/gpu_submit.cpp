@@ -185,6 +185,18 @@ Result<void> uploadImageFilled(const Context& context, const Image& image, std::
 
 Result<std::vector<std::byte>> readImage(const Context& context, const Image& image,
                                          VkImageLayout layout, std::size_t bytesPerTexel) {
+  std::vector<std::byte> out;
+  LIC3D_TRY(readImageWith(context, image, layout, bytesPerTexel,
+                          [&](const void* texels, std::size_t bytes) {
+                            resizeLarge(out, bytes);
+                            parallelCopy(out.data(), texels, bytes);
+                          }));
+  return out;
+}
+
+Result<void> readImageWith(const Context& context, const Image& image, VkImageLayout layout,
+                           std::size_t bytesPerTexel,
+                           const std::function<void(const void*, std::size_t)>& use) {
   const VkExtent3D e = image.extent();
   const std::size_t bytes = std::size_t{e.width} * e.height * e.depth * bytesPerTexel;
   LIC3D_TRY_ASSIGN(Buffer readback, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -209,9 +221,8 @@ Result<std::vector<std::byte>> readImage(const Context& context, const Image& im
                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
       },
       "image readback"));
-  std::vector<std::byte> out(bytes);
-  parallelCopy(out.data(), readback.mapped(), bytes);
-  return out;
+  use(readback.mapped(), bytes);
+  return {};
 }
 
 }  // namespace lic3d

@@ -51,5 +51,10 @@ Result<void> uploadImageFilled(const Context& context, const Image& image, std::
 // describe, back into tightly packed texels of `bytesPerTexel`. The image returns to `layout`.
 Result<std::vector<std::byte>> readImage(const Context& context, const Image& image,
                                          VkImageLayout layout, std::size_t bytesPerTexel);
+// The same, handing the texels to `use(texels, bytes)` in the read-back buffer itself (valid
+// during the call): for callers that convert them, with no host copy of the whole image.
+Result<void> readImageWith(const Context& context, const Image& image, VkImageLayout layout,
+                           std::size_t bytesPerTexel,
+                           const std::function<void(const void*, std::size_t)>& use);
 
 }  // namespace lic3d

@@ -497,23 +497,26 @@ PictureLayout LicRenderer::pictureLayoutFor(const ViewParams& view) const {
 Result<ScalarVolume> LicRenderer::readLicVolume() const {
   if (!shownParams_) return inputError("no LIC volume has been computed");
   const StageTimer timer("volume read-back");
-  LIC3D_TRY_ASSIGN(
-      std::vector<std::byte> bytes,
-      readImage(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4));
   ScalarVolume volume;
   volume.dims = field_.dims;
   volume.geometry = field_.geometry;
-  volume.values.resize(voxelCount(field_.dims));
+  resizeLarge(volume.values, voxelCount(field_.dims));
   const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
-  if (sparse) volume.drawn.resize(volume.values.size());
-  parallelChunks(volume.values.size(), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      std::uint16_t texel[2];
-      std::memcpy(texel, bytes.data() + 4 * i, 4);
-      volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
-      if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
-    }
-  });
+  if (sparse) resizeLarge(volume.drawn, volume.values.size());
+  // Converted straight from the read-back buffer: RG16, the value and whether it is drawn.
+  LIC3D_TRY(readImageWith(*context_, frontVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4,
+                          [&](const void* texels, std::size_t) {
+                            const auto* bytes = static_cast<const std::byte*>(texels);
+                            parallelChunks(
+                                volume.values.size(), [&](std::size_t begin, std::size_t end) {
+                                  for (std::size_t i = begin; i < end; ++i) {
+                                    std::uint16_t texel[2];
+                                    std::memcpy(texel, bytes + 4 * i, 4);
+                                    volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
+                                    if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
+                                  }
+                                });
+                          }));
   return volume;
 }
 
