@@ -32,7 +32,7 @@ for v in before after; do for a in "--grid 512" "--field $W/abc256_raw.vti"; do
   printf "%s %s: " $v "$a"; /usr/bin/time -f "%M KiB %e s" $B/lic3d-$v render -q $a -o $W/m.png 2>&1 | tail -1; done; done
 echo "== sparsity change end to end (bench --distributions, 256^3)"
 $B/lic3d-after bench --distributions --distribution-volume 256 --budget 60 2>&1 | tail -40
-} > $OUT/h100.txt 2>&1
+} > $OUT/end_to_end.txt 2>&1
 cp $W/r.png $OUT/render512.png 2>/dev/null
 cp $W/v_zlib.png $OUT/abc256.png 2>/dev/null
 cp $W/tt/f_090.png $OUT/turntable_090.png 2>/dev/null
