@@ -77,6 +77,15 @@ void printTimings(double totalSeconds) {
                  "the others)\n");
 }
 
+CLI::Validator wholeNumberText() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) return {};
+        return "must be a whole number from 0 to 18446744073709551615, got " + text;
+      },
+      "");
+}
+
 void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
   app.add_option("--device", options.device,
                  "Vulkan device: an index or part of a name from `lic3d devices` (default: "
@@ -128,7 +137,9 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool v
                  "Noise volume (.nrrd: uchar, ushort or float) on the field's grid (default: "
                  "seeded white noise)");
   nameFlag("noise.file", "--noise");
-  app.add_option("--seed", s.noise.seed, "Seed of the white noise")->capture_default_str();
+  app.add_option("--seed", s.noise.seed, "Seed of the white noise")
+      ->check(wholeNumberText())
+      ->capture_default_str();
   addRanged(app, "--seed-noise", s.noise.seedSpots, ranges::kSeedSpots,
             "Sparse seed noise instead of white noise: N bright spots on black, placed by "
             "Poisson-disk sampling (streamlines become distinct lines)");
@@ -177,6 +188,7 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool v
             "in voxels, (1-f)^n = 1-amount, and the automatic points, radius or checkerboard "
             "ratio from f; the fraction actually hidden is reported");
   app.add_option("--sparsity-seed", sparsity.seed, "Seed of the random sparsity distributions")
+      ->check(wholeNumberText())
       ->capture_default_str();
   options.time =
       addRanged(app, "--time", s.time, ranges::kTime,

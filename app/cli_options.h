@@ -82,6 +82,9 @@ CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
       ->default_str(std::string(enumName(value)));
 }
 
+// Accepts only the digits of a whole number >= 0 (seeds: "-1" would otherwise wrap to 2^64 - 1).
+CLI::Validator wholeNumberText();
+
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
 // --session, the field and noise flags, the LIC flags, --field-precision, --time and
 // --time-steps. `planar`: the command makes 2D LIC (render2d, the app), whose --field also

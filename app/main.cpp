@@ -127,7 +127,9 @@ int main(int argc, char** argv) {
   CLI::App* benchCommand = app.add_subcommand(
       "bench", "Time the LIC pass and frames with GPU timestamps (median of repeats)");
   benchCommand->add_option("--field", bench.field, "Analytic field to time")->capture_default_str();
-  benchCommand->add_option("--seed", bench.seed, "Seed of the white noise")->capture_default_str();
+  benchCommand->add_option("--seed", bench.seed, "Seed of the white noise")
+      ->check(wholeNumberText())
+      ->capture_default_str();
   addEnumOption(*benchCommand, "--field-precision", bench.precision,
                 "Field texture precision: auto (float on CPU drivers, half on GPUs)");
   benchCommand->add_option("--sizes", bench.sizes, "Volume sizes N (N^3) of the LIC table")

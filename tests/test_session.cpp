@@ -118,6 +118,41 @@ TEST(Session, BadFilesAreRefusedWithTheFileAndKeyNamed) {
   }
 }
 
+// Numbers are read as what they are, or refused: nothing beyond a double aborts the reader,
+// no integer wraps or truncates, no key is given twice (issue: hardening, classes 1 and 6).
+TEST(Session, NumbersThatDoNotFitAndDuplicateKeysAreRefused) {
+  struct Case {
+    const char* json;
+    const char* mentions;
+  };
+  for (const Case& c : {Case{R"({"time": 1e400})", "1e400"}, Case{R"({"time": -1e309})", "-1e309"},
+                        Case{R"({"view": {"width": 4294967328}})", "view.width"},
+                        Case{R"({"field": {"grid": [4294967304, 8, 8]}})", "field.grid"},
+                        Case{R"({"lic": {"length": 4294967297}})", "lic.length"},
+                        Case{R"({"lic": {"length": 4.7}})", "lic.length"},
+                        Case{R"({"view": {"slices": 4294967296}})", "view.slices"},
+                        Case{R"({"lic3d_session": 1.9})", "lic3d_session"},
+                        Case{R"({"noise": {"seed": -1}})", "noise.seed"},
+                        Case{R"({"noise": {"seed": 18446744073709551616}})", "noise.seed"},
+                        Case{R"({"look": "dense", "look": "see-through"})", "look"},
+                        Case{R"({"lic": {"length": 7, "length": 8}})", "length"}}) {
+    Result<Session> s = sessionFromJson(c.json, "bad.json");
+    ASSERT_FALSE(s) << c.json;
+    EXPECT_EQ(s.error().kind, ErrorKind::InvalidInput) << c.json;
+    EXPECT_NE(s.error().message.find("bad.json"), std::string::npos) << s.error().message;
+    EXPECT_NE(s.error().message.find(c.mentions), std::string::npos) << s.error().message;
+  }
+  // Whole numbers written as floats are whole numbers; the largest seed is a seed.
+  Result<Session> s = sessionFromJson(
+      R"({"lic": {"length": 20.0}, "noise": {"seed": 18446744073709551615}})", "good.json");
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_EQ(s->lic.length, 20);
+  EXPECT_EQ(s->noise.seed, std::uint64_t{18446744073709551615u});
+  // Deep nesting is refused before it can exhaust the stack.
+  const std::string deep = std::string(10000, '[') + std::string(10000, ']');
+  EXPECT_FALSE(sessionFromJson(deep, "deep.json"));
+}
+
 TEST_F(SessionTest, FileRoundTripLeavesNoTemporary) {
   const Session original = unusualSession();
   ASSERT_TRUE(writeSession(path("s.json"), original));

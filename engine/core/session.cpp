@@ -1,6 +1,8 @@
 #include "core/session.h"
 
+#include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <type_traits>
@@ -10,6 +12,7 @@
 #include "core/enum_names.h"
 #include "core/parameter_ranges.h"
 #include "core/resolution.h"
+#include "core/strict_json.h"
 
 namespace lic3d {
 namespace {
@@ -134,6 +137,50 @@ void visitSession(Fields& f, S& s) {
   });
 }
 
+// A JSON number as T: integers only from whole numbers within T's range (no wrapping, no
+// truncation of 4.7, no -1 as an unsigned seed); floats as parsed (validate() checks ranges).
+// False with what was expected in `expected`.
+template <class T>
+bool numberAs(const Json& j, T& out, std::string& expected) {
+  if constexpr (std::is_integral_v<T>) {
+    const bool whole = j.is_number_integer() || (j.is_number_float() && [&] {
+                         const double d = j.get<double>();
+                         return std::isfinite(d) && std::floor(d) == d;
+                       }());
+    expected = "a whole number from " + std::to_string(std::numeric_limits<T>::min()) + " to " +
+               std::to_string(std::numeric_limits<T>::max());
+    if (!whole) return false;
+    if (j.is_number_unsigned()) {
+      const auto u = j.get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) return false;
+      out = static_cast<T>(u);
+      return true;
+    }
+    if (j.is_number_integer()) {
+      const auto i = j.get<std::int64_t>();
+      if (i < 0 && std::is_unsigned_v<T>) return false;
+      if (i < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+          (i > 0 && static_cast<std::uint64_t>(i) >
+                        static_cast<std::uint64_t>(std::numeric_limits<T>::max())))
+        return false;
+      out = static_cast<T>(i);
+      return true;
+    }
+    const double d = j.get<double>();  // a whole float such as 20.0
+    // T's maximum is 2^digits - 1, which a double may round up to 2^digits: compare with that.
+    if (d < static_cast<double>(std::numeric_limits<T>::min()) ||
+        d >= std::ldexp(1.0, std::numeric_limits<T>::digits))
+      return false;
+    out = static_cast<T>(d);
+    return true;
+  } else {
+    expected = "a number";
+    if (!j.is_number()) return false;
+    out = j.get<T>();
+    return true;
+  }
+}
+
 template <class T>
 struct IsGlmVector : std::false_type {};
 template <glm::length_t N, class T, glm::qualifier Q>
@@ -227,13 +274,14 @@ class Reader {
       if (!j->is_array() || j->size() != static_cast<std::size_t>(T::length()))
         return fail(join(key), "an array of " + std::to_string(T::length()) + " numbers");
       for (int i = 0; i < T::length(); ++i) {
-        if (!(*j)[static_cast<std::size_t>(i)].is_number())
-          return fail(join(key), "an array of numbers");
-        value[i] = (*j)[static_cast<std::size_t>(i)].get<typename T::value_type>();
+        std::string expected;
+        if (!numberAs((*j)[static_cast<std::size_t>(i)], value[i], expected))
+          return fail(join(key),
+                      "an array of " + std::to_string(T::length()) + " numbers, each " + expected);
       }
     } else {
-      if (!j->is_number()) return fail(join(key), "a number");
-      value = j->get<T>();
+      std::string expected;
+      if (!numberAs(*j, value, expected)) return fail(join(key), expected);
     }
   }
   void numbers(const char* key, std::vector<double>& values, std::size_t stride) {
@@ -342,12 +390,7 @@ std::string sessionToJson(const Session& session) {
 }
 
 Result<Session> sessionFromJson(const std::string& text, const std::string& source) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    return inputError(source + ": not valid JSON: " + e.what());
-  }
+  LIC3D_TRY_ASSIGN(const Json json, parseJsonStrictly(text, source));
   Session session;
   std::string error;
   {

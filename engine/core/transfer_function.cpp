@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <type_traits>
 
+#include "core/strict_json.h"
 #include "core/text.h"
 
 namespace lic3d {
@@ -74,12 +75,7 @@ Result<void> validate(const TransferFunction& tf, const std::string& what) {
 
 Result<TransferFunction> transferFunctionFromJson(const std::string& text,
                                                   const std::string& source) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    return inputError(source + ": not valid JSON: " + e.what());
-  }
+  LIC3D_TRY_ASSIGN(Json json, parseJsonStrictly(text, source));
   if (json.is_array()) {
     if (json.empty()) return inputError(source + ": an empty list of presets");
     json = json.front();
