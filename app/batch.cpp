@@ -277,6 +277,18 @@ Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& pl
   return {};
 }
 
+Result<void> checkOutputsAreNotInputs(const BatchOptions& options, const FramePlan& plan) {
+  if (plan.animation == Animation::None) {
+    LIC3D_TRY(checkNotAnInput(plan.output));
+  } else {
+    for (int frame = plan.first; frame < plan.end; ++frame)
+      LIC3D_TRY(checkNotAnInput(framePath(plan.output, frame)));
+  }
+  if (!options.rgbaVolume.empty()) LIC3D_TRY(checkNotAnInput(options.rgbaVolume));
+  if (!options.video.empty()) LIC3D_TRY(checkNotAnInput(options.video));
+  return {};
+}
+
 // Frame `frame` of an animation whose bias cycles every `count` frames.
 int cycledBias(int length, int frame, int count) {
   return biasInCycle(length, static_cast<double>(((frame % count) + count) % count) / count);

@@ -71,6 +71,9 @@ Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& 
 // --rgba-volume and --video: extensions, folders and ffmpeg on PATH.
 Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& plan,
                                 const Session& session);
+// Once the inputs are read and before any work: no output of the run (the picture or every
+// frame, the RGBA volume, the video) is one of them (checkNotAnInput, io/file_util.h).
+Result<void> checkOutputsAreNotInputs(const BatchOptions& options, const FramePlan& plan);
 
 // The parameters of frame `frame`: a turntable turns the azimuth by 360/N per frame from the
 // given one; a bias cycle runs the bias from -L up to L and back down, so that frame N would be

@@ -526,6 +526,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   };
   Result<SessionInputs> inputs = loadInputs(options, !options.cpu);
   if (!inputs) return fail(inputs.error());
+  if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
   if (batch.slice.given()) {
     // The index against the grid, before any work.
@@ -623,6 +624,8 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   Result<SessionInputs> inputs = loadInputs(
       options, !options.cpu && batch.rgbaVolume.empty() && !viewDerivesFromField(session.view));
   if (!inputs) return finish(*context, reportError(inputs.error()));
+  if (auto r = checkOutputsAreNotInputs(batch, *plan); !r)
+    return finish(*context, reportError(r.error()));
   reportFieldFile(global, session.field, *inputs);
   if (inputs->fromFile || inputs->series)
     if (auto r = checkRequestMemory(*context, session, inputs->field.dims,

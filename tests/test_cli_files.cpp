@@ -125,6 +125,33 @@ TEST_F(CliTest, NonFiniteVectorsAreCountedInAWarning) {
   EXPECT_EQ(clean.output.find("warning"), std::string::npos) << clean.output;
 }
 
+// No output may replace an input of the same run, however it is spelt (hardening, class 2): the
+// run stops before any work with status 2 and every file is left as it was.
+TEST_F(CliTest, NoOutputMayBeAnInputOfTheRun) {
+  ASSERT_TRUE(writeVectorFieldNrrd(path("base.nrrd"),
+                                   makeAnalyticField(AnalyticField::Abc, Dims(8, 8, 8))));
+  ASSERT_TRUE(writeNoiseNrrd(path("n.nrrd"), makeWhiteNoise(Dims(8, 8, 8), 3)));
+  fs::create_directory(path("sub"));
+  fs::create_hard_link(path("base.nrrd"), path("alias.nrrd"));
+  const std::string field = test::readWhole(path("base.nrrd"));
+  const std::string noise = test::readWhole(path("n.nrrd"));
+  for (const char* args : {"compute -q --field base.nrrd -o base.nrrd",
+                           "compute -q --field base.nrrd -o ./sub/../base.nrrd",
+                           "compute -q --field base.nrrd -o alias.nrrd",
+                           "compute -q --field base.nrrd --noise n.nrrd -o n.nrrd",
+                           "render -q --field base.nrrd --rgba-volume base.nrrd -o out.png"}) {
+    const CommandRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("is an input of this run"), std::string::npos) << r.output;
+    EXPECT_EQ(test::readWhole(path("base.nrrd")), field) << args;
+    EXPECT_EQ(test::readWhole(path("n.nrrd")), noise) << args;
+    EXPECT_FALSE(fs::exists(path("out.png"))) << args;
+  }
+  // Other names are written as ever.
+  const CommandRun fine = run("compute -q --field base.nrrd --noise n.nrrd -o lic.nrrd");
+  EXPECT_EQ(fine.status, 0) << fine.output;
+}
+
 TEST_F(CliTest, ComputeWritesVtiOrNrrdByExtensionWithTheFieldGeometry) {
   writeBytes("two.vtk", twoArrayVtk());
   ASSERT_EQ(run("compute -q --field two.vtk --array swirl -L 4 -o lic.vti").status, 0);

@@ -11,7 +11,9 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <ostream>
+#include <set>
 #include <streambuf>
 #include <utility>
 
@@ -206,8 +208,8 @@ void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::e
     std::reverse(data + i * valueBytes, data + (i + 1) * valueBytes);
 }
 
-Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes) {
-  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
+Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes, bool data) {
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path, data));
   if (reader.size() > maxBytes)
     return fileError(path, "file is too large (" + std::to_string(reader.size()) +
                                " bytes, the limit is " + std::to_string(maxBytes) + ")");
@@ -237,6 +239,7 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
   const std::filesystem::path name = path.filename();
   if (name.empty() || name == "." || name == "..")
     return writeError(ErrorKind::InvalidInput, path, "the path does not name a file");
+  LIC3D_TRY(checkNotAnInput(path));
 
   static std::atomic<unsigned> counter{0};
   std::string temporaryName = ".";
@@ -307,7 +310,31 @@ FileReader::~FileReader() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-Result<FileReader> FileReader::open(const std::filesystem::path& path) {
+namespace {
+
+// The files this process has opened for reading, by device and inode (checkNotAnInput).
+struct InputFiles {
+  std::mutex mutex;
+  std::set<std::pair<dev_t, ino_t>> files;
+};
+InputFiles& inputFiles() {
+  static InputFiles inputs;
+  return inputs;
+}
+
+}  // namespace
+
+Result<void> checkNotAnInput(const std::filesystem::path& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) return {};
+  InputFiles& inputs = inputFiles();
+  const std::scoped_lock lock(inputs.mutex);
+  if (inputs.files.count({info.st_dev, info.st_ino}) == 0) return {};
+  return fileError(path,
+                   "is an input of this run; writing it would destroy it: choose another output");
+}
+
+Result<FileReader> FileReader::open(const std::filesystem::path& path, bool data) {
   // O_NONBLOCK keeps open() from waiting for a writer when the path is a FIFO; it does not
   // change reads from regular files.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
@@ -317,6 +344,11 @@ Result<FileReader> FileReader::open(const std::filesystem::path& path) {
   if (::fstat(fd, &info) != 0) return fileError(path, "cannot open: " + systemError(errno));
   // Pipes and devices have no size to check payloads against.
   if (!S_ISREG(info.st_mode)) return fileError(path, "not a regular file");
+  if (data) {
+    InputFiles& inputs = inputFiles();
+    const std::scoped_lock lock(inputs.mutex);
+    inputs.files.emplace(info.st_dev, info.st_ino);
+  }
   reader.size_ = static_cast<std::uint64_t>(info.st_size);
   reader.buffer_.resize(
       static_cast<std::size_t>(std::clamp<std::uint64_t>(reader.size_ + 1, 4096, kBufferBytes)));

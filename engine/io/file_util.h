@@ -52,7 +52,10 @@ void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::e
 
 // The whole file, or an error naming it: missing, unreadable, not a regular file, or larger than
 // maxBytes (refused from its size before anything is read).
-Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes);
+// `data`: the file is an input of the run that no output may replace (checkNotAnInput); false
+// for documents a front end reads and may save again (sessions, colour-map presets).
+Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes,
+                             bool data = true);
 
 // Writes to a temporary file in the same folder (`.<name>.tmp-<pid>-<n>`, so the rename cannot
 // cross file systems), flushes it to disk and renames it over `path`. On any failure the
@@ -60,6 +63,12 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
 // the path and the reason. A path that cannot be written (missing folder, no permission, a folder
 // in the way) is InvalidInput; a failure while writing (disk full, I/O error, a writer returning
 // false) is Runtime.
+// No output may be an input of the same run: every regular file a FileReader opens is noted by
+// device and inode, and this refuses (InvalidInput, naming the path) a path that resolves to
+// one, whatever its spelling (./sub/../x, a hard link). A path that does not exist passes.
+// writeFileAtomically checks it before writing; front ends check their outputs before the work.
+Result<void> checkNotAnInput(const std::filesystem::path& path);
+
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 // The same, for content streamed by `writer`; a writer that returns false fails the write.
 Result<void> writeFileAtomically(const std::filesystem::path& path,
@@ -70,7 +79,8 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
 // and so that a large volume is never held in memory twice.
 class FileReader {
  public:
-  static Result<FileReader> open(const std::filesystem::path& path);
+  // `data` as for readFile.
+  static Result<FileReader> open(const std::filesystem::path& path, bool data = true);
 
   FileReader(FileReader&& other) noexcept;
   FileReader& operator=(FileReader&& other) noexcept;

@@ -7,7 +7,7 @@
 namespace lic3d {
 
 Result<Session> readSession(const std::filesystem::path& path) {
-  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 1 << 20));
+  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 1 << 20, false));
   return sessionFromJson(text, path.string());
 }
 
@@ -16,7 +16,7 @@ Result<void> writeSession(const std::filesystem::path& path, const Session& sess
 }
 
 Result<TransferFunction> readTransferFunction(const std::filesystem::path& path) {
-  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 16 << 20));
+  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 16 << 20, false));
   return transferFunctionFromJson(text, path.string());
 }
 
