@@ -380,9 +380,11 @@ Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double f
   }
   fs::rename(temporary, target, ec);
   if (ec) {
+    // The reason first: removing the temporary file reuses (and clears) the error code.
+    const std::string reason = ec.message();
     fs::remove(temporary, ec);
     return runtimeError("--video " + video +
-                        ": cannot rename ffmpeg's output into place: " + ec.message());
+                        ": cannot rename ffmpeg's output into place: " + reason);
   }
   return {};
 }

@@ -168,7 +168,8 @@ Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& i
     LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(inputs, lic, quiet));
     return renderer.setLicVolume(volume, lic);
   }
-  Progress progress("LIC " + gridText(inputs.field.dims) + " on the GPU", quiet);
+  // Named by the device: "on the GPU" would be wrong on a CPU driver such as llvmpipe.
+  Progress progress("LIC " + gridText(inputs.field.dims) + " on " + renderer.deviceName(), quiet);
   LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran,
                    renderer.updateLic(lic, [&](double f) { progress.update(f); }));
   return {};

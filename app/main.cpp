@@ -12,6 +12,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "core/parallel.h"
+#include "io/file_util.h"
 
 using namespace lic3d::cli;
 
@@ -56,6 +57,8 @@ int findViewCommand(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (const int view = findViewCommand(argc, argv)) return execViewer(argc, argv, view);
+  // No output of a run may replace one of its inputs (docs/RELIABILITY.md, "Output files").
+  lic3d::guardInputsFromWrites(true);
 
   CLI::App app{
       "lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"

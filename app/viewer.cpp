@@ -138,7 +138,7 @@ Result<void> App::handleActions(const Actions& actions) {
       session_.field = ui_.pendingField;
       session_.noise = ui_.pendingNoise;
     } else {
-      startLoading(ui_.pendingField, ui_.pendingNoise);
+      LIC3D_TRY(startLoading(ui_.pendingField, ui_.pendingNoise));
     }
   }
   if (actions.resetView) {
@@ -160,7 +160,7 @@ Result<void> App::handleActions(const Actions& actions) {
       ui_.pendingField = session_.field;
       ui_.pendingNoise = session_.noise;
       ui_.pendingTimeSteps = session_.timeSteps;
-      if (newInputs && !session_.twoD) startLoading(session_.field, session_.noise);
+      if (newInputs && !session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
       stats_.message = "loaded " + ui_.sessionPath;
     }
   }
@@ -303,7 +303,7 @@ Result<bool> App::frame() {
     // Back from the 2D mode with another field: the volume's field is read again.
     if (!stats_.loading &&
         (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
-      startLoading(session_.field, session_.noise);
+      LIC3D_TRY(startLoading(session_.field, session_.noise));
     LIC3D_TRY(updateTime());
     LIC3D_TRY(updateScalars());
     if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {

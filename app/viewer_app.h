@@ -57,7 +57,12 @@ class App {
   Result<void> recoverDevice(const Error& error);
   bool showStopped(const Error& error);
   VkExtent2D windowExtent() const;
-  void startLoading(const FieldSource& field, const NoiseSource& noise);
+  // Reads or makes the field on a worker thread. An analytic field whose grid cannot fit is
+  // refused first, before it is made: an error when nothing is shown yet (exit status 3), an
+  // alert otherwise.
+  Result<void> startLoading(const FieldSource& field, const NoiseSource& noise);
+  // Whether a field of `dims` fits beside everything the app keeps (checkRequestMemory).
+  Result<void> checkFieldFits(Dims dims, bool series) const;
   Result<void> finishLoading();
   Result<void> updateTime();
   Result<bool> frame();

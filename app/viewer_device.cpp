@@ -93,7 +93,7 @@ Result<void> App::init() {
   ui_.pendingNoise = session_.noise;
   ui_.pendingTimeSteps = session_.timeSteps;
   // The 2D mode makes its own plane; the volume's field is read when the 3D mode is chosen.
-  if (!session_.twoD) startLoading(session_.field, session_.noise);
+  if (!session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
   loadedOnce_ = session_.twoD;
   return {};
 }
@@ -197,9 +197,28 @@ Result<void> App::recoverDevice(const Error& error) {
   return {};
 }
 
-void App::startLoading(const FieldSource& field, const NoiseSource& noise) {
+Result<void> App::checkFieldFits(Dims dims, bool series) const {
+  const VkExtent2D extent = presenter_->extent();
+  return checkRequestMemory(*context_, session_, dims,
+                            {.doubleBuffered = true,
+                             .frame = true,
+                             .frameWidth = static_cast<int>(extent.width),
+                             .frameHeight = static_cast<int>(extent.height),
+                             .timeSeries = series});
+}
+
+Result<void> App::startLoading(const FieldSource& field, const NoiseSource& noise) {
   loadedField_ = field;
   loadedNoise_ = noise;
+  // An analytic field's grid is known before it is made (the CLI refuses it there too).
+  if (const auto analytic = parseEnum<AnalyticField>(field.field))
+    if (auto r = checkFieldFits(field.grid, timePeriod(*analytic) > 0.0); !r) {
+      if (!renderer_->hasVolume()) return std::move(r).error();  // nothing to keep: status 3
+      stats_.alertTitle = "lic3d: not done";
+      stats_.alert = r.error().message + ". The previous field stays loaded.";
+      ui_.pendingField = session_.field;
+      return {};
+    }
   stats_.loading = true;
   // --grid with a file field is an error on the command line only, not when loading later.
   const bool gridGiven = !renderer_->hasVolume() && deviceLosses_ == 0 && inputs_.grid.given();
@@ -208,6 +227,7 @@ void App::startLoading(const FieldSource& field, const NoiseSource& noise) {
   wanted.field = field;
   wanted.noise = noise;
   loader_.start(wanted, gridGiven, kDefaultTimeSteps);
+  return {};
 }
 
 Result<void> App::finishLoading() {
@@ -227,16 +247,9 @@ Result<void> App::finishLoading() {
     return {};
   }
   // The new field must fit beside everything the app keeps; if not, the old volume stays.
-  const VkExtent2D extent = presenter_->extent();
   const VectorField& grid = loaded->inputs.field;
   const bool series = loaded->inputs.series.has_value();
-  if (auto r = checkRequestMemory(*context_, session_, grid.dims,
-                                  {.doubleBuffered = true,
-                                   .frame = true,
-                                   .frameWidth = static_cast<int>(extent.width),
-                                   .frameHeight = static_cast<int>(extent.height),
-                                   .timeSeries = series});
-      !r) {
+  if (auto r = checkFieldFits(grid.dims, series); !r) {
     if (!renderer_->hasVolume()) return std::move(r).error();  // nothing to keep: exit status 3
     stats_.alertTitle = "lic3d: not done";
     stats_.alert = r.error().message + ". The previous field stays loaded.";

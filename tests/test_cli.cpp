@@ -435,6 +435,14 @@ TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// Progress names the device: "on the GPU" was printed for llvmpipe, a CPU (hardening, class 15).
+TEST_F(CliTest, ProgressNamesTheDevice) {
+  const CommandRun r = run("compute --grid 8 -o v.nrrd", "", test::Streams::StderrOnly);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("LIC 8x8x8 on llvmpipe"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("on the GPU"), std::string::npos) << r.output;
+}
+
 // Where the time goes: --timings prints the stages on stderr, the summary has them as
 // "timings"; --threads bounds the CPU threads.
 TEST_F(CliTest, TimingsNameEveryStageAndThreadsAreBounded) {

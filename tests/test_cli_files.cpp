@@ -421,6 +421,16 @@ TEST_F(CliTest, VideoRunsFfmpegOnTheFramesAndRenamesItsOutput) {
   EXPECT_NE(failed.output.find("ffmpeg"), std::string::npos) << failed.output;
   for (const std::string& name : listFolder())
     EXPECT_EQ(name.find("m.webm"), std::string::npos) << name << " left behind";
+
+  // A rename that fails says why (it said "Success": hardening, class 14).
+  writeBytes("bin/ffmpeg",
+             "#!/bin/sh\nfor last; do :; done\nprintf video > \"$last\"\nmkdir -p m2.mp4/in\n");
+  const CommandRun blocked =
+      run("render -q --grid 8 --width 20 --height 20 --turntable 2 -o 'h_%d.png' --video m2.mp4",
+          withFake);
+  EXPECT_EQ(blocked.status, 1) << blocked.output;
+  EXPECT_NE(blocked.output.find("cannot rename"), std::string::npos) << blocked.output;
+  EXPECT_EQ(blocked.output.find("Success"), std::string::npos) << blocked.output;
 }
 
 TEST_F(CliTest, VideoWithRealFfmpeg) {

@@ -2,15 +2,19 @@
 // readNoise dispatch; what the readers accept and refuse is in test_nrrd_read.cpp.
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
@@ -224,6 +228,47 @@ TEST_F(NrrdTest, FailedWriterLeavesNoTargetAndNoTemporaryFile) {
                std::runtime_error);
   EXPECT_EQ(readWhole(file), "old");
   EXPECT_EQ(listFolder(), std::vector<std::string>{"out.nrrd"});
+}
+
+// A signal during a write, a file-size limit and a name near the limit leave no temporary file
+// behind and no half file under the real name (hardening, classes 8 and 9). Each case runs in a
+// child process, which the signal ends.
+TEST_F(NrrdTest, SignalsAndLimitsDuringAWriteLeaveNoTemporaryFile) {
+  const auto inChild = [](const std::function<int()>& body) {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(body());
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return status;
+  };
+  for (const int signal : {SIGTERM, SIGINT}) {
+    const fs::path file = path("signalled.nrrd");
+    const int status = inChild([&] {
+      (void)writeFileAtomically(file, [&](std::ostream& out) {
+        out << std::string(100000, 'x');
+        out.flush();
+        ::raise(signal);
+        return true;
+      });
+      return 0;
+    });
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status;
+    EXPECT_TRUE(listFolder().empty()) << signal;
+  }
+  // ulimit -f: the write fails (EFBIG) instead of SIGXFSZ killing the process.
+  const int limited = inChild([&] {
+    const struct rlimit limit { 4096, 4096 };
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const Result<void> r = writeFileAtomically(path("big.nrrd"), std::string(1 << 20, 'x'));
+    return r.ok() ? 0 : 7;
+  });
+  EXPECT_TRUE(WIFEXITED(limited) && WEXITSTATUS(limited) == 7) << limited;
+  EXPECT_TRUE(listFolder().empty());
+  // A 250-character name is written although ".name.tmp-PID-N" would be too long.
+  const fs::path longName = path(std::string(246, 'n') + ".png");
+  ASSERT_TRUE(writeFileAtomically(longName, std::string_view("content")).ok());
+  EXPECT_EQ(readWhole(longName), "content");
+  EXPECT_EQ(listFolder().size(), 1u);
 }
 
 TEST_F(NrrdTest, WriteFileAtomicallyReportsPathAndReason) {

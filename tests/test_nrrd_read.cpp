@@ -388,6 +388,10 @@ TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
        "space origin"},
       {"space dimension", fieldFile(kGoodFields + "space dimension: 2\n"),
        "space dimension: expected 3"},
+      {"spacing beyond float", fieldFile(kGoodFields + "spacings: nan 1e308 1 1\n"),
+       "spacing along x"},
+      {"spacings 1e60 apart", fieldFile(kGoodFields + "spacings: nan 1e-30 1 1e30\n"),
+       "differ by a factor"},
       {"only zero vectors", fieldFile(kGoodFields), "every vector of the field is zero"},
       {"nan and zero vectors", fieldFile(kGoodFields, nanBytes),
        "every vector of the field is zero (1 of the 4 were NaN or infinite)"},
@@ -405,6 +409,12 @@ TEST_F(NrrdTest, MalformedVectorFieldFilesAreInputErrorsNamingFileAndProblem) {
     const fs::path file = writeBytes("bad field.nrrd", c.content);
     expectInputError(readVectorFieldNrrd(file), file, c.fragment);
   }
+  // A detached header whose data file is itself, padded so that its own text would pass for
+  // the data (hardening, class 11: it was read as float data).
+  const fs::path self =
+      writeBytes("self.nhdr",
+                 "NRRD0004\n" + kGoodFields + "data file: self.nhdr\n\n" + std::string(4096, '\1'));
+  expectInputError(readVectorFieldNrrd(self), self, "the header itself");
 }
 
 TEST_F(NrrdTest, MalformedNoiseFilesAreInputErrors) {

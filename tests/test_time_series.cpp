@@ -62,6 +62,14 @@ TEST_F(TimeSeriesTest, PatternsThatNameNoSeriesAreRefused) {
     EXPECT_NE(series.error().message.find(pattern.substr(0, 4)), std::string::npos)
         << series.error().message;
   }
+  // One step number written several ways (hardening, class 13): which file is the step?
+  for (const char* name : {"dup_1.nrrd", "dup_01.nrrd", "dup_001.nrrd"}) writeStep(name, 1);
+  writeStep("dup_2.nrrd", 2);
+  const Result<TimeSeries> duplicated = fileSeries((folder() / "dup_%d.nrrd").string());
+  ASSERT_FALSE(duplicated.ok());
+  EXPECT_EQ(duplicated.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(duplicated.error().message.find("both give step number 1"), std::string::npos)
+      << duplicated.error().message;
   EXPECT_TRUE(isFieldSeriesPattern("a_%04d.vti"));
   EXPECT_TRUE(isFieldSeriesPattern("a_*.vti"));
   EXPECT_FALSE(isFieldSeriesPattern("a_100%%.vti"));

@@ -1,6 +1,7 @@
 // The desktop app under a virtual X server (xvfb-run) on lavapipe: it starts, runs a scripted
 // number of frames with validation on, and its screenshot shows the volume and the panels.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -406,6 +407,15 @@ TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
   const CommandRun missing = view("--field missing.nrrd --frames 1");
   EXPECT_EQ(missing.status, 2) << missing.output;
   EXPECT_NE(missing.output.find("missing.nrrd"), std::string::npos) << missing.output;
+
+  // An analytic grid that cannot fit is refused before the field is made (hardening, class 4):
+  // status 3, and no process of the run ever held the 768 MB of a 400^3 field (it held 1.6 GB).
+  const CommandRun tooLarge = view("--grid 400 --frames 1");
+  EXPECT_EQ(tooLarge.status, 3) << tooLarge.output;
+  EXPECT_NE(tooLarge.output.find("400"), std::string::npos) << tooLarge.output;
+  struct rusage children {};
+  ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &children), 0);
+  EXPECT_LT(children.ru_maxrss, 600 * 1024) << "KiB";
 
   // `lic3d view` starts the app with the same options.
   const CommandRun help = runShell(std::string("'") + LIC3D_EXECUTABLE + "' view --help");

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "core/parallel.h"
+#include "core/text.h"
 
 namespace lic3d {
 
@@ -39,6 +40,25 @@ double extremeMagnitude(const VectorField& field, bool smallest) {
 }
 
 }  // namespace
+
+Result<void> checkGridGeometry(const GridGeometry& geometry) {
+  const glm::dvec3 s = geometry.spacing;
+  for (int a = 0; a < 3; ++a) {
+    if (!(s[a] >= kMinSpacing && s[a] <= kMaxSpacing))
+      return inputError("the grid's spacing along " + std::string(1, static_cast<char>('x' + a)) +
+                        " is " + formatNumber(s[a]) + "; lic3d draws spacings in [1e-30, 1e30]");
+    if (!(std::abs(geometry.origin[a]) <= kMaxSpacing))
+      return inputError("the grid's origin along " + std::string(1, static_cast<char>('x' + a)) +
+                        " is " + formatNumber(geometry.origin[a]) +
+                        "; lic3d draws origins within +-1e30");
+  }
+  const double ratio = std::max({s.x, s.y, s.z}) / std::min({s.x, s.y, s.z});
+  if (ratio > kMaxSpacingRatio)
+    return inputError("the grid's spacings (" + formatNumber(s.x) + ", " + formatNumber(s.y) +
+                      ", " + formatNumber(s.z) + ") differ by a factor of " + formatNumber(ratio) +
+                      "; lic3d draws at most 1e6 between axes");
+  return {};
+}
 
 double maxMagnitude(const VectorField& field) { return extremeMagnitude(field, false); }
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace lic3d {
 
 using Dims = glm::ivec3;
@@ -31,6 +33,14 @@ struct GridGeometry {
   glm::dvec3 origin{0.0};
   bool operator==(const GridGeometry&) const = default;
 };
+
+// The spacings lic3d can draw: each in [kMinSpacing, kMaxSpacing] (the GPU works in float) and
+// at most kMaxSpacingRatio apart between axes, the origin finite within the same bound. Beyond
+// them a picture would be black or a line: InvalidInput naming what is wrong.
+inline constexpr double kMinSpacing = 1e-30;
+inline constexpr double kMaxSpacing = 1e30;
+inline constexpr double kMaxSpacingRatio = 1e6;
+Result<void> checkGridGeometry(const GridGeometry& geometry);
 
 // Where a field cut from a larger one lies in it: one piece of a distributed run (the ParaView
 // plugin under MPI), its ghost layers included. LIC on a piece normalises by the whole field's

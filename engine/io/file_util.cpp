@@ -9,6 +9,8 @@
 #include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
@@ -87,16 +89,78 @@ class FdStreamBuf : public std::streambuf {
   int errorNumber_ = 0;
 };
 
+// The temporary files being written, for the signal handler below: slots of fixed size that
+// it reads without locks or allocation (async-signal-safe). A slot is free (0), being filled (1)
+// or holds a path (2).
+// guardInputsFromWrites: whether writeFileAtomically refuses the process's inputs.
+std::atomic<bool> guardInputs{false};
+
+constexpr int kTemporarySlots = 64;
+struct TemporarySlot {
+  std::atomic<int> state{0};
+  char path[PATH_MAX]{};
+};
+TemporarySlot temporarySlots[kTemporarySlots];
+
+int registerTemporary(const std::filesystem::path& path) {
+  if (path.native().size() >= PATH_MAX) return -1;
+  for (int i = 0; i < kTemporarySlots; ++i) {
+    int expected = 0;
+    if (!temporarySlots[i].state.compare_exchange_strong(expected, 1)) continue;
+    std::memcpy(temporarySlots[i].path, path.c_str(), path.native().size() + 1);
+    temporarySlots[i].state.store(2);
+    return i;
+  }
+  return -1;  // all slots busy: this file is still removed on every path but a signal
+}
+
+void releaseTemporary(int slot) {
+  if (slot >= 0) temporarySlots[slot].state.store(0);
+}
+
+struct sigaction previousActions[NSIG];
+
+// SIGINT, SIGTERM, SIGHUP, SIGQUIT: the temporary files are removed, then the signal does what it
+// did before (usually: end the process with it).
+void removeTemporariesAndReraise(int signal) {
+  for (TemporarySlot& slot : temporarySlots)
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  ::sigaction(signal, &previousActions[signal], nullptr);
+  ::raise(signal);
+}
+
+// Once per process, before the first temporary file: the handlers above, and SIGXFSZ ignored so
+// that a file-size limit (ulimit -f) makes write() fail with EFBIG, an error the writer reports
+// after removing its temporary file, instead of killing the process.
+void installTemporaryCleanup() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    struct sigaction action {};
+    action.sa_handler = removeTemporariesAndReraise;
+    sigemptyset(&action.sa_mask);
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+      struct sigaction previous {};
+      ::sigaction(signal, nullptr, &previous);
+      if (previous.sa_handler == SIG_IGN) continue;  // e.g. nohup: keep ignoring it
+      previousActions[signal] = previous;
+      ::sigaction(signal, &action, nullptr);
+    }
+    ::signal(SIGXFSZ, SIG_IGN);
+  });
+}
+
 // Removes the temporary file on every path out of writeFileAtomically except success, including
-// an exception thrown by the writer.
+// an exception thrown by the writer, and (registered for the signal handler) a SIGINT or SIGTERM.
 class TemporaryFile {
  public:
-  TemporaryFile(std::filesystem::path path, int fd) : path_(std::move(path)), fd_(fd) {}
+  TemporaryFile(std::filesystem::path path, int fd)
+      : path_(std::move(path)), fd_(fd), slot_(registerTemporary(path_)) {}
   TemporaryFile(const TemporaryFile&) = delete;
   TemporaryFile& operator=(const TemporaryFile&) = delete;
   ~TemporaryFile() {
     if (fd_ >= 0) ::close(fd_);
     if (!committed_) ::unlink(path_.c_str());
+    releaseTemporary(slot_);
   }
 
   // close() reports delayed write errors (NFS, quotas), so its result matters.
@@ -110,6 +174,7 @@ class TemporaryFile {
  private:
   std::filesystem::path path_;
   int fd_;
+  int slot_;
   bool committed_ = false;
 };
 
@@ -239,13 +304,16 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
   const std::filesystem::path name = path.filename();
   if (name.empty() || name == "." || name == "..")
     return writeError(ErrorKind::InvalidInput, path, "the path does not name a file");
-  LIC3D_TRY(checkNotAnInput(path));
+  if (guardInputs) LIC3D_TRY(checkNotAnInput(path));
 
   static std::atomic<unsigned> counter{0};
-  std::string temporaryName = ".";
-  temporaryName += name.string();
-  temporaryName +=
+  const std::string suffix =
       ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  // ".name.tmp-PID-N" shows what is being written; a name near the file system's limit gets a
+  // short temporary name instead, so every name that may exist may be written.
+  std::string temporaryName = "." + name.string() + suffix;
+  if (temporaryName.size() > NAME_MAX) temporaryName = ".lic3d" + suffix;
+  installTemporaryCleanup();
   const std::filesystem::path temporaryPath = path.parent_path() / temporaryName;
   const int fd = ::open(temporaryPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) return writeError(ErrorKind::InvalidInput, path, systemError(errno));
@@ -323,6 +391,8 @@ InputFiles& inputFiles() {
 }
 
 }  // namespace
+
+void guardInputsFromWrites(bool on) { guardInputs = on; }
 
 Result<void> checkNotAnInput(const std::filesystem::path& path) {
   struct stat info {};

@@ -66,8 +66,12 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
 // No output may be an input of the same run: every regular file a FileReader opens is noted by
 // device and inode, and this refuses (InvalidInput, naming the path) a path that resolves to
 // one, whatever its spelling (./sub/../x, a hard link). A path that does not exist passes.
-// writeFileAtomically checks it before writing; front ends check their outputs before the work.
+// Front ends check their outputs with it before the work.
 Result<void> checkNotAnInput(const std::filesystem::path& path);
+// With the guard on, writeFileAtomically also refuses a path that checkNotAnInput refuses: the CLI
+// turns it on for its runs. Off by default: a program that reads a file and then saves it again
+// (a test's round trip, a script) may.
+void guardInputsFromWrites(bool on);
 
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 // The same, for content streamed by `writer`; a writer that returns false fails the write.

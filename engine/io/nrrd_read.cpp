@@ -219,6 +219,12 @@ Result<Opened> openNrrd(const std::filesystem::path& path, const Expectation& ex
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   LIC3D_TRY_ASSIGN(const Layout layout, nrrd::readLayout(reader, expected));
   if (!layout.dataFile.empty()) {
+    // A detached header naming itself would read its own text as the data.
+    std::error_code same;
+    if (std::filesystem::equivalent(path, layout.dataFile, same))
+      return fileError(path,
+                       "its 'data file' is the header itself: name the file that holds the "
+                       "data, or put the data after the header without 'data file'");
     Result<FileReader> data = FileReader::open(layout.dataFile);
     if (!data.ok()) return inDataFile(path, std::move(data).error());
     reader = std::move(data).value();

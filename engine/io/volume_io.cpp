@@ -3,10 +3,12 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.h"
 #include "io/file_util.h"
 
 namespace lic3d {
@@ -21,16 +23,26 @@ float vectorComponent(double value) {
 
 Result<void> finishVectorField(const std::filesystem::path& path, VectorField& field,
                                FieldReadInfo* info) {
-  std::size_t nonFinite = 0;
-  bool anyNonZero = false;
-  for (glm::vec3& v : field.vectors) {
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-      v = glm::vec3(0.0f);
-      ++nonFinite;
-    } else if (v.x != 0.0f || v.y != 0.0f || v.z != 0.0f) {
-      anyNonZero = true;
+  if (Result<void> drawable = checkGridGeometry(field.geometry); !drawable)
+    return fileError(path, drawable.error().message);
+  // On the available threads: every chunk counts its own, the sums do not depend on the order.
+  std::atomic<std::size_t> nonFinite{0};
+  std::atomic<bool> anyNonZero{false};
+  parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
+    std::size_t bad = 0;
+    bool flowing = false;
+    for (std::size_t i = begin; i < end; ++i) {
+      glm::vec3& v = field.vectors[i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        v = glm::vec3(0.0f);
+        ++bad;
+      } else if (v.x != 0.0f || v.y != 0.0f || v.z != 0.0f) {
+        flowing = true;
+      }
     }
-  }
+    nonFinite += bad;
+    if (flowing) anyNonZero = true;
+  });
   if (info) info->nonFiniteVectors = nonFinite;
   if (!anyNonZero) {
     std::string problem = "every vector of the field is zero";

@@ -61,12 +61,7 @@ struct Stepper {
 
 }  // namespace
 
-Result<void> checkSpacing(const GridGeometry& geometry) {
-  for (int a = 0; a < 3; ++a)
-    if (!(geometry.spacing[a] > 0.0) || !std::isfinite(geometry.spacing[a]))
-      return inputError("the grid's spacing must be positive and finite on every axis");
-  return {};
-}
+Result<void> checkSpacing(const GridGeometry& geometry) { return checkGridGeometry(geometry); }
 
 glm::dvec3 voxelUnitScale(const GridGeometry& geometry) {
   const glm::dvec3 s = geometry.spacing;

@@ -75,6 +75,13 @@ Result<std::vector<fs::path>> numberedFiles(const std::string& pattern) {
     return parameterError("field.source",
                           pattern + ": cannot list " + folder.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
+  // dup_1, dup_01 and dup_001 are one step number written three ways: which file is the step?
+  for (std::size_t i = 1; i < found.size(); ++i)
+    if (found[i].first == found[i - 1].first)
+      return parameterError("field.source",
+                            pattern + ": " + found[i - 1].second.string() + " and " +
+                                found[i].second.string() + " both give step number " +
+                                std::to_string(found[i].first) + "; keep one of them");
   std::vector<fs::path> files;
   for (auto& [number, file] : found) files.push_back(std::move(file));
   return files;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <future>
 #include <optional>
+#include <string>
 
 #include "core/error.h"
 #include "core/lic_params.h"
@@ -159,6 +160,8 @@ class LicRenderer {
   // The colour buffer's format for the next offscreen frames (see FramePrecision).
   Result<void> setFramePrecision(FramePrecision precision);
 
+  // The Vulkan device's name ("NVIDIA H100 80GB HBM3", "llvmpipe (LLVM 15.0.6, 256 bits)").
+  const std::string& deviceName() const { return context_->deviceInfo().name; }
   std::uint64_t licDispatchCount() const { return licDispatches_; }
   std::uint64_t maskBuildCount() const { return maskBuilds_; }
   const IntensityStatistics& intensityStatistics() const { return statistics_; }
