@@ -32,15 +32,6 @@ struct TexelSpecialization {
 };
 static_assert(sizeof(TexelSpecialization) == 8);
 
-// The variant of analytic_texels.comp that writes a resolved precision's texture.
-int variantOf(FieldPrecision precision) {
-  switch (precision) {
-    case FieldPrecision::Float: return 0;
-    case FieldPrecision::Byte: return 2;
-    default: return 1;
-  }
-}
-
 // The slab buffer: at most this many bytes (and the device's storage buffer range), so that
 // memory stays bounded whatever the grid.
 constexpr VkDeviceSize kSlabBytes = VkDeviceSize{256} << 20;
@@ -143,11 +134,11 @@ Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
 Result<VkPipeline> AnalyticTexels::pipeline(Key key) {
   return pipelines_.get(key, [&](const Key& k) {
     const Specialization<TexelSpecialization> constants(TexelSpecialization{k.field, k.phase});
-    const char* formats[3] = {"rgba32f", "rgba16f", "rgba8 snorm"};
-    return createComputePipeline(
-        *context_, shaders_[k.variant], layout_, constants.info(),
-        std::string("analytic texels ") + (k.phase == 0 ? "measure " : "write ") +
-            std::string(enumName(static_cast<AnalyticField>(k.field))) + " " + formats[k.variant]);
+    return createComputePipeline(*context_, shaders_[k.variant], layout_, constants.info(),
+                                 std::string("analytic texels ") +
+                                     (k.phase == 0 ? "measure " : "write ") +
+                                     std::string(enumName(static_cast<AnalyticField>(k.field))) +
+                                     " " + kFieldTexelVariantNames[k.variant]);
   });
 }
 
@@ -171,7 +162,7 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
                       gridText(inputs.dims));
   const StageTimer timer("field and noise (on the device)");
   const auto field = static_cast<std::uint32_t>(inputs.field);
-  const int variant = variantOf(target.precision);
+  const int variant = fieldTexelVariant(target.precision);
   LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
   LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
 

@@ -20,14 +20,6 @@ struct LerpSpecialization {
 };
 static_assert(sizeof(LerpSpecialization) == 4);
 
-// The variant of field_lerp.comp that writes a resolved precision's texture.
-int variantOf(FieldPrecision precision) {
-  switch (precision) {
-    case FieldPrecision::Float: return 0;
-    case FieldPrecision::Byte: return 2;
-    default: return 1;
-  }
-}
 // Steps keep 16 bits at least: they are blended before the texture's own rounding.
 VkFormat stepFormat(FieldPrecision precision) {
   return precision == FieldPrecision::Float ? VK_FORMAT_R32G32B32A32_SFLOAT
@@ -86,13 +78,12 @@ Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::LerpPushConstants), "field lerp"));
   const ShaderId ids[3] = {ShaderId::FieldLerp, ShaderId::FieldLerpHalf, ShaderId::FieldLerpByte};
-  const char* formats[3] = {"rgba32f", "rgba16f", "rgba8 snorm"};
   for (int variant = 0; variant < 3; ++variant) {
     LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
     for (std::uint32_t phase : {0u, 1u}) {
       const Specialization<LerpSpecialization> constants(LerpSpecialization{phase});
-      const std::string name =
-          std::string("field lerp ") + (phase == 0 ? "measure " : "write ") + formats[variant];
+      const std::string name = std::string("field lerp ") + (phase == 0 ? "measure " : "write ") +
+                               kFieldTexelVariantNames[variant];
       LIC3D_TRY_ASSIGN(Pipeline pipeline,
                        createComputePipeline(context, pass.shaders_[variant], pass.layout_,
                                              constants.info(), name));
@@ -149,7 +140,7 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
   const VkFormat steps = stepFormat(target.precision);
   if (a.image.format() != steps || b.image.format() != steps)
     return inputError("time steps and the field texture must have the same precision");
-  const int variant = variantOf(target.precision);
+  const int variant = fieldTexelVariant(target.precision);
   const VkPipeline measure = measure_[variant].get();
   const VkPipeline write = write_[variant].get();
 

@@ -85,6 +85,14 @@ Result<FieldPrecision> checkFieldPrecision(const Context& context, FieldPrecisio
   return resolved;
 }
 
+int fieldTexelVariant(FieldPrecision resolved) {
+  switch (resolved) {
+    case FieldPrecision::Float: return 0;
+    case FieldPrecision::Byte: return 2;
+    default: return 1;
+  }
+}
+
 VkFormat fieldTextureFormat(FieldPrecision resolved) {
   switch (resolved) {
     case FieldPrecision::Float: return VK_FORMAT_R32G32B32A32_SFLOAT;

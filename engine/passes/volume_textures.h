@@ -63,6 +63,11 @@ FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested
 Result<FieldPrecision> checkFieldPrecision(const Context& context, FieldPrecision requested);
 // The field texture's format for a resolved precision.
 VkFormat fieldTextureFormat(FieldPrecision resolved);
+// The shaders that write the field texture are compiled once per format (shaders/field_texel.glsl):
+// variant 0 writes RGBA32F, 1 RGBA16F, 2 RGBA8 SNORM. The variant of a resolved precision, and
+// each variant's name for pipeline names.
+int fieldTexelVariant(FieldPrecision resolved);
+inline constexpr const char* kFieldTexelVariantNames[3] = {"rgba32f", "rgba16f", "rgba8 snorm"};
 
 // A field texture for shaders to write (a storage image as well as sampled, in the format of
 // `precision`, resolved): its image, grid and precision; the statistics are the writer's.
