@@ -89,12 +89,12 @@ class FdStreamBuf : public std::streambuf {
   int errorNumber_ = 0;
 };
 
-// The temporary files being written, for the signal handler below: slots of fixed size that
-// it reads without locks or allocation (async-signal-safe). A slot is free (0), being filled (1)
-// or holds a path (2).
 // guardInputsFromWrites: whether writeFileAtomically refuses the process's inputs.
 std::atomic<bool> guardInputs{false};
 
+// The temporary files being written, for the signal handler below: slots of fixed size that
+// it reads without locks or allocation (async-signal-safe). A slot is free (0), being filled (1)
+// or holds a path (2).
 constexpr int kTemporarySlots = 64;
 struct TemporarySlot {
   std::atomic<int> state{0};
