@@ -1,4 +1,6 @@
 // `lic3d bench`: GPU timestamps of the LIC pass and of frames, median of repeats after warm-up.
+#include "bench.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,18 +21,7 @@
 #include "passes/lic_renderer.h"
 
 namespace lic3d::cli {
-namespace {
 
-struct Timing {
-  bool measured = false;
-  std::string skipped;  // why not, when !measured
-  double medianMs = 0.0;
-  double minMs = 0.0;
-  int repeats = 0;
-};
-
-// Runs `once` for warm-up, then `repeats` times; gives up early when the warm-up shows the
-// repeats would not fit in the remaining budget.
 Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
                        const std::function<Result<double>()>& once) {
   Timing timing;
@@ -61,6 +52,23 @@ Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
   return timing;
 }
 
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d", std::gmtime(&now));
+  return text;
+}
+
+nlohmann::json newReport(const Context& context) {
+  nlohmann::json report;
+  report["device"] = context.deviceInfo().name;
+  report["driver"] = context.deviceInfo().driver;
+  report["date"] = today();
+  return report;
+}
+
+namespace {
+
 // Field and noise texture, LIC volume (R16) and the texture's upload staging.
 double residentBytes(int n, FieldPrecision precision) {
   const double texel = fieldTexelBytes(precision);
@@ -70,22 +78,6 @@ double residentBytes(int n, FieldPrecision precision) {
 Result<void> setVolume(LicRenderer& renderer, AnalyticField field, int n, std::uint64_t seed) {
   const Dims dims(n);
   return renderer.setInputs(makeAnalyticField(field, dims), makeWhiteNoise(dims, seed));
-}
-
-std::string today() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d", std::gmtime(&now));
-  return text;
-}
-
-// What every report starts with: the device, its driver and the date (UTC).
-nlohmann::json newReport(const Context& context) {
-  nlohmann::json report;
-  report["device"] = context.deviceInfo().name;
-  report["driver"] = context.deviceInfo().driver;
-  report["date"] = today();
-  return report;
 }
 
 Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions& options) {
@@ -151,35 +143,45 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   }
 
   const int n = options.frameVolume;
-  std::printf("\nFrame: %d^3 volume, %d view-aligned slices (one per voxel), default camera\n", n,
+  std::printf("\nFrame: %d^3 volume, view-aligned slices (%d = one per voxel), default camera\n", n,
               n);
-  std::printf("%12s %10s %12s %12s\n", "image", "buffer", "median ms", "min ms");
+  std::printf("%12s %10s %7s %12s %12s\n", "image", "buffer", "slices", "median ms", "min ms");
   report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
   if (residentBytes(n, precision) > 0.8 * memory) {
     report["frame"]["skipped"] = "device memory";
   } else {
     LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
     LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
-    for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm8}) {
-      LIC3D_TRY(renderer.setFramePrecision(frame));
-      const char* bufferName = frame == FramePrecision::Float16 ? "rgba16f" : "rgba8";
-      for (const int size : frameSizes) {
-        ViewParams view;
-        view.width = view.height = size;
-        view.slices = n;
-        LIC3D_TRY_ASSIGN(const Timing t,
-                         measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
-        nlohmann::json row{{"image", size}, {"buffer", bufferName}};
-        if (t.measured) {
-          std::printf("%9d^2 %10s %12.3f %12.3f\n", size, bufferName, t.medianMs, t.minMs);
-          row["median_ms"] = t.medianMs;
-          row["min_ms"] = t.minMs;
-        } else {
-          std::printf("%9d^2 %10s %12s (skipped: %s)\n", size, bufferName, "-", t.skipped.c_str());
-          row["skipped"] = t.skipped;
+    // Each buffer format at each size with one slice per voxel, then with a quarter of them:
+    // how the time splits between what each slice costs and what each frame costs.
+    for (const int slices : {n, std::max(1, n / 4)}) {
+      for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
+                                         FramePrecision::Unorm10, FramePrecision::Unorm8}) {
+        LIC3D_TRY(renderer.setFramePrecision(frame));
+        const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
+                                 : frame == FramePrecision::Unorm16 ? "rgba16"
+                                 : frame == FramePrecision::Unorm10 ? "rgb10a2"
+                                                                    : "rgba8";
+        for (const int size : frameSizes) {
+          ViewParams view;
+          view.width = view.height = size;
+          view.slices = slices;
+          LIC3D_TRY_ASSIGN(const Timing t,
+                           measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
+          nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
+          if (t.measured) {
+            std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
+                        t.minMs);
+            row["median_ms"] = t.medianMs;
+            row["min_ms"] = t.minMs;
+          } else {
+            std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
+                        t.skipped.c_str());
+            row["skipped"] = t.skipped;
+          }
+          std::fflush(stdout);
+          report["frame"]["rows"].push_back(row);
         }
-        std::fflush(stdout);
-        report["frame"]["rows"].push_back(row);
       }
     }
   }
@@ -352,7 +354,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
 
   std::printf(
       "\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
-      "parameters, L = 20, median of %d\n",
+      "parameters, L = 20, median of %d; the LIC pass alone with that mask, after warm-up\n",
       device.name.c_str(), options.repeats);
   std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
@@ -362,13 +364,13 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
   report["recompute"] = nlohmann::json::array();
   for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
     if (d == SparsityDistribution::None) continue;
-    std::vector<double> wall, gpu;
+    std::vector<double> wall;
     // The automatic parameters blacken about kDefaultBlackFraction of the voxels: the first
     // change is predicted from the generation table, later ones from the changes measured.
     double predicted = predictedSeconds(d, kDefaultBlackFraction * voxels);
+    LicParams lic;
+    lic.sparsity.distribution = d;
     for (int i = 0; i < options.repeats && budgetLeft > 0.0 && predicted <= budgetLeft; ++i) {
-      LicParams lic;
-      lic.sparsity.distribution = d;
       lic.sparsity.seed = static_cast<std::uint64_t>(i + 2);  // a new mask every time
       const auto start = std::chrono::steady_clock::now();
       LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
@@ -376,14 +378,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count());
       budgetLeft -= wall.back() / 1000.0;
-      lic.sparsity.seed = 1;
-      const auto dispatchStart = std::chrono::steady_clock::now();
-      LIC3D_TRY_ASSIGN(const double ms, renderer.timeLicDispatch(lic));
-      gpu.push_back(ms);
-      const double dispatchSeconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - dispatchStart).count();
-      budgetLeft -= dispatchSeconds;
-      predicted = wall.back() / 1000.0 + dispatchSeconds;
+      predicted = wall.back() / 1000.0;
     }
     nlohmann::json row{{"distribution", name}};
     if (wall.empty()) {
@@ -391,122 +386,18 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
                   "-", "-");
       row["skipped"] = "over the time budget";
     } else {
-      std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), median(gpu));
+      // The pass on its own, warmed up like every other GPU time here: a single dispatch right
+      // after the host made a mask meets a GPU whose clocks dropped while it idled (on the H100
+      // that read 14-19 ms for a 3.4 ms pass).
+      LIC3D_TRY_ASSIGN(const Timing pass,
+                       measure(options, budgetLeft, [&] { return renderer.timeLicDispatch(lic); }));
+      const double passMs = pass.measured ? pass.medianMs : 0.0;
+      std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), passMs);
       row["wall_ms"] = median(wall);
-      row["lic_ms"] = median(gpu);
+      if (pass.measured) row["lic_ms"] = passMs;
     }
     std::fflush(stdout);
     report["recompute"].push_back(row);
-  }
-  return report;
-}
-
-struct KernelVariant {
-  const char* name;
-  bool naive;
-  StepScheme scheme;
-  FieldPrecision precision;
-  double fetchesPerSample;  // trilinear texture fetches per streamline sample (RK2)
-};
-
-// The naive kernel and every shipped one, timed in the same process on the same field and noise:
-// ratios hold on machines whose absolute speed varies from run to run.
-Result<nlohmann::json> runKernels(const Context& context, const BenchOptions& options) {
-  if (!hasRuntimeModeShaders())
-    return unsupportedError(
-        "bench --kernels needs a build configured with "
-        "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
-  LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 2048));
-  LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
-                   parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
-  const auto fieldKind = parseEnum<AnalyticField>(options.field);
-  if (!fieldKind) return inputError("bench: --field must be an analytic field");
-  const FieldPrecision automatic = resolvePrecision(context, FieldPrecision::Auto);
-  const std::vector<KernelVariant> variants{
-      {"naive (half + R8 noise)", true, StepScheme::Exact, FieldPrecision::Half, 3.0},
-      {"exact, half", false, StepScheme::Exact, FieldPrecision::Half, 2.0},
-      {"exact, float", false, StepScheme::Exact, FieldPrecision::Float, 2.0},
-      {"ab2, half", false, StepScheme::Ab2, FieldPrecision::Half, 1.0},
-      {"ab2, float", false, StepScheme::Ab2, FieldPrecision::Float, 1.0},
-      {"ab2, byte", false, StepScheme::Ab2, FieldPrecision::Byte, 1.0},
-  };
-  const LicParams defaults;
-  auto isDefault = [&](const KernelVariant& v) {
-    return !v.naive && v.scheme == defaults.scheme && v.precision == automatic;
-  };
-
-  const DeviceInfo& device = context.deviceInfo();
-  nlohmann::json report = newReport(context);
-  report["field"] = options.field;
-  report["repeats"] = options.repeats;
-  report["rows"] = nlohmann::json::array();
-  std::printf("lic3d bench --kernels on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
-              today().c_str());
-  std::printf(
-      "%s field, RK2, box kernel, h = 0.5, trilinear noise; median of %d after %d "
-      "warm-up (GPU timestamps); r = correlation of the volumes; * = the default here\n",
-      options.field.c_str(), options.repeats, options.warmup);
-  double budgetLeft = options.budgetSeconds;
-  for (const int n : sizes) {
-    const Dims dims(n);
-    const VectorField field = makeAnalyticField(*fieldKind, dims);
-    const NoiseVolume noise = makeWhiteNoise(dims, options.seed);
-    const double samples = static_cast<double>(voxelCount(dims));
-    for (const int length : lengths) {
-      std::printf("\n%d^3, L = %d\n%-26s %11s %9s %10s %10s %12s\n", n, length, "kernel",
-                  "median ms", "speed-up", "r (naive)", "r (exact)", "Gfetches/s");
-      std::optional<ScalarVolume> naiveVolume, exactVolume;
-      double naiveMs = 0.0;
-      for (const KernelVariant& v : variants) {
-        nlohmann::json row{{"n", n},
-                           {"length", length},
-                           {"kernel", v.name},
-                           {"scheme", enumName(v.scheme)},
-                           {"precision", fieldTextureFormatName(v.precision)},
-                           {"default", isDefault(v)}};
-        RendererOptions rendererOptions;
-        rendererOptions.fieldPrecision = v.precision;
-        rendererOptions.naiveLicKernel = v.naive;
-        LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, rendererOptions));
-        if (Result<void> r = renderer.setInputs(field, noise); !r) {
-          std::printf("%-26s (skipped: %s)\n", v.name, r.error().message.c_str());
-          row["skipped"] = r.error().message;
-          report["rows"].push_back(row);
-          continue;
-        }
-        LicParams params;
-        params.length = length;
-        params.scheme = v.scheme;
-        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
-                                                 [&] { return renderer.timeLicDispatch(params); }));
-        if (!t.measured) {
-          std::printf("%-26s (skipped: %s)\n", v.name, t.skipped.c_str());
-          row["skipped"] = t.skipped;
-          report["rows"].push_back(row);
-          continue;
-        }
-        LIC3D_TRY_ASSIGN(ScalarVolume volume, renderer.readLicVolume());
-        if (v.naive) naiveMs = t.medianMs;
-        const double rNaive = naiveVolume ? correlation(*naiveVolume, volume) : 1.0;
-        const double rExact = exactVolume ? correlation(*exactVolume, volume) : 1.0;
-        const double fetches = samples * (2.0 * length + 1.0) * v.fetchesPerSample;
-        const double speedUp = naiveMs > 0.0 ? naiveMs / t.medianMs : 0.0;
-        std::printf("%-25s%s %11.3f %9.2f %10.5f %10.5f %12.1f\n", v.name, isDefault(v) ? "*" : " ",
-                    t.medianMs, speedUp, rNaive, rExact, fetches / (t.medianMs * 1e6));
-        std::fflush(stdout);
-        row["median_ms"] = t.medianMs;
-        row["min_ms"] = t.minMs;
-        row["speed_up"] = speedUp;
-        row["r_naive"] = rNaive;
-        row["r_exact"] = rExact;
-        row["gfetches_per_s"] = fetches / (t.medianMs * 1e6);
-        report["rows"].push_back(row);
-        if (v.naive)
-          naiveVolume = std::move(volume);
-        else if (!exactVolume && v.scheme == StepScheme::Exact)
-          exactVolume = std::move(volume);
-      }
-    }
   }
   return report;
 }
@@ -520,13 +411,15 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
   ContextOptions contextOptions;
   contextOptions.validation = global.validation;
   contextOptions.device = global.device;
+  contextOptions.pipelineStatistics = options.kernels;
   Result<Context> context = Context::create(contextOptions);
   if (!context) return reportError(context.error());
-  const Result<nlohmann::json> report = options.variants ? runVariants(*context, options)
-                                        : options.distributions
-                                            ? runDistributions(*context, options)
-                                        : options.kernels ? runKernels(*context, options)
-                                                          : runBenchmarks(*context, options);
+  const Result<nlohmann::json> report =
+      options.variants        ? runVariants(*context, options)
+      : options.distributions ? runDistributions(*context, options)
+      : options.kernels       ? runKernelBenchmarks(*context, options)
+      : options.fidelity      ? runFidelityBenchmarks(*context, options)
+                              : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {
     if (auto r = writeFileAtomically(options.json, report->dump(2) + "\n"); !r)

@@ -168,7 +168,8 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool v
   addEnumOption(app, "--scheme", params.scheme,
                 "How rk2 steps: exact (every step an RK2 step: two texture fetches per sample) or "
                 "ab2 (a first RK2 step, then two-step Adams-Bashforth steps of h from the "
-                "directions already fetched: one fetch per sample)");
+                "directions already fetched: one fetch per sample) or fused (RK2 steps of 2h "
+                "whose midpoint is itself a sample: one fetch per sample)");
 
   SparsityParams& sparsity = params.sparsity;
   addEnumOption(app, "--sparsity", sparsity.distribution,

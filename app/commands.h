@@ -23,6 +23,8 @@ struct BenchOptions {
   bool variants = false;       // specialized pipelines against runtime mode switches
   bool distributions = false;  // sparsity point generation and mask + LIC recompute
   bool kernels = false;        // the naive LIC kernel against each shipped one
+  bool fidelity = false;       // each scheme's error against a converged LIC
+  std::string fidelityFiles;   // fields judged besides the analytic ones (comma-separated)
   int distributionVolume = 256;
 };
 

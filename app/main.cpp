@@ -166,9 +166,17 @@ int main(int argc, char** argv) {
                          "sparsity change end to end (thesis Figure 6.4)");
   benchCommand->add_flag("--kernels", bench.kernels,
                          "Instead: the naive reference LIC kernel (three texture fetches per "
-                         "sample) against each shipped kernel (exact and ab2 schemes; half, "
+                         "sample) against each shipped kernel (exact, ab2 and fused schemes; half, "
                          "float and byte textures) in one process, for --sizes x --lengths: "
-                         "median times, speed-ups, correlations of the volumes");
+                         "median times, speed-ups, correlations of the volumes, fetch rates; "
+                         "then the masked (sparsity) pass against the unmasked one and the "
+                         "workgroup shapes and walks, at the last length");
+  benchCommand->add_flag("--fidelity", bench.fidelity,
+                         "Instead: each RK2 scheme's error against a converged LIC (RK4 at h/8 on "
+                         "the CPU) on the analytic fields at the first of --sizes and on "
+                         "--fidelity-files, for the CPU reference and each field texture");
+  benchCommand->add_option("--fidelity-files", bench.fidelityFiles,
+                           "Comma-separated field files that --fidelity judges too");
   benchCommand
       ->add_option("--distribution-volume", bench.distributionVolume,
                    "Volume size N (N^3) of --distributions")

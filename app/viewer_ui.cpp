@@ -189,7 +189,8 @@ void licPanel(Session& s) {
         "normalized: unit steps; magnitude: steps scaled by |v| / max |v|");
   combo("scheme", l.scheme,
         "How rk2 steps. exact: every step an RK2 step (two texture fetches per sample); ab2: "
-        "Adams-Bashforth steps from the directions already fetched (one fetch per sample)");
+        "Adams-Bashforth steps from the directions already fetched (one fetch per sample); fused: "
+        "RK2 steps of 2h whose midpoint is a sample (one fetch per sample)");
   combo("precision", s.precision,
         "Field texture on the device: float on CPU drivers, half on GPUs (auto); byte: RGBA8, "
         "8-bit direction and noise, a quarter of the memory of float");

@@ -17,8 +17,9 @@ layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;       // 0 u/
 // Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
 layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
 // 0 exact: every RK2 step of h fetches its midpoint and its end (two fetches per sample).
-// 1 ab2: after a first RK2 step, two-step Adams-Bashforth steps of h (one fetch per sample);
-// only RK2 has a choice: Euler already fetches once per sample, RK4 stays as it is
+// 1 ab2: after a first RK2 step, two-step Adams-Bashforth steps of h (one fetch per sample).
+// 2 fused: RK2 steps of 2h whose midpoint is a sample (one fetch per sample, nothing else).
+// Only RK2 has a choice: Euler already fetches once per sample, RK4 stays as it is
 // (docs/LIC_SEMANTICS.md).
 layout(constant_id = kLicConstScheme) const uint SCHEME = 0;
 // 0: texel xyz = u / max|u|, w = noise (RGBA16F/32F). 1: RGBA8 SNORM, xyz = e with
@@ -78,10 +79,16 @@ float noiseAt(vec3 x, vec4 texel) {
   return texel.w;
 }
 
-// Whether the sample at x lies in a black voxel of the mask (the voxel nearest to x); beyond the
-// grid, the mask's random continuation (lic_kernel.h).
-bool touchesBlack(vec3 x) {
+// Whether the sample at x, inside the grid, lies in a black voxel of the mask (the voxel nearest
+// to x). Samples are inside by construction (walk() ends a streamline at its first outside
+// point), so the sample loop carries no test for the grid's bounds.
+bool touchesBlackInside(vec3 x) {
   if (SPARSITY == 0) return false;
+  return texelFetch(sparsityMask, ivec3(floor(x + 0.5)), 0).r != 0u;
+}
+
+// touchesBlackInside anywhere: beyond the grid, the mask's random continuation (lic_kernel.h).
+bool touchesBlack(vec3 x) {
   ivec3 v = ivec3(floor(x + 0.5));
   if (all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, pc.dims.xyz)))
     return texelFetch(sparsityMask, v, 0).r != 0u;
@@ -109,15 +116,45 @@ bool outsideGrid(vec3 x) {
 // the two directions: their fetches are independent, so each invocation keeps two in flight
 // instead of waiting on one chain of dependent fetches.
 struct Walker {
-  vec3 x;      // the last sample
-  vec3 d;      // the direction there (non-zero while alive)
-  vec3 dPrev;  // the direction at the sample before (AB2)
-  int steps;   // Lb or Lf
-  float sh;    // signed h
+  vec3 x;       // the last sample (fused: the last even one); after an exit, the point outside
+  vec3 d;       // the direction there (non-zero while alive)
+  vec3 dPrev;   // the direction at the sample before (ab2)
+  int steps;    // Lb or Lf; after an exit, the steps left
+  float sh;     // signed h
   bool alive;
+  bool exited;  // left the grid: x, sh d and steps describe the straight continuation
 };
 
-// Takes sample i of the walker's direction if it still runs: adds it to the sums and moves on.
+// Takes sample i at x: adds its noise to the sums and sets w.d to the direction there. False
+// where the streamline ends: x is outside the grid (not a sample; w records the exit, its
+// continuation stepping by sh times the direction at the last sample inside, w.d), or x is a
+// critical sample (the last one).
+bool takeSample(inout Walker w, vec3 x, int i, int sign, inout float sum, inout float weights,
+                inout bool masked) {
+  // Outside the grid the streamline ends; outside samples are never clamped back in. The mask's
+  // straight continuation beyond the grid is checked once, after the sample loop (main).
+  if (outsideGrid(x)) {
+    w.alive = false;
+    w.exited = true;
+    w.x = x;
+    w.steps -= i;
+    return false;
+  }
+  // One fetch gives this sample's noise and the next step's direction.
+  vec4 texel = fieldAndNoiseAt(x);
+  float weight = weightOf(sign * i);
+  sum += weight * noiseAt(x, texel);
+  weights += weight;
+  if (touchesBlackInside(x)) masked = true;
+  w.d = directionOf(texel.xyz);
+  w.alive = w.d != vec3(0.0);
+  return w.alive;
+}
+
+// Takes the next samples of the walker's direction, from sample i, if it still runs: one, or
+// two for the fused scheme (the midpoint i of an RK2 step of 2h from the even sample w.x, and
+// the step's end i + 1), so that sample parity needs no test and the even sample is all that
+// is kept.
 void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
           inout bool masked) {
   if (!w.alive) return;
@@ -125,34 +162,34 @@ void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
     w.alive = false;
     return;
   }
+  if (SCHEME == 2 && INTEGRATOR == 1) {
+    if (!takeSample(w, w.x + w.sh * w.d, i, sign, sum, weights, masked)) return;
+    if (i + 1 > w.steps) {
+      w.alive = false;
+      return;
+    }
+    vec3 end = w.x + 2.0 * w.sh * w.d;  // w.d is the midpoint's direction now
+    if (takeSample(w, end, i + 1, sign, sum, weights, masked)) w.x = end;
+    return;
+  }
+  vec3 d = w.d;
   vec3 x;
   if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) {
     // Adams-Bashforth from the directions already fetched: the sample's own fetch is the only one.
-    x = ab2Step(w.x, w.d, w.dPrev, w.sh);
+    x = ab2Step(w.x, d, w.dPrev, w.sh);
   } else {
-    x = advance(w.x, w.d, w.sh);
+    x = advance(w.x, d, w.sh);
   }
-  // Outside the grid the streamline ends; outside samples are never clamped back in.
-  if (outsideGrid(x)) {
-    if (SPARSITY != 0 && exitTouchesBlack(x, w.sh * w.d, w.steps - i)) masked = true;
-    w.alive = false;
-    return;
+  if (takeSample(w, x, i, sign, sum, weights, masked)) {
+    w.x = x;
+    w.dPrev = d;
   }
-  // One fetch gives this sample's noise and the next step's direction.
-  vec4 texel = fieldAndNoiseAt(x);
-  float weight = weightOf(sign * i);
-  sum += weight * noiseAt(x, texel);
-  weights += weight;
-  if (touchesBlack(x)) masked = true;
-  w.x = x;
-  w.dPrev = w.d;
-  w.d = directionOf(texel.xyz);
-  if (w.d == vec3(0.0)) w.alive = false;  // a critical sample is the last one
 }
 
 void main() {
   ivec3 voxel = ivec3(gl_GlobalInvocationID) + ivec3(0, 0, pc.dims.w);
-  if (any(greaterThanEqual(voxel, pc.dims.xyz))) return;
+  // Workgroups deeper than one slice overhang the dispatch's slab: the next slab's voxels are its.
+  if (any(greaterThanEqual(voxel, pc.dims.xyz)) || voxel.z >= pc.zEnd) return;
 
   vec3 start = vec3(voxel);
   vec4 startTexel = fieldAndNoiseAt(start);
@@ -161,20 +198,26 @@ void main() {
   float weights = w0;
   // A voxel whose streamline touches a black voxel of the mask is hidden; its value is never
   // shown (0, as in the CPU reference), so its streamline is not followed any further.
-  bool masked = touchesBlack(start);
+  bool masked = touchesBlackInside(start);
 
   vec3 d0 = directionOf(startTexel.xyz);
   bool moves = d0 != vec3(0.0) && !masked;
-  Walker back = Walker(start, d0, d0, pc.licLength - pc.bias, -pc.step, moves);
-  Walker ahead = Walker(start, d0, d0, pc.licLength + pc.bias, pc.step, moves);
+  Walker back = Walker(start, d0, d0, pc.licLength - pc.bias, -pc.step, moves, false);
+  Walker ahead = Walker(start, d0, d0, pc.licLength + pc.bias, pc.step, moves, false);
+  // Samples per walk() call.
+  const int stride = SCHEME == 2 && INTEGRATOR == 1 ? 2 : 1;
   if (INTERLEAVE == 1) {
-    for (int i = 1; (back.alive || ahead.alive) && !masked; ++i) {
+    for (int i = 1; (back.alive || ahead.alive) && !masked; i += stride) {
       walk(back, i, -1, sum, weights, masked);
       walk(ahead, i, 1, sum, weights, masked);
     }
   } else {
-    for (int i = 1; back.alive && !masked; ++i) walk(back, i, -1, sum, weights, masked);
-    for (int i = 1; ahead.alive && !masked; ++i) walk(ahead, i, 1, sum, weights, masked);
+    for (int i = 1; back.alive && !masked; i += stride) walk(back, i, -1, sum, weights, masked);
+    for (int i = 1; ahead.alive && !masked; i += stride) walk(ahead, i, 1, sum, weights, masked);
+  }
+  if (SPARSITY != 0 && !masked) {
+    if (back.exited && exitTouchesBlack(back.x, back.sh * back.d, back.steps)) masked = true;
+    if (ahead.exited && exitTouchesBlack(ahead.x, ahead.sh * ahead.d, ahead.steps)) masked = true;
   }
   imageStore(licImage, voxel, masked ? vec4(0.0) : vec4(sum / weights, 1.0, 0.0, 0.0));
 }

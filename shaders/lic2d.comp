@@ -16,7 +16,7 @@ layout(constant_id = kLic2DConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 n
 layout(constant_id = kLic2DConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
 // How RK2 steps, as in lic.comp (LicParams::scheme): 0 exact, every step an RK2 step; 1 the first
 // step RK2 and the others two-step Adams-Bashforth steps from the directions at the last two
-// samples (one fetch per sample).
+// samples (one fetch per sample); 2 fused, RK2 steps of 2h whose midpoint is a sample.
 layout(constant_id = kLic2DConstScheme) const uint SCHEME = 1;
 
 // xy = u / max|u|, u the field in output pixel units (engine/lic2d_pass.h).
@@ -62,14 +62,19 @@ void main() {
     float sh = float(direction) * pc.step;
     vec2 x = start;
     vec2 v = startVector;
-    vec2 previous = vec2(0.0);  // the direction at the sample before x
+    vec2 previous = vec2(0.0);  // the direction at the sample before x (ab2)
+    vec2 before = x;            // the sample before x (fused)
     for (int i = 1; i <= steps; ++i) {
       // A streamline ends at a critical point (the sample there was already taken) ...
       vec2 d = directionOf(v);
       if (d == vec2(0.0)) break;
-      if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) x = ab2Step(x, d, previous, sh);
-      else x = advance(x, d, sh);
+      vec2 next;
+      if (SCHEME == 1 && INTEGRATOR == 1 && i > 1) next = ab2Step(x, d, previous, sh);
+      else if (SCHEME == 2 && INTEGRATOR == 1) next = fusedStep(i, x, d, before, sh);
+      else next = advance(x, d, sh);
       previous = d;
+      before = x;
+      x = next;
       // ... or where it leaves the image: outside samples are never clamped back in.
       if (any(lessThan(x, vec2(0.0))) || any(greaterThan(x, upper))) break;
       float w = weightOf(direction * i);

@@ -24,3 +24,10 @@ LIC_VEC advance(LIC_VEC x, LIC_VEC d0, float sh) {
 LIC_VEC ab2Step(LIC_VEC x, LIC_VEC d, LIC_VEC dPrevious, float sh) {
   return x + sh * (1.5 * d - 0.5 * dPrevious);
 }
+
+// The fused scheme's step i >= 1 (docs/LIC_SEMANTICS.md): RK2 steps of 2h whose midpoint is a
+// sample. Odd i: the midpoint, h along the direction d at the last sample x; even i: the step's
+// end, 2h from the sample before x along the direction d at x (the midpoint).
+LIC_VEC fusedStep(int i, LIC_VEC x, LIC_VEC d, LIC_VEC before, float sh) {
+  return (i & 1) == 1 ? x + sh * d : before + 2.0 * sh * d;
+}

@@ -48,7 +48,7 @@ struct LicPushConstants {
   float criticalEpsilon;  // a texel's |xyz| at or below this stops a streamline
   float hannDenominator;  // L + |bias| + 1
   float gaussScale;       // 1 / (0.5 L), 0 when L = 0
-  float pad0;
+  int zEnd;               // one past the last z slice of this dispatch
   float pad1;
   // The sparsity mask beyond the grid (lic_kernel.h): xyz the grid's offset in the whole grid
   // (a piece's; the bit patterns of signed ints), w the black threshold; maskSeed below.

@@ -31,11 +31,13 @@ float luminance(glm::u8vec4 p) { return 0.299f * p.r + 0.587f * p.g + 0.114f * p
 // The GPU's mask channel against the CPU reference of the mask rule: a voxel is hidden when a
 // sample of its streamline lies in a black voxel. Sample positions near a voxel boundary can round
 // the other way on the GPU (as for nearest noise), so a few voxels may disagree: we allow 0.5 %.
-void expectMaskMatchesReference(const Context& context, SparsityDistribution distribution) {
+void expectMaskMatchesReference(const Context& context, SparsityDistribution distribution,
+                                StepScheme scheme = StepScheme::Exact) {
   const VectorField field = makeAnalyticField(AnalyticField::Abc, {24, 32, 40});
   const NoiseVolume noise = makeWhiteNoise(field.dims, 2);
   LicParams params;
   params.length = 8;
+  params.scheme = scheme;
   params.sparsity.distribution = distribution;
   Result<LicRenderer> renderer = LicRenderer::create(context, {FieldPrecision::Float});
   ASSERT_TRUE(renderer.ok());
@@ -64,6 +66,9 @@ TEST_F(GpuTest, SparsityMaskMatchesTheReferenceForEveryDistribution) {
         SparsityDistribution::PoissonApprox, SparsityDistribution::Jitter,
         SparsityDistribution::Halton, SparsityDistribution::Hammersley})
     expectMaskMatchesReference(context(), d);
+  // The one-fetch walks stop and leave the grid at their own samples.
+  expectMaskMatchesReference(context(), SparsityDistribution::Halton, StepScheme::Fused);
+  expectMaskMatchesReference(context(), SparsityDistribution::Halton, StepScheme::Ab2);
 }
 
 TEST_F(GpuTest, SparsityHidesMaskedVoxelsAndOnlyRebuildsTheMaskWhenItChanges) {

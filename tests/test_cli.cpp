@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -169,10 +171,57 @@ TEST_F(CliTest, BenchRunsAndWritesJson) {
     EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
 }
 
+// `bench --kernels` times every scheme with the texture it names, the masked pass and the launch
+// shapes; `bench --fidelity` gives each scheme's error against the converged LIC.
+TEST_F(CliTest, BenchKernelsAndFidelityReportEverySchemeUnderItsOwnLabels) {
+  const CommandRun kernels = run(
+      "bench --kernels --sizes 8 --lengths 3 --repeats 5 --warmup 1 --budget 120 --json k.json");
+  ASSERT_EQ(kernels.status, 0) << kernels.output;
+  const nlohmann::json k = nlohmann::json::parse(test::readWhole(path("k.json")));
+  std::set<std::string> seen;
+  for (const nlohmann::json& row : k["rows"]) {
+    const std::string kernel = row["kernel"], precision = row["precision"];
+    EXPECT_TRUE(row.contains("median_ms")) << row.dump();
+    if (row["naive"]) continue;
+    // The label names the texture the renderer made, and the scheme that ran.
+    EXPECT_EQ(kernel, std::string(row["scheme"]) + ", " + precision);
+    seen.insert(kernel);
+    EXPECT_GT(row["r_naive"].get<double>(), 0.95) << kernel;
+  }
+  for (const char* expected : {"exact, RGBA16F", "exact, RGBA32F", "ab2, RGBA16F", "ab2, RGBA8",
+                               "fused, RGBA16F", "fused, RGBA32F", "fused, RGBA8"})
+    EXPECT_EQ(seen.count(expected), 1u) << expected << " in " << kernels.output;
+  ASSERT_EQ(k["masked"].size(), 2u);  // the default scheme and the fused one
+  for (const nlohmann::json& row : k["masked"]) {
+    EXPECT_GT(row["masked_ms"].get<double>(), 0.0);
+    EXPECT_GT(row["hidden_fraction"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(k["launch"].size(), 28u);
+  int chosen = 0;
+  for (const nlohmann::json& row : k["launch"])
+    chosen += row["chosen_for_this_device_type"] ? 1 : 0;
+  EXPECT_EQ(chosen, 2) << "one launch per scheme is this device type's";
+
+  const CommandRun fidelity = run("bench --fidelity --sizes 12 --lengths 6 --json f.json");
+  ASSERT_EQ(fidelity.status, 0) << fidelity.output;
+  const nlohmann::json f = nlohmann::json::parse(test::readWhole(path("f.json")));
+  ASSERT_EQ(f["rows"].size(), 5u * 8u);  // five analytic fields, eight scheme-texture pairs
+  for (const nlohmann::json& row : f["rows"]) {
+    EXPECT_GT(row["mean_abs_error"].get<double>(), 0.0) << row.dump();
+    if (row["scheme"] == "exact" && row["texture"] == "CPU double") {
+      EXPECT_EQ(row["relative_to_exact"].get<double>(), 1.0);
+    }
+    // Steps of 2h: the fused scheme's CPU volume lies further from the converged one.
+    if (row["field"] == "tornado" && row["scheme"] == "fused" && row["texture"] == "CPU double") {
+      EXPECT_GT(row["relative_to_exact"].get<double>(), 1.5) << row.dump();
+    }
+  }
+}
+
 // --scheme and --field-precision byte reach the GPU and the CPU reference: each run matches the
-// reference of its own scheme, and the two schemes give different volumes.
+// reference of its own scheme, and the schemes give different volumes.
 TEST_F(CliTest, SchemeAndByteTextureFlagsReachTheLicPass) {
-  for (const char* scheme : {"exact", "ab2"}) {
+  for (const char* scheme : {"exact", "ab2", "fused"}) {
     const std::string s = scheme;
     for (const auto& [extra, suffix] : {std::pair{"", ""}, std::pair{" --cpu", "_cpu"},
                                         std::pair{" --field-precision byte", "_byte"}}) {
@@ -184,7 +233,7 @@ TEST_F(CliTest, SchemeAndByteTextureFlagsReachTheLicPass) {
   LicParams params;
   params.length = 8;
   const VectorField field = makeAnalyticField(AnalyticField::Abc, {12, 10, 8});
-  for (const StepScheme scheme : {StepScheme::Exact, StepScheme::Ab2}) {
+  for (const StepScheme scheme : {StepScheme::Exact, StepScheme::Ab2, StepScheme::Fused}) {
     params.scheme = scheme;
     const ScalarVolume reference =
         *computeLicReference(field, makeWhiteNoise(field.dims, 1), params);
@@ -201,6 +250,8 @@ TEST_F(CliTest, SchemeAndByteTextureFlagsReachTheLicPass) {
     }
   }
   EXPECT_NE(test::readWhole(path("exact.nrrd")), test::readWhole(path("ab2.nrrd")));
+  EXPECT_NE(test::readWhole(path("exact.nrrd")), test::readWhole(path("fused.nrrd")));
+  EXPECT_NE(test::readWhole(path("ab2.nrrd")), test::readWhole(path("fused.nrrd")));
   EXPECT_EQ(run("render --grid 8 --scheme midpoint").status, 2);
   EXPECT_EQ(run("render --grid 8 --field-precision quarter").status, 2);
 }

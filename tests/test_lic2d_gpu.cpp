@@ -74,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(
              std::string(enumName(std::get<1>(variant.param)));
     });
 
-TEST_F(GpuTest, Lic2DNearestNoiseMagnitudeStepsExactSchemeAndHalfTextures) {
+TEST_F(GpuTest, Lic2DNearestNoiseMagnitudeStepsExactAndFusedSchemesAndHalfTextures) {
   // A plane of the tornado: speeds vary, so magnitude steps matter.
   const VectorField plane = makeAnalyticFieldPlane(AnalyticField::Tornado, {36, 36, 36}, 2, 20);
   LicParams params;
@@ -83,6 +83,9 @@ TEST_F(GpuTest, Lic2DNearestNoiseMagnitudeStepsExactSchemeAndHalfTextures) {
   params.scheme = StepScheme::Exact;
   expectClose(compare2D(context(), plane, {72, 72, 1}, params, FieldPrecision::Float),
               "magnitude steps, exact RK2");
+  params.scheme = StepScheme::Fused;
+  expectClose(compare2D(context(), plane, {72, 72, 1}, params, FieldPrecision::Float),
+              "magnitude steps, fused RK2");
   params.direction = DirectionMode::Normalized;
   params.scheme = LicParams{}.scheme;
   params.noiseFilter = NoiseFilter::Nearest;

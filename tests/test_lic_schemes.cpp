@@ -1,11 +1,12 @@
-// The one-fetch path: the ab2 scheme against the CPU reference and against the exact scheme, and
-// the byte-packed field texture (docs/LIC_SEMANTICS.md, "Schemes" and "Field packing").
+// The one-fetch paths: the ab2 and fused schemes against the CPU reference and against the exact
+// scheme, and the byte-packed field texture (docs/LIC_SEMANTICS.md, "Schemes" and "Field packing").
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "core/volume_compare.h"
 #include "gpu_test_support.h"
@@ -33,14 +34,82 @@ ScalarVolume gpuLic(const Context& context, const VectorField& field, const Nois
   return std::move(*volume);
 }
 
-// The GPU integrates the same streamlines as the reference with either scheme: the tolerances
+// The fused scheme's samples, on the CPU reference: the even ones are the exact scheme's RK2
+// samples with steps of 2h, each odd one lies h from the sample before along the direction there.
+TEST(LicSchemes, FusedSamplesAreRk2StepsOfTwiceHAndTheirMidpoints) {
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, Dims(24));
+  const FieldSampler sampler(field);
+  LicParams fused;
+  fused.scheme = StepScheme::Fused;
+  fused.length = 16;
+  LicParams exact2h = fused;
+  exact2h.scheme = StepScheme::Exact;
+  exact2h.step = 2.0f * fused.step;
+  exact2h.length = fused.length / 2;
+  int compared = 0;
+  for (const glm::dvec3 start : {glm::dvec3(12, 11, 12), glm::dvec3(11.3, 12.5, 10.2)}) {
+    for (const int sign : {-1, 1}) {
+      const std::vector<glm::dvec3> samples =
+          traceStreamline(sampler, field.dims, fused, start, sign, fused.length);
+      const std::vector<glm::dvec3> ends =
+          traceStreamline(sampler, field.dims, exact2h, start, sign, exact2h.length);
+      ASSERT_EQ(samples.size(), 2 * ends.size() - 1);
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (i % 2 == 0) {
+          EXPECT_LT(glm::length(samples[i] - ends[i / 2]), 1e-12) << i;
+          ++compared;
+          continue;
+        }
+        const glm::dvec3 d = glm::normalize(sampler.at(samples[i - 1]));
+        EXPECT_LT(glm::length(samples[i] - (samples[i - 1] + sign * 0.5 * d)), 1e-12) << i;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 4 * 9);
+}
+
+// The converged reference the schemes are judged by: with no refinement it is the RK4 LIC itself;
+// refined, it sits closer to exact RK2 than Euler's LIC does, and closer still to RK4's.
+TEST(LicSchemes, ConvergedReferenceIsRefinedRk4) {
+  const VectorField field = makeAnalyticField(AnalyticField::Vortex, Dims(20));
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 5);
+  const FieldSampler sampler(field);
+  LicParams rk4, rk2, euler;
+  rk4.integrator = Integrator::Rk4;
+  euler.integrator = Integrator::Euler;
+  rk4.length = rk2.length = euler.length = 12;
+  rk4.bias = rk2.bias = euler.bias = 2;
+  rk4.step = rk2.step = euler.step = 0.7f;
+  double offRk4 = 0.0, offRk2 = 0.0, offEuler = 0.0;
+  for (int k = 2; k < 18; k += 3) {
+    for (int j = 1; j < 19; j += 2) {
+      for (int i = 0; i < 20; i += 2) {
+        const glm::ivec3 v(i, j, k);
+        EXPECT_NEAR(convergedLicAtVoxel(sampler, noise, rk2, v, 1),
+                    licAtVoxel(sampler, noise, rk4, v), 1e-12);
+        const double converged = convergedLicAtVoxel(sampler, noise, rk2, v);
+        offRk4 += std::abs(licAtVoxel(sampler, noise, rk4, v) - converged);
+        offRk2 += std::abs(licAtVoxel(sampler, noise, rk2, v) - converged);
+        offEuler += std::abs(licAtVoxel(sampler, noise, euler, v) - converged);
+      }
+    }
+  }
+  std::printf("summed |LIC - converged|: rk4 %.3e, rk2 %.3e, euler %.3e\n", offRk4, offRk2,
+              offEuler);
+  EXPECT_LT(offRk4, offRk2);
+  EXPECT_LT(offRk2, offEuler);
+}
+
+// The GPU integrates the same streamlines as the reference with each scheme: the tolerances
 // of test_lic_gpu.cpp hold, for both texture precisions, with bias and both direction modes.
-TEST_F(GpuTest, BothRk2SchemesMatchCpuReference) {
+TEST_F(GpuTest, EveryRk2SchemeMatchesCpuReference) {
   const VectorField field = makeAnalyticField(AnalyticField::Abc, {24, 32, 40});
   const NoiseVolume noise = makeWhiteNoise(field.dims, 7);
   for (const auto& [scheme, direction] :
        {std::pair{StepScheme::Ab2, DirectionMode::Normalized},
         std::pair{StepScheme::Ab2, DirectionMode::Magnitude},
+        std::pair{StepScheme::Fused, DirectionMode::Normalized},
+        std::pair{StepScheme::Fused, DirectionMode::Magnitude},
         std::pair{StepScheme::Exact, DirectionMode::Normalized}}) {
     LicParams params;
     params.scheme = scheme;
@@ -66,6 +135,48 @@ TEST_F(GpuTest, BothRk2SchemesMatchCpuReference) {
       if (precision == FieldPrecision::Float) {
         EXPECT_LT(3.0 * d.mean, otherMean) << what;
       }
+    }
+  }
+}
+
+// Workgroup shapes and walks change how the work is spread, not the volume: every launch gives
+// the same one up to the order of the sums (one step of the 16-bit volume), also when the volume
+// is computed in slabs that a workgroup's depth overhangs.
+TEST_F(GpuTest, EveryLaunchGivesTheSameVolume) {
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {20, 12, 27});
+  const NoiseVolume noise = makeWhiteNoise(field.dims, 4);
+  for (const StepScheme scheme : {StepScheme::Exact, StepScheme::Fused}) {
+    LicParams params;
+    params.scheme = scheme;
+    params.length = 9;
+    params.sparsity.distribution = SparsityDistribution::Halton;
+    std::optional<ScalarVolume> first;
+    for (const LicLaunch& launch : {LicLaunch{8, 8, 1, true}, LicLaunch{4, 4, 4, false},
+                                    LicLaunch{16, 2, 2, true}, LicLaunch{8, 4, 2, false}}) {
+      RendererOptions options;
+      options.licLaunch = launch;
+      Result<LicRenderer> renderer = LicRenderer::create(context(), options);
+      ASSERT_TRUE(renderer.ok());
+      ASSERT_TRUE(renderer->setInputs(field, noise).ok());
+      // In one dispatch, then (with progress) in slabs of a few z slices.
+      ASSERT_TRUE(renderer->updateLic(params).ok());
+      const ScalarVolume whole = *renderer->readLicVolume();
+      int slabs = 0;
+      ASSERT_TRUE(renderer->setInputs(field, noise).ok());
+      ASSERT_TRUE(renderer->updateLic(params, [&](double) { ++slabs; }).ok());
+      EXPECT_GT(slabs, 2);
+      ScalarVolume volume = *renderer->readLicVolume();
+      EXPECT_EQ(volume.values, whole.values);
+      if (!first) {
+        first = std::move(volume);
+        continue;
+      }
+      double largest = 0.0;
+      for (std::size_t i = 0; i < volume.values.size(); ++i)
+        largest = std::max(largest, std::abs(double(volume.values[i]) - first->values[i]));
+      EXPECT_LE(largest, 1.5 / 65535.0)
+          << launch.localSizeX << "x" << launch.localSizeY << "x" << launch.localSizeZ;
+      EXPECT_EQ(volume.drawn, first->drawn);
     }
   }
 }

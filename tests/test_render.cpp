@@ -192,5 +192,30 @@ TEST_F(LicPictureTest, EightBitFrameBufferGivesNearlyTheSamePicture) {
   EXPECT_GT(meanAbsoluteDifference(wide, narrow), 0.0) << "the buffer format must have changed";
 }
 
+// 16-bit UNORM holds [0, 1] with more bits than half floats near 1: the picture of the float
+// buffer up to one grey level per pixel, and visibly closer to it than the 8-bit buffer's.
+TEST_F(LicPictureTest, UnormFrameBuffersGiveTheFloatBuffersPictureByTheirBits) {
+  LicRenderer r = renderer();
+  ViewParams view;
+  view.width = view.height = 96;
+  const RgbaImage half = *r.render(LicParams{}, view);
+  ASSERT_TRUE(r.setFramePrecision(FramePrecision::Unorm16).ok());
+  const RgbaImage unorm16 = *r.render(LicParams{}, view);
+  ASSERT_TRUE(r.setFramePrecision(FramePrecision::Unorm10).ok());
+  const RgbaImage unorm10 = *r.render(LicParams{}, view);
+  ASSERT_TRUE(r.setFramePrecision(FramePrecision::Unorm8).ok());
+  const RgbaImage unorm8 = *r.render(LicParams{}, view);
+  EXPECT_EQ(r.licDispatchCount(), 1u);
+  int largest = 0;
+  for (std::size_t i = 0; i < half.pixels.size(); ++i)
+    largest = std::max(largest, std::abs(int(half.pixels[i]) - int(unorm16.pixels[i])));
+  EXPECT_LE(largest, 1);
+  EXPECT_LT(2.0 * meanAbsoluteDifference(half, unorm16), meanAbsoluteDifference(half, unorm8));
+  // 10-bit colour lies between: closer than 8 bits, and its alpha over the opaque background
+  // reads back as 255 like the others'.
+  EXPECT_LT(meanAbsoluteDifference(half, unorm10), meanAbsoluteDifference(half, unorm8));
+  for (std::size_t i = 3; i < unorm10.pixels.size(); i += 4) ASSERT_EQ(unorm10.pixels[i], 255);
+}
+
 }  // namespace
 }  // namespace lic3d

@@ -20,8 +20,11 @@ enum class DirectionMode : std::uint32_t { Normalized = 0, Magnitude = 1 };
 // How the rk2 integrator steps (docs/LIC_SEMANTICS.md). Exact: every step of h is an RK2
 // (midpoint) step, two texture fetches per sample. Ab2: the first step is RK2, the others
 // two-step Adams-Bashforth steps of h, second order from the directions at the last two
-// samples: one fetch per sample. Euler and RK4 ignore it.
-enum class StepScheme : std::uint32_t { Exact = 0, Ab2 = 1 };
+// samples: one fetch per sample. Fused: RK2 steps of 2h whose midpoint is itself a sample, so
+// samples alternate between a midpoint (h along the last sample's direction) and an RK2 step's
+// end (2h from the sample before along the midpoint's direction): one fetch per sample, and
+// nothing else fetched. Euler and RK4 ignore it.
+enum class StepScheme : std::uint32_t { Exact = 0, Ab2 = 1, Fused = 2 };
 
 LIC3D_ENUM_NAMES(Integrator, {Integrator::Euler, "euler"}, {Integrator::Rk2, "rk2"},
                  {Integrator::Rk4, "rk4"})
@@ -29,7 +32,8 @@ LIC3D_ENUM_NAMES(Kernel, {Kernel::Box, "box"}, {Kernel::Hann, "hann"}, {Kernel::
 LIC3D_ENUM_NAMES(NoiseFilter, {NoiseFilter::Nearest, "nearest"}, {NoiseFilter::Linear, "linear"})
 LIC3D_ENUM_NAMES(DirectionMode, {DirectionMode::Normalized, "normalized"},
                  {DirectionMode::Magnitude, "magnitude"})
-LIC3D_ENUM_NAMES(StepScheme, {StepScheme::Exact, "exact"}, {StepScheme::Ab2, "ab2"})
+LIC3D_ENUM_NAMES(StepScheme, {StepScheme::Exact, "exact"}, {StepScheme::Ab2, "ab2"},
+                 {StepScheme::Fused, "fused"})
 
 // Sparsity masks (thesis 5.1.4, lic/sparsity.h): the point distribution whose black voxels hide
 // the LIC voxels whose streamlines touch them.

@@ -54,12 +54,60 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = specialization;
   info.layout = layout.get();
+  if (context.capturesPipelineStatistics())
+    info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   LIC3D_TRY(checkVk(
       vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
       "vkCreateComputePipelines"));
   context.setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
   return Pipeline(context.device(), pipeline);
+}
+
+std::vector<std::pair<std::string, std::string>> pipelineStatistics(const Context& context,
+                                                                    VkPipeline pipeline) {
+  std::vector<std::pair<std::string, std::string>> statistics;
+  if (!context.capturesPipelineStatistics() || pipeline == VK_NULL_HANDLE) return statistics;
+  auto getProperties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+      vkGetDeviceProcAddr(context.device(), "vkGetPipelineExecutablePropertiesKHR"));
+  auto getStatistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+      vkGetDeviceProcAddr(context.device(), "vkGetPipelineExecutableStatisticsKHR"));
+  if (!getProperties || !getStatistics) return statistics;
+  VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+  info.pipeline = pipeline;
+  std::uint32_t executables = 0;
+  if (getProperties(context.device(), &info, &executables, nullptr) != VK_SUCCESS)
+    return statistics;
+  for (std::uint32_t e = 0; e < executables; ++e) {
+    VkPipelineExecutableInfoKHR executable{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+    executable.pipeline = pipeline;
+    executable.executableIndex = e;
+    std::uint32_t count = 0;
+    if (getStatistics(context.device(), &executable, &count, nullptr) != VK_SUCCESS) continue;
+    std::vector<VkPipelineExecutableStatisticKHR> values(
+        count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+    if (getStatistics(context.device(), &executable, &count, values.data()) != VK_SUCCESS) continue;
+    for (const VkPipelineExecutableStatisticKHR& v : values) {
+      std::string text;
+      switch (v.format) {
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+          text = v.value.b32 ? "true" : "false";
+          break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+          text = std::to_string(v.value.i64);
+          break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+          text = std::to_string(v.value.u64);
+          break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR:
+          text = std::to_string(v.value.f64);
+          break;
+        default: continue;
+      }
+      statistics.emplace_back(v.name, text);
+    }
+  }
+  return statistics;
 }
 
 VkWriteDescriptorSet& DescriptorWrites::add(std::uint32_t binding, VkDescriptorType type) {

@@ -67,10 +67,22 @@ class PipelineCache {
     return handle;
   }
   std::size_t size() const { return pipelines_.size(); }
+  // The pipeline made for `key`, or VK_NULL_HANDLE.
+  VkPipeline find(const Key& key) const {
+    for (const auto& [known, pipeline] : pipelines_)
+      if (known == key) return pipeline.get();
+    return VK_NULL_HANDLE;
+  }
 
  private:
   std::vector<std::pair<Key, Pipeline>> pipelines_;
 };
+
+// The driver's statistics of a pipeline's compiled shaders (name and value as text, e.g.
+// registers per invocation), when the context captures them (capturesPipelineStatistics); empty
+// otherwise.
+std::vector<std::pair<std::string, std::string>> pipelineStatistics(const Context& context,
+                                                                    VkPipeline pipeline);
 
 // The descriptors of one dispatch or draw, pushed with vkCmdPushDescriptorSetKHR: sampled images
 // in SHADER_READ_ONLY_OPTIMAL, storage images in GENERAL, whole storage buffers, uniform ranges.

@@ -309,6 +309,7 @@ struct Context::State {
   bool timestamps = false;
   std::uint32_t timestampBits = 0;
   bool validation = false;
+  bool pipelineStatistics = false;
   PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
   mutable std::atomic<std::int64_t> allocatedBytes{0};
   mutable MessageLog log;
@@ -417,6 +418,17 @@ Result<Context> Context::create(const ContextOptions& options) {
 
   std::vector<const char*> extensions = options.deviceExtensions;
   extensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  if (options.pipelineStatistics &&
+      hasDeviceExtension(state->physicalDevice,
+                         VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+    extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    executableInfo.pipelineExecutableInfo = VK_TRUE;
+    executableInfo.pNext = features.pNext;
+    features.pNext = &executableInfo;
+    state->pipelineStatistics = true;
+  }
 
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
   deviceInfo.queueCreateInfoCount = 1;
@@ -467,6 +479,7 @@ std::uint64_t Context::allocatedBytes() const {
 std::atomic<std::int64_t>& Context::allocationCounter() const { return state_->allocatedBytes; }
 
 bool Context::validationEnabled() const { return state_->validation; }
+bool Context::capturesPipelineStatistics() const { return state_->pipelineStatistics; }
 std::size_t Context::validationMessageCount() const {
   std::lock_guard lock(state_->log.mutex);
   return state_->log.messages.size();

@@ -18,6 +18,9 @@ namespace lic3d {
 struct ContextOptions {
   // Khronos validation with synchronization validation. Also switched on by LIC3D_VALIDATION=1.
   bool validation = false;
+  // Pipelines keep the driver's statistics of their compiled shaders (registers, spills) where
+  // the device has VK_KHR_pipeline_executable_properties: `lic3d bench --kernels` prints them.
+  bool pipelineStatistics = false;
   // "" picks the best device (discrete, then integrated, then virtual, then CPU); a number picks
   // that index of listDevices(); anything else picks the first device whose name contains it.
   std::string device;
@@ -80,6 +83,8 @@ class Context {
 
   // Validation messages (warning or error severity) since creation or the last clear.
   bool validationEnabled() const;
+  // Whether pipelines are made with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR.
+  bool capturesPipelineStatistics() const;
   std::size_t validationMessageCount() const;
   std::vector<std::string> validationMessages() const;
   void clearValidationMessages() const;

@@ -145,13 +145,24 @@ Streamline followStreamline(const FieldSampler& sampler, Dims dims, const LicPar
   line.samples.push_back(start);
   glm::dvec3 x = start;
   const double sh = sign * static_cast<double>(params.step);
-  const bool ab2 = params.integrator == Integrator::Rk2 && params.scheme == StepScheme::Ab2;
+  const bool rk2 = params.integrator == Integrator::Rk2;
+  const bool ab2 = rk2 && params.scheme == StepScheme::Ab2;
+  const bool fused = rk2 && params.scheme == StepScheme::Fused;
   glm::dvec3 previous(0.0);  // the direction at the sample before x (AB2)
+  glm::dvec3 before = x;     // the sample before x (fused)
   for (int i = 1; i <= steps; ++i) {
     const glm::dvec3 d = stepper.directionAt(x);
     if (d == glm::dvec3(0.0)) break;  // critical point: x was the last sample
-    x = ab2 && i > 1 ? x + sh * (1.5 * d - 0.5 * previous) : stepper.advance(x, d, sh);
+    glm::dvec3 next;
+    if (ab2 && i > 1)
+      next = x + sh * (1.5 * d - 0.5 * previous);
+    else if (fused)  // odd i: the midpoint of an RK2 step of 2h; even i: that step's end
+      next = i % 2 == 1 ? x + sh * d : before + 2.0 * sh * d;
+    else
+      next = stepper.advance(x, d, sh);
     previous = d;
+    before = x;
+    x = next;
     if (!inside(x, dims)) {  // never clamp a streamline back into the grid
       line.exit = StreamlineExit{x, sh * d, steps - i};
       break;
@@ -186,6 +197,26 @@ bool exitTouchesBlack(const SparsityMask& mask, const StreamlineExit& exit) {
 double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const LicParams& params,
                   glm::ivec3 voxel) {
   return licSampleAtVoxel(sampler, noise, params, voxel).value;
+}
+
+double convergedLicAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,
+                           const LicParams& params, glm::ivec3 voxel, int refine) {
+  LicParams fine = params;
+  fine.integrator = Integrator::Rk4;
+  fine.step = params.step / static_cast<float>(refine);
+  const KernelShape shape = kernelShape(params.length, params.bias);
+  double sum = 0.0, weights = 0.0;
+  for (int sign : {-1, 1}) {
+    const int steps = sign < 0 ? params.length - params.bias : params.length + params.bias;
+    const std::vector<glm::dvec3> samples =
+        traceStreamline(sampler, noise.dims, fine, glm::dvec3(voxel), sign, steps * refine);
+    for (std::size_t k = sign < 0 ? 0 : 1; k * refine < samples.size(); ++k) {
+      const double w = kernelWeight(params.kernel, sign * static_cast<int>(k), shape);
+      sum += w * sampleNoise(noise, params.noiseFilter, samples[k * refine]);
+      weights += w;
+    }
+  }
+  return sum / weights;
 }
 
 LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,

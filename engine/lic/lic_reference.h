@@ -96,6 +96,13 @@ LicSample licSampleAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise
 double licAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise, const LicParams& params,
                   glm::ivec3 voxel);
 
+// The converged LIC value of a voxel, what the schemes' errors are measured against
+// (docs/LIC_SEMANTICS.md, "Fidelity"): the streamline integrated with RK4 at h / refine and
+// sampled every `refine` substeps, so the samples lie where a converged integrator puts them at
+// steps of h; the kernel and noise filter of `params`, no sparsity mask.
+double convergedLicAtVoxel(const FieldSampler& sampler, const NoiseVolume& noise,
+                           const LicParams& params, glm::ivec3 voxel, int refine = 8);
+
 // The whole LIC volume (with `drawn` filled when params.sparsity has a distribution); `threads`
 // = 0 uses every CPU the process may run on (availableThreads, core/parallel.h).
 Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVolume& noise,

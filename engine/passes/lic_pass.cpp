@@ -22,10 +22,28 @@ LicSpecialization licSpecialization(const LicParams& params, FieldPrecision prec
   return s;
 }
 
-Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
+LicLaunch licLaunchFor(VkPhysicalDeviceType type) {
+  // One direction after the other everywhere: walking both at once keeps two fetches in flight
+  // but costs registers; on the H100 it tied for the exact scheme and lost 4 % for the fused one
+  // (37 registers against 29), and CPU drivers run an invocation's loop as SIMD lanes, where
+  // fewer live lanes win. GPUs take cubes (4x4x4, 1 % faster for fused on the H100, whose
+  // streamlines leave a row in every direction); CPU drivers take rows of x (8x8x1), whose SIMD
+  // lanes then walk neighbouring streamlines: 4x4x4 took twice as long on lavapipe.
+  // docs/BENCHMARKS.md, "Launch shapes".
+  LicLaunch launch;
+  launch.interleave = false;
+  if (type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    launch.localSizeX = launch.localSizeY = launch.localSizeZ = 4;
+  }
+  return launch;
+}
+
+Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
+                                std::optional<LicLaunch> launch) {
   LicPass pass;
   pass.context_ = &context;
   pass.separateNoise_ = separateNoise;
+  pass.launch_ = launch.value_or(licLaunchFor(context.deviceInfo().type));
   constexpr Binding bindings[] = {
       {gpu::kLicBindingField},
       {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -46,12 +64,26 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise) {
   return pass;
 }
 
+LicSpecialization LicPass::specializationFor(const LicParams& params,
+                                             FieldPrecision precision) const {
+  LicSpecialization specialization = licSpecialization(params, precision);
+  specialization.localSizeX = launch_.localSizeX;
+  specialization.localSizeY = launch_.localSizeY;
+  specialization.localSizeZ = launch_.localSizeZ;
+  specialization.interleave = launch_.interleave ? 1u : 0u;
+  return specialization;
+}
+
+std::vector<std::pair<std::string, std::string>> LicPass::statistics(
+    const LicParams& params, FieldPrecision precision) const {
+  return pipelineStatistics(*context_, pipelines_.find(specializationFor(params, precision)));
+}
+
 Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                              const MaskBeyondGrid& beyond, const Image& output,
                              const LicParams& params, int zBegin, int zEnd, const Image* noise) {
   LIC3D_ASSERT(!separateNoise_ || noise);
-  LicSpecialization specialization = licSpecialization(params, field.precision);
-  specialization.interleave = context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 1u;
+  const LicSpecialization specialization = specializationFor(params, field.precision);
   LIC3D_TRY_ASSIGN(
       VkPipeline pipeline, pipelines_.get(specialization, [&](const LicSpecialization& key) {
         const Specialization<LicSpecialization> constants(key);
@@ -71,6 +103,7 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   const Dims dims = field.dims;
   gpu::LicPushConstants push{};
   push.dims = glm::ivec4(dims, zBegin);
+  push.zEnd = zEnd;
   push.invDims = glm::vec4(1.0f / glm::vec3(dims), 0.0f);
   setLicPushParams(push, params);
   push.maskBeyond = glm::uvec4(glm::uvec3(beyond.offset), beyond.threshold);

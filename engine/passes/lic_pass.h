@@ -6,6 +6,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -25,19 +26,32 @@ struct LicSpecialization {
   std::uint32_t kernel = 0;
   std::uint32_t noiseFilter = 1;
   std::uint32_t direction = 0;
-  std::uint32_t localSizeX = 8;  // 8x8x1 beats 4x4x4 on lavapipe and ties on discrete GPUs
+  std::uint32_t localSizeX = 8;  // LicLaunch
   std::uint32_t localSizeY = 8;
   std::uint32_t localSizeZ = 1;
   std::uint32_t sparsity = 0;
   std::uint32_t scheme = 0;
   std::uint32_t packing = 0;     // 1 for FieldPrecision::Byte
-  std::uint32_t interleave = 1;  // 0 on CPU drivers (see shaders/lic.comp)
+  std::uint32_t interleave = 1;  // LicLaunch
 
   bool operator==(const LicSpecialization&) const = default;
 };
 static_assert(sizeof(LicSpecialization) == 11 * 4);
 
 LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision);
+
+// How the LIC pass is launched, whatever the parameters: the workgroup shape and whether an
+// invocation walks the two directions of its streamline in one loop (shaders/lic.comp,
+// INTERLEAVE). Both are specialization constants chosen per device type (licLaunchFor), from
+// `lic3d bench --kernels`, which also times the others (docs/BENCHMARKS.md).
+struct LicLaunch {
+  std::uint32_t localSizeX = 8;
+  std::uint32_t localSizeY = 8;
+  std::uint32_t localSizeZ = 1;
+  bool interleave = true;
+  bool operator==(const LicLaunch&) const = default;
+};
+LicLaunch licLaunchFor(VkPhysicalDeviceType type);
 
 // The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding; the
 // second channel is 1 where the voxel is drawn and 0 where sparsity masks it.
@@ -49,7 +63,9 @@ class LicPass {
  public:
   // `context` must outlive the pass. With `separateNoise` (benchmark builds only) the pass runs
   // the naive reference kernel, which reads the noise from an R8 texture of its own.
-  static Result<LicPass> create(const Context& context, bool separateNoise = false);
+  // `launch` replaces the device type's LicLaunch (the benchmark's comparisons).
+  static Result<LicPass> create(const Context& context, bool separateNoise = false,
+                                std::optional<LicLaunch> launch = std::nullopt);
 
   // Records the dispatch for z slices [zBegin, zEnd). `field`, `mask` and `noise` must be in
   // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`
@@ -59,16 +75,25 @@ class LicPass {
                       const MaskBeyondGrid& beyond, const Image& output, const LicParams& params,
                       int zBegin, int zEnd, const Image* noise = nullptr);
 
+  // The driver's statistics of the pipeline already made for these parameters and texture with
+  // the current launch (pipelineStatistics); empty if none was made or none are captured.
+  std::vector<std::pair<std::string, std::string>> statistics(const LicParams& params,
+                                                              FieldPrecision precision) const;
+  // The launch of the next records (pipelines of every launch stay cached).
+  void setLaunch(const LicLaunch& launch) { launch_ = launch; }
   std::size_t variantCount() const { return pipelines_.size(); }
   bool separateNoise() const { return separateNoise_; }
 
  private:
+  LicSpecialization specializationFor(const LicParams& params, FieldPrecision precision) const;
+
   const Context* context_ = nullptr;
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler sampler_;
   Sampler maskSampler_;
   bool separateNoise_ = false;
+  LicLaunch launch_;
   PipelineCache<LicSpecialization> pipelines_;
 };
 

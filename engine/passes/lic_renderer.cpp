@@ -31,7 +31,8 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   renderer.precision_ = resolvePrecision(context, options.fieldPrecision);
   renderer.doubleBuffered_ = options.doubleBuffered;
   LIC3D_TRY(renderer.setFramePrecision(options.framePrecision));
-  LIC3D_TRY_ASSIGN(renderer.licPass_, LicPass::create(context, options.naiveLicKernel));
+  LIC3D_TRY_ASSIGN(renderer.licPass_,
+                   LicPass::create(context, options.naiveLicKernel, options.licLaunch));
   LIC3D_TRY_ASSIGN(renderer.histogramPass_, LicHistogramPass::create(context));
   LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context, options.runtimeModes));
   if (context.supportsTimestamps()) {
@@ -73,8 +74,11 @@ Result<void> LicRenderer::setScalars(const PointScalars* color, const PointScala
 }
 
 Result<void> LicRenderer::setFramePrecision(FramePrecision precision) {
-  const VkFormat format = precision == FramePrecision::Float16 ? VK_FORMAT_R16G16B16A16_SFLOAT
-                                                               : VK_FORMAT_R8G8B8A8_UNORM;
+  const VkFormat format = precision == FramePrecision::Float16   ? VK_FORMAT_R16G16B16A16_SFLOAT
+                          : precision == FramePrecision::Unorm16 ? VK_FORMAT_R16G16B16A16_UNORM
+                          : precision == FramePrecision::Unorm10
+                              ? VK_FORMAT_A2B10G10R10_UNORM_PACK32
+                              : VK_FORMAT_R8G8B8A8_UNORM;
   if (!supportsFormat(*context_, format, VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT))
     return unsupportedError(context_->deviceInfo().name + " cannot blend into the frame format");
   frameFormat_ = format;
@@ -452,6 +456,24 @@ Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams&
   image.pixels.resize(static_cast<std::size_t>(width) * view.height * 4);
   if (frameFormat_ == VK_FORMAT_R8G8B8A8_UNORM) {
     std::memcpy(image.pixels.data(), targetReadback_.mapped(), image.pixels.size());
+  } else if (frameFormat_ == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
+    const auto* packed = static_cast<const std::uint32_t*>(targetReadback_.mapped());
+    parallelChunks(image.pixels.size() / 4, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::uint32_t p = packed[i];
+        for (int c = 0; c < 3; ++c)  // round(v / 1023 * 255) in integers
+          image.pixels[4 * i + c] =
+              static_cast<std::uint8_t>((((p >> (10 * c)) & 1023u) * 255u + 511u) / 1023u);
+        image.pixels[4 * i + 3] = static_cast<std::uint8_t>((p >> 30) * 85u);
+      }
+    });
+  } else if (frameFormat_ == VK_FORMAT_R16G16B16A16_UNORM) {
+    const auto* shorts = static_cast<const std::uint16_t*>(targetReadback_.mapped());
+    parallelChunks(image.pixels.size(), [&](std::size_t begin, std::size_t end) {
+      // Exactly round(v / 65535 * 255): (v * 255 + 32767) / 65535 in integers.
+      for (std::size_t i = begin; i < end; ++i)
+        image.pixels[i] = static_cast<std::uint8_t>((shorts[i] * 255u + 32767u) / 65535u);
+    });
   } else {
     const auto* halves = static_cast<const std::uint16_t*>(targetReadback_.mapped());
     parallelChunks(image.pixels.size(), [&](std::size_t begin, std::size_t end) {

@@ -34,9 +34,12 @@
 
 namespace lic3d {
 
-// The offscreen colour buffer. 16-bit float (default) keeps hundreds of faint slices from
-// banding; 8-bit UNORM halves the blending bandwidth.
-enum class FramePrecision { Float16, Unorm8 };
+// The offscreen colour buffer. 16 bits per channel keep hundreds of faint slices from banding:
+// float (the default) or UNORM, which holds [0, 1] (all blended colours lie there) with 16 bits
+// everywhere; 8-bit UNORM halves the blending bandwidth; 10-bit UNORM colour (2-bit alpha, which
+// stays 1 over the opaque background) has the 8-bit buffer's pixel size with 4x finer steps.
+// Frame times: docs/BENCHMARKS.md.
+enum class FramePrecision { Float16, Unorm16, Unorm10, Unorm8 };
 
 struct RendererOptions {
   FieldPrecision fieldPrecision = FieldPrecision::Auto;
@@ -46,6 +49,8 @@ struct RendererOptions {
   // Benchmark builds only: the LIC pass is the naive reference kernel (noise in an R8 texture of
   // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
   bool naiveLicKernel = false;
+  // Replaces the device type's workgroup shape and walk of the LIC pass (licLaunchFor).
+  std::optional<LicLaunch> licLaunch;
 };
 
 // What one recordLicWork() call did.
@@ -98,6 +103,13 @@ class LicRenderer {
   Result<RgbaImage> render(const LicParams& params, const ViewParams& view);
 
   Result<ScalarVolume> readLicVolume() const;
+  // The LIC pass' workgroup shape and walk from now on (the benchmark's comparisons).
+  void setLicLaunch(const LicLaunch& launch) { licPass_.setLaunch(launch); }
+  // The driver's statistics of the LIC pipeline last used for `params` (LicPass::statistics).
+  std::vector<std::pair<std::string, std::string>> licPipelineStatistics(
+      const LicParams& params) const {
+    return licPass_.statistics(params, field_.precision);
+  }
 
   // Benchmark helpers: GPU milliseconds from timestamp queries around one LIC dispatch over the
   // whole volume (always dispatched), and around one frame's draw (no read-back).

@@ -27,9 +27,10 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   // which give their defaults; Lic3dFilter.xml repeats those for ParaView's panel, and a test
   // (tests/test_paraview_xml.cpp) holds the two together. `lic3d render --help` describes each.
   // Enumerations are their lic3d names' positions: integrator 0 euler, 1 rk2, 2 rk4; scheme
-  // 0 exact, 1 ab2; kernel 0 box, 1 hann, 2 gauss; noise filter 0 nearest, 1 linear; direction
-  // 0 normalized, 1 magnitude; sparsity 0 none, 1 checkerboard, 2 poisson, 3 poisson-approx,
-  // 4 jitter, 5 halton, 6 hammersley; field precision 0 auto, 1 half, 2 float, 3 byte.
+  // 0 exact, 1 ab2, 2 fused; kernel 0 box, 1 hann, 2 gauss; noise filter 0 nearest, 1 linear;
+  // direction 0 normalized, 1 magnitude; sparsity 0 none, 1 checkerboard, 2 poisson, 3
+  // poisson-approx, 4 jitter, 5 halton, 6 hammersley; field precision 0 auto, 1 half, 2 float, 3
+  // byte.
   void SetLength(int value);
   int GetLength() const;
   void SetStep(double value);
