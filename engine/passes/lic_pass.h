@@ -81,6 +81,8 @@ class LicPass {
                                                               FieldPrecision precision) const;
   // The launch of the next records (pipelines of every launch stay cached).
   void setLaunch(const LicLaunch& launch) { launch_ = launch; }
+  // z slices one workgroup spans: slabs of a multiple of it keep every invocation busy.
+  int launchDepth() const { return static_cast<int>(launch_.localSizeZ); }
   std::size_t variantCount() const { return pipelines_.size(); }
   bool separateNoise() const { return separateNoise_; }
 

@@ -280,7 +280,10 @@ Result<LicWork> LicRenderer::recordLicWork(VkCommandBuffer cmd, int maxSlices, s
   const Dims dims = field_.dims;
   Image& back = backVolume();
   const int zBegin = job_->nextZ;
-  const int zEnd = std::min(dims.z, zBegin + std::max(1, maxSlices));
+  // Whole workgroups: a slab thinner than a workgroup is deep would leave invocations idle.
+  const int depth = licPass_.launchDepth();
+  const int slices = (std::max(1, maxSlices) + depth - 1) / depth * depth;
+  const int zEnd = std::min(dims.z, zBegin + slices);
   if (zBegin == 0) {
     // The old contents are discarded; earlier frames and histograms must be done reading.
     if (!doubleBuffered_) shownParams_.reset();

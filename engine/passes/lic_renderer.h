@@ -122,7 +122,8 @@ class LicRenderer {
   // already has them; otherwise the pending job is dropped and a new one starts. A new sparsity
   // mask is made on a worker thread.
   Result<void> requestLic(const LicParams& params);
-  // Records up to `maxSlices` z slices of the pending job. When it records the last one, the
+  // Records `maxSlices` z slices of the pending job, rounded up to whole workgroups of the LIC
+  // pass (LicPass::launchDepth; the grid's end may cut the last). When it records the last one, the
   // volume's histogram goes to `slot` (< LicHistogramPass::kSlots): call collectStatistics(slot)
   // once `cmd` has completed. Until then no further work is recorded.
   Result<LicWork> recordLicWork(VkCommandBuffer cmd, int maxSlices, std::uint32_t slot);
