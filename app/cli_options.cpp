@@ -12,6 +12,7 @@
 #include "core/enum_names.h"
 #include "core/parameter_ranges.h"
 #include "core/stage_times.h"
+#include "core/text.h"
 #include "io/session_file.h"
 #include "lic/analytic_fields.h"
 
@@ -236,7 +237,8 @@ std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const 
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: error: %s\n%s\n", program, e.what(), hint);
+    // CLI11 echoes the argument it refused, which may be megabytes long.
+    std::fprintf(stderr, "%s: error: %s\n%s\n", program, cutMessage(e.what()).c_str(), hint);
     return kExitBadInput;
   }
   return std::nullopt;

@@ -173,6 +173,14 @@ TEST_F(CliTest, BenchRunsAndWritesJson) {
 
 // `bench --kernels` times every scheme with the texture it names, the masked pass and the launch
 // shapes; `bench --fidelity` gives each scheme's error against the converged LIC.
+// A parser's message never echoes a huge argument whole.
+TEST_F(CliTest, ErrorsAboutHugeArgumentsAreCut) {
+  const CommandRun r = run("render --grid 8 --no-such-flag=" + std::string(100000, 'x'));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find(" characters)"), std::string::npos) << r.output.substr(0, 400);
+  EXPECT_LT(r.output.size(), 600u);
+}
+
 TEST_F(CliTest, BenchKernelsAndFidelityReportEverySchemeUnderItsOwnLabels) {
   const CommandRun kernels = run(
       "bench --kernels --sizes 8 --lengths 3 --repeats 5 --warmup 1 --budget 120 --json k.json");

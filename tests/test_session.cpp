@@ -130,6 +130,7 @@ TEST(Session, NumbersThatDoNotFitAndDuplicateKeysAreRefused) {
                         Case{R"({"field": {"grid": [4294967304, 8, 8]}})", "field.grid"},
                         Case{R"({"lic": {"length": 4294967297}})", "lic.length"},
                         Case{R"({"lic": {"length": 4.7}})", "lic.length"},
+                        Case{R"({"lic": {"length": 1e30}})", "got '1e+30'"},
                         Case{R"({"view": {"slices": 4294967296}})", "view.slices"},
                         Case{R"({"lic3d_session": 1.9})", "lic3d_session"},
                         Case{R"({"noise": {"seed": -1}})", "noise.seed"},
@@ -148,6 +149,11 @@ TEST(Session, NumbersThatDoNotFitAndDuplicateKeysAreRefused) {
   ASSERT_TRUE(s) << s.error().message;
   EXPECT_EQ(s->lic.length, 20);
   EXPECT_EQ(s->noise.seed, std::uint64_t{18446744073709551615u});
+  // A huge value is quoted in the message, cut short.
+  const std::string huge = R"({"lic": {"length": ")" + std::string(900000, 'y') + R"("}})";
+  Result<Session> cut = sessionFromJson(huge, "huge.json");
+  ASSERT_FALSE(cut);
+  EXPECT_LT(cut.error().message.size(), 300u) << cut.error().message.substr(0, 400);
   // Deep nesting is refused before it can exhaust the stack.
   const std::string deep = std::string(10000, '[') + std::string(10000, ']');
   EXPECT_FALSE(sessionFromJson(deep, "deep.json"));

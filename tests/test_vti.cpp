@@ -216,7 +216,8 @@ TEST_F(VtiTest, NonFiniteVectorsBecomeZeroAndAllZeroIsAnError) {
   image.arrays[0].values[0] = std::numeric_limits<double>::quiet_NaN();
   const fs::path file = writeBytes("zero.vti", makeVti(image, Encoding{}));
   expectInputError(readVectorFieldVti(file), file,
-                   "every vector of the field is zero (1 of the 12 were NaN or infinite)");
+                   "every vector of the field is zero (1 of the 12 were NaN, infinite or beyond a "
+                   "float's range of 3.4e38)");
 }
 
 // --- Malformed files ----------------------------------------------------------------------------

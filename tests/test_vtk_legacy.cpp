@@ -385,7 +385,8 @@ TEST_F(VtkLegacyTest, MalformedFilesAreInputErrorsNamingFileAndProblem) {
       {"zero vectors", points("VECTORS v float\n0 0 0 0 -0 0\n"),
        "every vector of the field is zero"},
       {"zero and nan vectors", points("VECTORS v double\n0 0 0 4 1e300 6\n"),
-       "every vector of the field is zero (1 of the 2 were NaN or infinite)"},
+       "every vector of the field is zero (1 of the 2 were NaN, infinite or beyond a float's range "
+       "of 3.4e38)"},
       {"long line", "# vtk DataFile Version 3.0\n" + std::string(5000, 't') + "\n",
        "longer than 4096"},
       {"long value", points("VECTORS v float\n" + std::string(300, '1') + " 2 3 4 5 6\n"),

@@ -13,6 +13,7 @@
 #include "core/parameter_ranges.h"
 #include "core/resolution.h"
 #include "core/strict_json.h"
+#include "core/text.h"
 
 namespace lic3d {
 namespace {
@@ -281,7 +282,8 @@ class Reader {
       }
     } else {
       std::string expected;
-      if (!numberAs(*j, value, expected)) return fail(join(key), expected);
+      if (!numberAs(*j, value, expected))
+        return fail(join(key), expected + ", got " + quoteForMessage(j->dump()));
     }
   }
   void numbers(const char* key, std::vector<double>& values, std::size_t stride) {

@@ -203,24 +203,6 @@ Error fileError(const std::filesystem::path& path, std::string_view problem) {
   return inputError(std::move(message));
 }
 
-std::string quoteForMessage(std::string_view text) {
-  constexpr std::size_t kMaxShown = 60;
-  std::string quoted = "'";
-  for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      quoted += static_cast<char>(c);
-    } else {
-      constexpr char kHex[] = "0123456789abcdef";
-      quoted += "\\x";
-      quoted += kHex[c >> 4];
-      quoted += kHex[c & 15];
-    }
-  }
-  quoted += text.size() > kMaxShown ? "'..." : "'";
-  return quoted;
-}
-
 bool parseUnsigned(std::string_view text, std::uint64_t& value) {
   const char* end = text.data() + text.size();
   const auto [stop, error] = std::from_chars(text.data(), end, value);

@@ -27,10 +27,6 @@ inline constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
 // An InvalidInput error about a file, worded "<path>: <problem>".
 Error fileError(const std::filesystem::path& path, std::string_view problem);
 
-// Untrusted text made safe for an error message: quoted, control and non-ASCII bytes escaped,
-// long text cut.
-std::string quoteForMessage(std::string_view text);
-
 // Whole-string numbers in the C locale; false for anything else (empty, trailing characters,
 // out of range). Doubles accept a leading '+', "nan" and "inf".
 bool parseUnsigned(std::string_view text, std::uint64_t& value);

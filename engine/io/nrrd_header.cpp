@@ -414,8 +414,10 @@ class HeaderInterpreter {
                                               (spaceAxes == 2 ? "(1,0)" : "(1,0,0)") + ", found " +
                                               quoteForMessage(items[axis]));
         // lic3d grids are axis aligned: an oblique or rotated frame keeps only each axis' length.
-        const double length = std::sqrt(glm::dot(*direction, *direction));
-        if (!(length > 0.0) || !std::isfinite(length))
+        // hypot: a vector of 1e200 has a length of 1e200, not the infinity of its square's root
+        // (checkGridGeometry then refuses the spacing by its range).
+        const double length = std::hypot(direction->x, direction->y, direction->z);
+        if (!(length > 0.0))
           return fail("space directions", "axis " + std::to_string(axis) + " has zero length");
         layout.geometry.spacing[static_cast<glm::length_t>(axis - first)] = length;
       }

@@ -48,7 +48,8 @@ Result<void> finishVectorField(const std::filesystem::path& path, VectorField& f
     std::string problem = "every vector of the field is zero";
     if (nonFinite > 0)
       problem += " (" + std::to_string(nonFinite) + " of the " +
-                 std::to_string(field.vectors.size()) + " were NaN or infinite)";
+                 std::to_string(field.vectors.size()) +
+                 " were NaN, infinite or beyond a float's range of 3.4e38)";
     return fileError(path, problem + ": there is no flow to show");
   }
   return {};
