@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "core/session.h"
@@ -165,6 +166,16 @@ TEST_F(SessionTest, FileRoundTripLeavesNoTemporary) {
   Result<Session> back = readSession(path("s.json"));
   ASSERT_TRUE(back) << back.error().message;
   EXPECT_EQ(*back, original);
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"s.json"});
+
+  // A session that would not read back is not written (the app once saved a NaN as null).
+  Session bad = original;
+  bad.view.camera.azimuth = std::numeric_limits<float>::quiet_NaN();
+  Result<void> refused = writeSession(path("bad.json"), bad);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("not saved"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("azimuth"), std::string::npos) << refused.error().message;
   EXPECT_EQ(listFolder(), std::vector<std::string>{"s.json"});
 
   Result<Session> missing = readSession(path("none.json"));

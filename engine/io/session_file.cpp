@@ -12,7 +12,15 @@ Result<Session> readSession(const std::filesystem::path& path) {
 }
 
 Result<void> writeSession(const std::filesystem::path& path, const Session& session) {
-  return writeFileAtomically(path, sessionToJson(session));
+  const std::string text = sessionToJson(session);
+  // Only what reads back is written: a value the reader refuses (a NaN, which JSON writes as
+  // null; a number out of its range) fails here, naming it, rather than in the next run.
+  if (Result<Session> back = sessionFromJson(text, path.string()); !back) {
+    Error error = back.error();
+    error.message = "not saved: " + error.message;
+    return error;
+  }
+  return writeFileAtomically(path, text);
 }
 
 Result<TransferFunction> readTransferFunction(const std::filesystem::path& path) {
