@@ -1,9 +1,12 @@
 #include "cli_options.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -367,6 +370,21 @@ Result<void> checkOutputPath(const std::string& path, const char* extension) {
   if (!std::filesystem::is_directory(folder, ec))
     return inputError("output " + path + ": folder " + folder.string() + " does not exist");
   if (std::filesystem::is_directory(p, ec)) return inputError("output " + path + " is a folder");
+  // Writable before any work: a file is made and removed in the folder, which is what the final
+  // write will need (permissions, read-only or pseudo file systems, quotas on inodes). A run
+  // that cannot write one output then writes none.
+  const std::filesystem::path probe =
+      folder / (".lic3d-write-check-" + std::to_string(static_cast<long>(::getpid())));
+  const int fd = ::open(probe.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    const int error = errno;
+    if (error != EEXIST)
+      return inputError("output " + path + ": cannot write in folder " + folder.string() + ": " +
+                        std::strerror(error));
+  } else {
+    ::close(fd);
+    ::unlink(probe.c_str());
+  }
   return {};
 }
 

@@ -291,6 +291,18 @@ TEST_F(CliTest, ComputeWritesTheLicVolumeOnTheFieldGrid) {
   EXPECT_EQ(cpuDiff, 0.0) << "--cpu writes the reference itself";
 }
 
+// Every output's folder is written to before any work: one that cannot be written (here a
+// pseudo file system, which refuses even root) stops the run before the PNG is written, and the
+// check leaves nothing behind when it passes.
+TEST_F(CliTest, AnOutputThatCannotBeWrittenStopsTheRunBeforeAnyOutput) {
+  const CommandRun r = run("render --grid 8 --rgba-volume /proc/self/v.vti -o out.png");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot write in folder /proc/self"), std::string::npos) << r.output;
+  EXPECT_EQ(listFolder().size(), 0u);
+  ASSERT_EQ(run("render --grid 8 -q -o out.png").status, 0);
+  EXPECT_EQ(listFolder(), std::vector<std::string>{"out.png"});
+}
+
 TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
   const char* cases[] = {
       "",       // no subcommand
