@@ -26,9 +26,10 @@ layout(constant_id = kLicConstScheme) const uint SCHEME = 0;
 // e |e| = u / max|u| (square-root magnitude, so slow flow keeps its direction in 8 bits) and
 // w = (255 noise - 128) / 127 (engine/volume_textures.h).
 layout(constant_id = kLicConstPacking) const uint PACKING = 0;
-// How the two directions are walked (the same samples either way): in one loop on GPUs, whose
-// invocations then wait on two independent fetches at a time; one after the other on CPU
-// drivers, whose SIMD loops run fastest with the fewest live lanes.
+// How the two directions are walked (the same samples either way): 1 in one loop, so an
+// invocation waits on two independent fetches at a time; 0 one after the other, which needs
+// fewer registers. LicLaunch picks it per device type (0 everywhere, by measurement:
+// docs/BENCHMARKS.md, "Launch shapes").
 layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = 1;
 
 // The field u in voxel units and the noise (engine/volume_textures.h): integrating u in voxel
@@ -112,9 +113,8 @@ bool outsideGrid(vec3 x) {
   return any(lessThan(x, vec3(0.0))) || any(greaterThan(x, vec3(pc.dims.xyz - 1)));
 }
 
-// One direction of a streamline, advanced one sample at a time so that main() can interleave
-// the two directions: their fetches are independent, so each invocation keeps two in flight
-// instead of waiting on one chain of dependent fetches.
+// One direction of a streamline, advanced a sample (fused: two) at a time, so that main() can
+// walk the two directions one after the other or interleaved (INTERLEAVE).
 struct Walker {
   vec3 x;       // the last sample (fused: the last even one); after an exit, the point outside
   vec3 d;       // the direction there (non-zero while alive)
