@@ -13,6 +13,7 @@
 #include "bench.h"
 #include "commands.h"
 #include "core/parallel.h"
+#include "core/volume_compare.h"
 #include "io/field_io.h"
 #include "lic/analytic_fields.h"
 #include "lic/lic_reference.h"
@@ -31,22 +32,9 @@ struct Error {
 };
 
 Error errorOf(const std::vector<double>& values, const std::vector<double>& converged) {
-  const std::size_t n = values.size();
-  double sum = 0.0, ma = 0.0, mb = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sum += std::abs(values[i] - converged[i]);
-    ma += values[i];
-    mb += converged[i];
-  }
-  ma /= static_cast<double>(n);
-  mb /= static_cast<double>(n);
-  double ab = 0.0, aa = 0.0, bb = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    ab += (values[i] - ma) * (converged[i] - mb);
-    aa += (values[i] - ma) * (values[i] - ma);
-    bb += (converged[i] - mb) * (converged[i] - mb);
-  }
-  return {sum / static_cast<double>(n), aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : 0.0};
+  double sum = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) sum += std::abs(values[i] - converged[i]);
+  return {sum / static_cast<double>(values.size()), correlation(values, converged)};
 }
 
 // A fixed random choice of voxels (the same for every scheme).

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <span>
 
 #include "core/volume.h"
 
@@ -13,5 +14,7 @@ namespace lic3d {
 // them when it is empty). 1 when either volume is constant there.
 double correlation(const ScalarVolume& a, const ScalarVolume& b,
                    const std::function<bool(std::size_t)>& keep = {});
+// The same for two series of values of equal length (a sample of voxels).
+double correlation(std::span<const double> a, std::span<const double> b);
 
 }  // namespace lic3d
