@@ -90,6 +90,27 @@ TEST_F(NrrdTest, ReadsGzipNoiseAndIgnoresBytesAfterTheStream) {
   EXPECT_EQ(read->bytes, values);
 }
 
+// A small gzip file whose header promises a large grid costs memory only for the data that
+// inflates (hardening, class 3): 800 KB of deflate that ends after 800 KB may claim 768 MB by
+// the deflate ratio; the reader zero-filled all of it before inflating and peaked at ~770 MiB.
+TEST_F(NrrdTest, GzipPromisingMoreThanItHoldsCostsOnlyWhatInflates) {
+  std::mt19937 random(7);
+  std::string incompressible(800'000, '\0');
+  for (char& c : incompressible) c = static_cast<char>(random());
+  const fs::path file =
+      writeBytes("bomb.nrrd",
+                 "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 400 400 400\nendian: little\n"
+                 "encoding: gzip\n\n" +
+                     gzipCompress(incompressible));
+  const double grewMiB = test::peakMemoryGrowthMiB([&] {
+    const Result<VectorField> field = readVectorField(file);
+    if (field.ok() || field.error().message.find("gzip data holds only") == std::string::npos)
+      ::_exit(1);
+  });
+  ASSERT_GE(grewMiB, 0.0) << "the read succeeded or failed for another reason";
+  EXPECT_LT(grewMiB, 100.0);
+}
+
 TEST_F(NrrdTest, GzipThatDoesNotMatchTheHeaderIsAnError) {
   const std::string payload = bytesOf(std::vector<float>(12, 0.5f), std::endian::little);
   const std::string compressed = gzipCompress(payload);

@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +22,30 @@ fs::path dataFolder() {
 std::string readWhole(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+double peakMemoryGrowthMiB(const std::function<void()>& body) {
+  // The child reports its resident set at the start through a pipe; wait4 gives its peak.
+  int fds[2];
+  if (::pipe(fds) != 0) return -1.0;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages >> pages;
+    const long startKiB = pages * (::sysconf(_SC_PAGESIZE) / 1024);
+    (void)!::write(fds[1], &startKiB, sizeof startKiB);
+    body();
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  long startKiB = 0;
+  const bool reported = ::read(fds[0], &startKiB, sizeof startKiB) == sizeof startKiB;
+  ::close(fds[0]);
+  int status = 0;
+  struct rusage usage {};
+  ::wait4(child, &status, 0, &usage);
+  if (!reported || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
+  return static_cast<double>(usage.ru_maxrss - startKiB) / 1024.0;
 }
 
 void TempFolderTest::SetUp() {

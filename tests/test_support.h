@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,10 @@ namespace lic3d::test {
 std::filesystem::path dataFolder();
 
 std::string readWhole(const std::filesystem::path& file);
+
+// Runs `body` in a forked child and returns by how much the child's peak resident set grew over
+// what it had when it started, in MiB: what one call costs in memory, apart from the test process.
+double peakMemoryGrowthMiB(const std::function<void()>& body);
 
 // Each test gets its own folder, removed afterwards, so a failure leaves nothing that could
 // confuse another test.

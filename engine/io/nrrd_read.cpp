@@ -252,9 +252,11 @@ Result<ScalarVolume> readScalars(const std::filesystem::path& path, const Expect
   ScalarVolume volume;
   volume.dims = layout.dims;
   volume.geometry = layout.geometry;
-  resizeLarge(volume.values, static_cast<std::size_t>(layout.voxels));
+  const auto voxels = static_cast<std::size_t>(layout.voxels);
+  LIC3D_TRY(reserveDecoded(volume.values, voxels, path));
   std::size_t next = 0;
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    growDecoded(volume.values, next + bytes / valueBytes(layout.type));
     forEachValue(layout.type, data, bytes,
                  [&](double value) { volume.values[next++] = vectorComponent(value); });
   }));
@@ -277,7 +279,8 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
   VectorField field;
   field.dims = layout.dims;
   field.geometry = layout.geometry;
-  resizeLarge(field.vectors, static_cast<std::size_t>(layout.voxels));
+  const auto voxels = static_cast<std::size_t>(layout.voxels);
+  LIC3D_TRY(reserveDecoded(field.vectors, voxels, path));
 
   // 3 components per voxel, or 2 on a 2D grid (z stays 0).
   const glm::length_t components = static_cast<glm::length_t>(layout.components);
@@ -291,6 +294,8 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
     }
   };
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    const std::size_t valuesEnd = voxel * components + component + bytes / valueBytes(layout.type);
+    growDecoded(field.vectors, (valuesEnd + components - 1) / components);
     forEachValue(layout.type, data, bytes, store);
   }));
   if (info) {
@@ -337,9 +342,11 @@ Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path) {
   RgbaVolume volume;
   volume.dims = layout.dims;
   volume.geometry = layout.geometry;
-  volume.rgba.resize(static_cast<std::size_t>(layout.payloadBytes()));
+  const auto payload = static_cast<std::size_t>(layout.payloadBytes());
+  LIC3D_TRY(reserveDecoded(volume.rgba, payload, path));
   std::size_t offset = 0;
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    growDecoded(volume.rgba, offset + bytes);
     std::memcpy(volume.rgba.data() + offset, data, bytes);
     offset += bytes;
   }));
@@ -360,9 +367,11 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
   noise.type = layout.type == ValueType::UInt8    ? NoiseType::UInt8
                : layout.type == ValueType::UInt16 ? NoiseType::UInt16
                                                   : NoiseType::Float32;
-  noise.bytes.resize(static_cast<std::size_t>(layout.payloadBytes()));
+  const auto payload = static_cast<std::size_t>(layout.payloadBytes());
+  LIC3D_TRY(reserveDecoded(noise.bytes, payload, path));
   std::size_t offset = 0;
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
+    growDecoded(noise.bytes, offset + bytes);
     std::memcpy(noise.bytes.data() + offset, data, bytes);
     offset += bytes;
   }));

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "io/file_util.h"
 
@@ -97,6 +98,15 @@ bool InflateStream::init() {
   // 15 + 32: the largest window, with the zlib or gzip header detected automatically.
   initialized_ = inflateInit2(&stream_, 15 + 32) == Z_OK;
   return initialized_;
+}
+
+Result<void> checkHostCanHold(const std::filesystem::path& path, std::uint64_t bytes) {
+  const std::uint64_t available = hostAvailableBytes();
+  if (bytes <= available) return {};
+  constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
+  return resourceLimitError(
+      path.string() + ": its data needs " + std::to_string((bytes + kMiB - 1) / kMiB) +
+      " MiB of host memory; the host has " + std::to_string(available / kMiB) + " MiB available");
 }
 
 Result<void> inflateExactly(const std::filesystem::path& path, std::string_view what,

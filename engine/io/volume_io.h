@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/volume.h"
 
 namespace lic3d {
@@ -109,6 +110,30 @@ class InflateStream {
 // `path` and `what`) when the stream is corrupt, shorter, longer or not ended.
 Result<void> inflateExactly(const std::filesystem::path& path, std::string_view what,
                             std::string_view compressed, std::span<char> output);
+
+// ResourceLimit error naming `path` when `bytes` exceed the memory the host has available.
+Result<void> checkHostCanHold(const std::filesystem::path& path, std::uint64_t bytes);
+
+// Storage for items decoded from a file, taken as decoded data arrives. Compressed data proves
+// its size only as it inflates, so a reader reserves what the header promises and grows into it
+// chunk by chunk: a file that promises more than it holds costs what it held, not what it
+// promised.
+//
+// Reserves address space for `total` items of `v` (no memory until written) once the host can
+// hold them, else a ResourceLimit error naming `path`; nothing when already reserved.
+template <class Vector>
+Result<void> reserveDecoded(Vector& v, std::size_t total, const std::filesystem::path& path) {
+  if (v.capacity() >= total) return {};
+  LIC3D_TRY(checkHostCanHold(path, std::uint64_t{total} * sizeof(*v.data())));
+  v.reserve(total);
+  adviseHugePages(v.data(), v.capacity() * sizeof(*v.data()));
+  return {};
+}
+// Makes `v` hold `count` items (at most what reserveDecoded reserved) before they are written.
+template <class Vector>
+void growDecoded(Vector& v, std::size_t count) {
+  if (count > v.size()) v.resize(std::min(count, v.capacity()));
+}
 
 // The checks every writer makes before creating a file: a non-empty grid, `valueCount` values
 // (`valuesPerVoxel` per voxel) and, when given, a positive finite spacing and a finite origin.

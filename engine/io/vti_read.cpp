@@ -210,7 +210,8 @@ class ByteSource {
 };
 
 // Receives an array's values in chunks: `count` values from value number `first` on. Called
-// from several threads at once for disjoint ranges (sinks write into storage sized by allocate).
+// from several threads at once for disjoint ranges (sinks write into storage sized by the reader's
+// grow call).
 using ValueSink = std::function<void(std::uint64_t first, const double* values, std::size_t count)>;
 
 // Converts `count` whole values of `type` in byte order `order` at `data` into `out`.
@@ -308,14 +309,30 @@ class ValueDecoder {
   std::uint64_t next_ = 0;  // the number of the first value in values_
 };
 
-// Reads one array of `tuples` tuples into `sink`, calling `allocate` once its size has been
-// checked against the data present and before any value is delivered.
+// Makes the sink's storage hold the values below the given index (growDecoded).
+using GrowSink = std::function<Result<void>(std::uint64_t valuesEnd)>;
+
+// Grows `v` (reserveDecoded, growDecoded) to the items that hold values below an index,
+// `valuesPerItem` values an item.
+template <class Vector>
+GrowSink growInto(Vector& v, std::size_t total, std::uint64_t valuesPerItem,
+                  const std::filesystem::path& path) {
+  return [&v, total, valuesPerItem, &path](std::uint64_t valuesEnd) -> Result<void> {
+    LIC3D_TRY(reserveDecoded(v, total, path));
+    growDecoded(v, static_cast<std::size_t>((valuesEnd + valuesPerItem - 1) / valuesPerItem));
+    return {};
+  };
+}
+
+// Reads one array of `tuples` tuples into `sink`. Before values are delivered, `grow` gets the
+// index they end below: for uncompressed data once its size has been checked against the bytes
+// present, for zlib blocks batch by batch, once each batch has inflated.
 class ArrayReader {
  public:
   ArrayReader(const VtiFile& file, const ArrayRef& array, std::uint64_t tuples)
       : file_(file), array_(array), what_(describe(array)), tuples_(tuples) {}
 
-  Result<void> read(const std::function<void()>& allocate, const ValueSink& sink) {
+  Result<void> read(const GrowSink& grow, const ValueSink& sink) {
     if (!array_.type)
       return fail("type " + quoteForMessage(array_.node.attribute("type").value()) +
                   " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
@@ -329,10 +346,10 @@ class ArrayReader {
                     " of the grid");
     }
     const std::string format = array_.node.attribute("format").value();
-    if (format == "ascii") return readAscii(allocate, sink);
+    if (format == "ascii") return readAscii(grow, sink);
     if (format == "binary") {
       ByteSource source = ByteSource::base64(array_.node.child_value());
-      return readBinary(source, allocate, sink);
+      return readBinary(source, grow, sink);
     }
     if (format == "appended") {
       if (!file_.hasAppended) return fail("format is appended, but the file has no AppendedData");
@@ -349,11 +366,11 @@ class ArrayReader {
         if (reader.skip(file_.appendedAt + offset) != file_.appendedAt + offset)
           return fail("the AppendedData ends before offset " + std::to_string(offset));
         ByteSource source = ByteSource::file(std::move(reader), file_.appendedSize - offset);
-        return readBinary(source, allocate, sink);
+        return readBinary(source, grow, sink);
       }
       const std::string_view data = file_.appended.substr(static_cast<std::size_t>(offset));
       ByteSource source = file_.appendedBase64 ? ByteSource::base64(data) : ByteSource::raw(data);
-      return readBinary(source, allocate, sink);
+      return readBinary(source, grow, sink);
     }
     return fail("format: expected ascii, binary or appended, found " + quoteForMessage(format));
   }
@@ -366,13 +383,13 @@ class ArrayReader {
            std::string(array_.type->name);
   }
 
-  Result<void> readAscii(const std::function<void()>& allocate, const ValueSink& sink) {
+  Result<void> readAscii(const GrowSink& grow, const ValueSink& sink) {
     const std::string_view text = array_.node.child_value();
     // Each number takes at least one character and a separator.
     if (values_ > text.size() / 2 + 1)
       return fail("expected " + std::to_string(values_) + " numbers (" + layoutText() +
                   "), the text holds at most " + std::to_string(text.size() / 2 + 1));
-    allocate();
+    LIC3D_TRY(grow(values_));
     const bool isFloat = array_.type->type == NumberType::Float32;
     std::vector<double> chunk;
     chunk.reserve(std::min<std::uint64_t>(values_, kChunkValues));
@@ -435,21 +452,18 @@ class ArrayReader {
                 std::to_string(source.maxRemaining()) + " present");
   }
 
-  Result<void> readBinary(ByteSource& source, const std::function<void()>& allocate,
-                          const ValueSink& sink) {
-    return file_.zlib ? readCompressed(source, allocate, sink)
-                      : readUncompressed(source, allocate, sink);
+  Result<void> readBinary(ByteSource& source, const GrowSink& grow, const ValueSink& sink) {
+    return file_.zlib ? readCompressed(source, grow, sink) : readUncompressed(source, grow, sink);
   }
 
   // [byte count][bytes]
-  Result<void> readUncompressed(ByteSource& source, const std::function<void()>& allocate,
-                                const ValueSink& sink) {
+  Result<void> readUncompressed(ByteSource& source, const GrowSink& grow, const ValueSink& sink) {
     LIC3D_TRY_ASSIGN(const std::uint64_t size, readHeaderNumber(source, "the byte count"));
     if (size != bytes_)
       return fail("the data block holds " + std::to_string(size) + " bytes, expected " +
                   std::to_string(bytes_) + " (" + layoutText() + ")");
     if (size > source.maxRemaining()) return truncated(source, size);
-    allocate();
+    LIC3D_TRY(grow(values_));
     if (const std::optional<std::string_view> bytes =
             source.take(static_cast<std::size_t>(bytes_))) {
       decodeInParallel(*array_.type, file_.order,
@@ -474,8 +488,7 @@ class ArrayReader {
   // vtkZLibDataCompressor: [block count][block size][last block size][compressed size per block]
   // and the blocks, each a zlib stream of `block size` bytes (the last one `last block size`,
   // 0 meaning a full block).
-  Result<void> readCompressed(ByteSource& source, const std::function<void()>& allocate,
-                              const ValueSink& sink) {
+  Result<void> readCompressed(ByteSource& source, const GrowSink& grow, const ValueSink& sink) {
     LIC3D_TRY_ASSIGN(const std::uint64_t blocks, readHeaderNumber(source, "the block count"));
     LIC3D_TRY_ASSIGN(const std::uint64_t blockSize, readHeaderNumber(source, "the block size"));
     LIC3D_TRY_ASSIGN(const std::uint64_t lastSize, readHeaderNumber(source, "the last block size"));
@@ -509,7 +522,6 @@ class ArrayReader {
         return fail("block " + std::to_string(i) + ": " + std::to_string(compressedSizes[i]) +
                     " compressed bytes cannot inflate to " + std::to_string(inflated));
     }
-    allocate();
     ValueDecoder decoder(*array_.type, file_.order, sink);
     // The blocks are independent zlib streams: a batch of them is read, inflated on the
     // available threads, and decoded in order. A batch holds at most kInflateBatchBytes
@@ -541,6 +553,9 @@ class ArrayReader {
             std::span<char>(inflated.data() + b * block, inflatedSize(i)));
       });
       for (std::size_t b = 0; b < count; ++b) LIC3D_TRY(std::move(results[b]));
+      // Memory for the values this batch completes, now that they exist.
+      const std::uint64_t bytesEnd = std::min<std::uint64_t>((first + count) * blockSize, bytes_);
+      LIC3D_TRY(grow((bytesEnd + array_.type->bytes - 1) / array_.type->bytes));
       const auto* data = reinterpret_cast<const unsigned char*>(inflated.data());
       if (block % array_.type->bytes == 0) {
         // Every block holds whole values: the batch is one run of values, decoded in parallel.
@@ -580,7 +595,7 @@ Result<std::size_t> applyValidPointMask(const VtiFile& file, const std::vector<A
   if (mask == arrays.end()) return std::size_t{0};
   std::vector<std::uint8_t> valid;
   LIC3D_TRY(ArrayReader(file, *mask, voxelCount(file.dims))
-                .read([&] { valid.resize(voxelCount(file.dims)); },
+                .read(growInto(valid, voxelCount(file.dims), 1, file.path),
                       [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
                           valid[first + i] = values[i] != 0.0 ? 1 : 0;
@@ -595,7 +610,7 @@ Result<ScalarVolume> readScalarArray(const VtiFile& file, const ArrayRef& array)
   volume.dims = grid.dims;
   volume.geometry = grid.geometry;
   LIC3D_TRY(ArrayReader(file, array, voxelCount(grid.dims))
-                .read([&] { resizeLarge(volume.values, voxelCount(grid.dims)); },
+                .read(growInto(volume.values, voxelCount(grid.dims), 1, file.path),
                       [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
                           volume.values[first + i] = vectorComponent(values[i]);
@@ -621,7 +636,7 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
   field.dims = grid.dims;
   field.geometry = grid.geometry;
   LIC3D_TRY(ArrayReader(*file, array, voxelCount(grid.dims))
-                .read([&] { resizeLarge(field.vectors, voxelCount(grid.dims)); },
+                .read(growInto(field.vectors, voxelCount(grid.dims), components, path),
                       [&](std::uint64_t first, const double* values, std::size_t count) {
                         auto tuple = static_cast<std::size_t>(first / components);
                         auto component = static_cast<glm::length_t>(first % components);
@@ -687,7 +702,7 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path) {
   volume.dims = file->dims;
   volume.geometry = file->geometry;
   LIC3D_TRY(ArrayReader(*file, array, voxelCount(file->dims))
-                .read([&] { volume.rgba.resize(4 * voxelCount(file->dims)); },
+                .read(growInto(volume.rgba, 4 * voxelCount(file->dims), 1, path),
                       [&](std::uint64_t first, const double* values, std::size_t count) {
                         for (std::size_t i = 0; i < count; ++i)
                           volume.rgba[first + i] = static_cast<std::uint8_t>(values[i]);
