@@ -637,10 +637,17 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   RunSummary summary = makeSummary("render", session.field, *inputs);
   int status = kExitOk;
   {
+    // A picture and its RGBA volume appear together or not at all (a failure while the volume
+    // is made leaves neither); an animation's frames each appear once complete, so a run stopped
+    // half way keeps them.
+    std::optional<OutputGroup> together;
+    if (plan->animation == Animation::None) together.emplace();
     Result<LicRenderer> renderer = LicRenderer::create(*context, {session.precision});
-    const Result<void> done =
+    Result<void> done =
         renderer ? renderFrames(global, options, batch, *plan, *inputs, *renderer, summary.outputs)
                  : Result<void>(renderer.error());
+    if (done && together) done = together->commit();
+    together.reset();
     if (!done) {
       status = reportError(done.error());
     } else if (!global.quiet) {

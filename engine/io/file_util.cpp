@@ -12,12 +12,14 @@
 #include <climits>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <ostream>
 #include <set>
 #include <streambuf>
 #include <utility>
+#include <vector>
 
 #include "core/parallel.h"
 
@@ -170,6 +172,12 @@ class TemporaryFile {
     return result;
   }
   void commit() { committed_ = true; }
+  // The file is complete and someone else removes or renames it: returns the signal slot that
+  // still holds it (releaseTemporary once it is renamed or removed).
+  int handOver() {
+    committed_ = true;
+    return std::exchange(slot_, -1);
+  }
 
  private:
   std::filesystem::path path_;
@@ -177,6 +185,26 @@ class TemporaryFile {
   int slot_;
   bool committed_ = false;
 };
+
+// OutputGroup's files: each complete under its temporary name until the group commits.
+struct PendingOutput {
+  std::filesystem::path temporary;
+  std::filesystem::path path;
+  int slot;
+};
+std::mutex groupMutex;
+bool groupOpen = false;
+std::vector<PendingOutput> pendingOutputs;
+
+// Makes the renames into `path`'s folder durable; failing loses nothing already visible.
+void syncFolderOf(const std::filesystem::path& path) {
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  const int folderFd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folderFd >= 0) {
+    ::fsync(folderFd);
+    ::close(folderFd);
+  }
+}
 
 // from_chars takes no leading '+', which some writers put before positive numbers.
 template <class T>
@@ -312,20 +340,55 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
   // Without fsync a crash shortly after the rename can leave an empty file under the real name.
   if (::fsync(fd) != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
   if (temporary.close() != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
+  {
+    const std::lock_guard lock(groupMutex);
+    if (groupOpen) {
+      pendingOutputs.push_back({temporaryPath, path, temporary.handOver()});
+      return {};
+    }
+  }
   // Renaming fails for reasons the user can fix: a folder in the way, no permission.
   if (::rename(temporaryPath.c_str(), path.c_str()) != 0)
     return writeError(ErrorKind::InvalidInput, path, systemError(errno));
   temporary.commit();
-
-  // Makes the rename itself durable; failing here loses nothing already visible, so it is not
-  // reported.
-  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  const int folderFd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (folderFd >= 0) {
-    ::fsync(folderFd);
-    ::close(folderFd);
-  }
+  syncFolderOf(path);
   return {};
+}
+
+OutputGroup::OutputGroup() {
+  const std::lock_guard lock(groupMutex);
+  if (groupOpen) {  // a programming error: groups do not nest
+    std::fputs("lic3d: OutputGroup opened while another is open\n", stderr);
+    std::abort();
+  }
+  groupOpen = true;
+}
+
+OutputGroup::~OutputGroup() {
+  const std::lock_guard lock(groupMutex);
+  for (const PendingOutput& pending : pendingOutputs) {
+    ::unlink(pending.temporary.c_str());
+    releaseTemporary(pending.slot);
+  }
+  pendingOutputs.clear();
+  groupOpen = false;
+}
+
+Result<void> OutputGroup::commit() {
+  const std::lock_guard lock(groupMutex);
+  Result<void> result;
+  for (const PendingOutput& pending : pendingOutputs) {
+    if (result && ::rename(pending.temporary.c_str(), pending.path.c_str()) == 0) {
+      syncFolderOf(pending.path);
+    } else {
+      if (result) result = writeError(ErrorKind::InvalidInput, pending.path, systemError(errno));
+      ::unlink(pending.temporary.c_str());
+    }
+    releaseTemporary(pending.slot);
+  }
+  pendingOutputs.clear();
+  groupOpen = false;
+  return result;
 }
 
 FileReader::FileReader(std::filesystem::path path, int fd, std::uint64_t size)

@@ -74,6 +74,23 @@ Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  const std::function<bool(std::ostream&)>& writer);
 
+// Outputs that appear together or not at all. While a group is open, writeFileAtomically (from
+// any thread) leaves each complete file under its temporary name, still removed if a signal ends
+// the process; commit() renames them into place in the order they were written, and a group
+// destroyed without a commit removes them, so every name keeps its old file (or stays absent).
+// One group at a time in a process.
+class OutputGroup {
+ public:
+  OutputGroup();
+  OutputGroup(const OutputGroup&) = delete;
+  OutputGroup& operator=(const OutputGroup&) = delete;
+  ~OutputGroup();
+  // Renames every file written since the group opened into place and closes the group. A rename
+  // that fails (the folder changed since the write) is returned; the files before it stay in
+  // place, the temporaries after it are removed.
+  Result<void> commit();
+};
+
 // Reads a regular file front to back through a buffer. The volume parsers use it so that a
 // payload's size is checked against the bytes left in the file before anything is allocated,
 // and so that a large volume is never held in memory twice.
