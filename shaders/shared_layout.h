@@ -68,8 +68,8 @@ LIC3D_CONST kHistogramLocalSize = 256;
 
 struct HistogramPushConstants {
   ivec4 dims;            // xyz: the grid; w: the field texture's packing (kLicConstPacking)
-  vec4 texelToPhysical;  // xyz: a field texel's xyz times this is the physical vector;
-                         // w: voxels slower than this (physical |v|) are empty, not counted
+  vec4 texelToPhysical;  // xyz: texelToPhysicalForShader's xyz (volume_textures.h); w: voxels
+                         // with length(texel * xyz) below this are empty, not counted
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
@@ -125,7 +125,8 @@ struct SliceUniforms {
   vec4 lightTerms;        // x: ambient, y: diffuse, z: specular, w: unused
   vec4 voxelSize;         // xyz: one voxel in world units (texel xyz, in voxel units, times this
                           // points along the flow in world space); w: unused
-  vec4 texelToPhysical;   // xyz: a field texel's xyz times this is the physical vector; w: unused
+  vec4 texelToPhysical;   // texelToPhysicalForShader (volume_textures.h): a texel's physical
+                          // speed is length(texel * xyz) * w
   uvec4 modes[4];         // the display-mode specialization constants in order, read only by the
                           // benchmark's runtime-mode build of slice.frag
 };

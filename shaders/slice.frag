@@ -144,7 +144,7 @@ void main() {
       // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
       vec3 texel = texture(fieldTexture, texCoord).xyz;
       if (FIELD_PACKING == 1) texel *= length(texel);  // e |e| = u / max|u|
-      speed = length(texel * u.texelToPhysical.xyz);
+      speed = length(texel * u.texelToPhysical.xyz) * u.texelToPhysical.w;
     }
     vec2 scalar = vec2(0.0);
     if (COLOR_SOURCE == 1 || OPACITY_SOURCE == 1)

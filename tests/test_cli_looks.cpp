@@ -184,6 +184,39 @@ TEST_F(CliTest, ColourByAScalarFollowsItOnTheGpuAndTheCpu) {
   EXPECT_NE(wrong.output.find("nothing"), std::string::npos) << wrong.output;
 }
 
+// The default look of a field is the same picture whatever its unit: the same tornado times 1e-20
+// or 1e25 (speeds whose squares leave the float range) coloured every voxel by one end of the
+// colour map and made it black or empty (hardening, class 7). Also through the RGBA volume.
+TEST_F(CliTest, AFieldScaledByAnyFactorGivesTheSamePicture) {
+  const VectorField field = makeAnalyticField(AnalyticField::Tornado, Dims(16));
+  std::vector<test::RgbaPixels> pictures;
+  std::vector<RgbaVolume> volumes;
+  for (const double scale : {1.0, 1e-20, 1e25}) {
+    VectorField scaled = field;
+    for (glm::vec3& v : scaled.vectors) v = glm::vec3(glm::dvec3(v) * scale);
+    ASSERT_TRUE(writeVectorFieldNrrd(path("f.nrrd"), scaled));
+    const CommandRun r = run(
+        "render -q --field f.nrrd --length 4 --width 64 --height 64 --rgba-volume v.vti -o f.png");
+    ASSERT_EQ(r.status, 0) << r.output;
+    pictures.push_back(test::readRgbaPng(path("f.png")));
+    Result<RgbaVolume> volume = readRgbaVti(path("v.vti"));
+    ASSERT_TRUE(volume) << volume.error().message;
+    volumes.push_back(std::move(*volume));
+  }
+  for (std::size_t k = 1; k < pictures.size(); ++k) {
+    ASSERT_EQ(pictures[k].rgba.size(), pictures[0].rgba.size());
+    int worst = 0;
+    for (std::size_t i = 0; i < pictures[0].rgba.size(); ++i)
+      worst = std::max(worst, std::abs(pictures[k].rgba[i] - pictures[0].rgba[i]));
+    EXPECT_LE(worst, 2) << "scale " << k;
+    ASSERT_EQ(volumes[k].rgba.size(), volumes[0].rgba.size());
+    worst = 0;
+    for (std::size_t i = 0; i < volumes[0].rgba.size(); ++i)
+      worst = std::max(worst, std::abs(volumes[k].rgba[i] - volumes[0].rgba[i]));
+    EXPECT_LE(worst, 2) << "scale " << k;
+  }
+}
+
 // --resolution: the field sampled trilinearly on the finer grid, the noise made there, the LIC
 // the reference's on that grid.
 TEST_F(CliTest, LicAtAFinerResolutionIsTheReferenceOnTheResampledField) {

@@ -110,7 +110,8 @@ RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
     if (!lic.drawn.empty() && !lic.drawn[i]) alpha = 0.0f;
     glm::vec3 rgb(grey);
     if (byColor || weighted) {
-      const float speed = glm::length(field.vectors[i]);
+      // In double: the square of a float speed of 1e25 (or 1e-20) leaves the float range.
+      const auto speed = static_cast<float>(glm::length(glm::dvec3(field.vectors[i])));
       const float colorValue = scalars.color ? scalars.color->values[i] : speed;
       const float opacityValue = scalars.opacity ? scalars.opacity->values[i] : speed;
       if (byColor)

@@ -83,9 +83,10 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const Fi
       .storageBuffer(gpu::kHistogramBindingCounts, counts_)
       .sampledImage(gpu::kHistogramBindingField, sampler_, field.image.view())
       .push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
+  const glm::vec4 toPhysical = texelToPhysicalForShader(field.texelToPhysical);
   const gpu::HistogramPushConstants push{
       glm::ivec4(dims, field.precision == FieldPrecision::Byte ? 1 : 0),
-      glm::vec4(glm::vec3(field.texelToPhysical), static_cast<float>(emptySpeed))};
+      glm::vec4(glm::vec3(toPhysical), static_cast<float>(emptySpeed / toPhysical.w))};
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);
 

@@ -92,7 +92,7 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.toViewer = glm::vec4(central.toViewer, 0.0f);
   u.transfer = glm::vec4(greyTransfer(view, transferFacts), frame.plan.voxelSize, 0.0f);
   u.magnitude = glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), 0.0f, 0.0f);
-  u.texelToPhysical = glm::vec4(volume.texelToPhysical, 0.0f);
+  u.texelToPhysical = texelToPhysicalForShader(glm::dvec3(volume.texelToPhysical));
   u.magnitudeOpacity = glm::vec4(view.magnitudeOpacity, view.magnitudeThreshold,
                                  magnitudeTransfer(opacityRange(view, transferFacts)));
   if (view.clipPlane) {

@@ -67,6 +67,12 @@ Result<void> checkVolumeDims(const Context& context, Dims dims, const char* what
   return {};
 }
 
+glm::vec4 texelToPhysicalForShader(glm::dvec3 texelToPhysical) {
+  const double largest = std::max({texelToPhysical.x, texelToPhysical.y, texelToPhysical.z});
+  if (!(largest > 0.0)) return glm::vec4(glm::vec3(texelToPhysical), 1.0f);
+  return glm::vec4(glm::vec3(texelToPhysical / largest), static_cast<float>(largest));
+}
+
 FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested) {
   if (requested != FieldPrecision::Auto) return requested;
   // A CPU driver gains nothing from half floats (no texture-cache bandwidth to save) and pays

@@ -59,6 +59,11 @@ Result<ScalarTexture> uploadScalars(const Context& context, Dims dims, const Poi
                                     const PointScalars* opacity);
 
 FieldPrecision resolvePrecision(const Context& context, FieldPrecision requested);
+// texelToPhysical as the shaders take it: xyz divided by its largest component and w that
+// component, so that length(texel * xyz) * w is the physical speed and the squares inside
+// length() stay in the float range whatever the field's unit (speeds of 1e-20 or 1e25 square to
+// beyond it).
+glm::vec4 texelToPhysicalForShader(glm::dvec3 texelToPhysical);
 // resolvePrecision, refusing Float where the device cannot filter RGBA32F textures.
 Result<FieldPrecision> checkFieldPrecision(const Context& context, FieldPrecision requested);
 // The field texture's format for a resolved precision.
