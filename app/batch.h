@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "batch_options.h"
 #include "cli_options.h"
 #include "core/rgba_image.h"
 #include "core/volume.h"
@@ -18,27 +19,6 @@
 #include "passes/slice_pass.h"
 
 namespace lic3d::cli {
-
-// The options beyond a single picture.
-struct BatchOptions {
-  int turntable = 0;     // frames of one full turn of the camera; 0: no turntable
-  int animateBias = 0;   // frames of one bias cycle -L..L..-L; 0: none
-  int animateTime = 0;   // frames of a time animation (docs/TIME.md); 0: none
-  TextOption timeRange;  // T0,T1 of the time animation
-  TextOption frames;     // A:B, frames A..B-1 of the animation
-  std::string video;     // .mp4 or .webm made by ffmpeg from the frames
-  double fps = 30.0;
-  std::string rgbaVolume;  // render: the colour-mapped volume, .vti or .nrrd
-  TextOption slice;        // compute: AXIS[:INDEX], the LIC slice written as PNG
-};
-
-// --turntable, --animate-bias, --animate-time, --time-range, --frames, --video, --fps,
-// --rgba-volume.
-void addRenderBatchOptions(CLI::App& app, BatchOptions& options);
-// render2d's: --animate-bias, --animate-time, --time-range, --frames, --video, --fps.
-void addImageBatchOptions(CLI::App& app, BatchOptions& options);
-// --slice.
-void addComputeBatchOptions(CLI::App& app, BatchOptions& options);
 
 enum class Animation { None, Turntable, Bias, Time };
 
