@@ -144,6 +144,13 @@ TEST(Session, NumbersThatDoNotFitAndDuplicateKeysAreRefused) {
     EXPECT_NE(s.error().message.find("bad.json"), std::string::npos) << s.error().message;
     EXPECT_NE(s.error().message.find(c.mentions), std::string::npos) << s.error().message;
   }
+  // Text that is not UTF-8 (a file name in another encoding) cannot be recorded as JSON: the
+  // session is refused, not written later with an exception (found by fuzzing the command line).
+  Session latin1;
+  latin1.field.field = "wa\xeb.nrrd";
+  const Result<void> refused = validate(latin1);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("not UTF-8"), std::string::npos);
   // Whole numbers written as floats are whole numbers; the largest seed is a seed.
   Result<Session> s = sessionFromJson(
       R"({"lic": {"length": 20.0}, "noise": {"seed": 18446744073709551615}})", "good.json");

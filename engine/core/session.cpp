@@ -381,7 +381,16 @@ Result<void> validate(const Session& s) {
   LIC3D_TRY(checkRange(ranges::kPlaneWidth, s.plane.width));
   LIC3D_TRY(checkRange(ranges::kPlaneHeight, s.plane.height));
   LIC3D_TRY(validate(s.lic));
-  return validate(s.view);
+  LIC3D_TRY(validate(s.view));
+  // A session travels as JSON text (session files, PNG metadata): text that is not UTF-8, such
+  // as a file name in another encoding, could not be recorded, so it is refused before any work.
+  try {
+    (void)sessionToJson(s);
+  } catch (const Json::exception& e) {
+    return inputError(std::string("the session holds text that is not UTF-8 (") + e.what() +
+                      "); lic3d records its parameters as JSON text: rename the file");
+  }
+  return {};
 }
 
 std::string sessionToJson(const Session& session) {

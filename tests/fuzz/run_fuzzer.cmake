@@ -1,6 +1,7 @@
 # Runs one libFuzzer target for SECONDS (or $ENV{LIC3D_FUZZ_SECONDS} when set) from the seeds in
 # SEEDS, writing new inputs and crash reproducers under WORK (emptied first), never into the
-# committed corpus. Fails on any finding, naming each reproducer and how to replay it.
+# committed corpus. Fails on any finding, naming each reproducer and how to replay it. What the
+# targets print (the command line's help and messages) is discarded; libFuzzer's own reports stay.
 foreach(variable FUZZER SEEDS WORK SECONDS)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "run_fuzzer.cmake needs -D${variable}=...")
@@ -18,7 +19,7 @@ file(MAKE_DIRECTORY ${WORK}/corpus ${WORK}/artifacts)
 math(EXPR limit "${SECONDS} + 120")
 execute_process(
   COMMAND ${FUZZER} -max_total_time=${SECONDS} -rss_limit_mb=1024 -timeout=5 -max_len=4096
-          -print_final_stats=1 -artifact_prefix=${WORK}/artifacts/ ${WORK}/corpus ${SEEDS}
+          -close_fd_mask=3 -print_final_stats=1 -artifact_prefix=${WORK}/artifacts/ ${WORK}/corpus ${SEEDS}
   TIMEOUT ${limit}
   RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
