@@ -44,6 +44,8 @@ TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
 CLI::Validator rangeCheck(const ParameterRange& range) {
   return CLI::Validator(
       [range](std::string& text) -> std::string {
+        // CLI11 reads an empty value as the type's zero: refused here, or `--length ''` is 0.
+        if (text.empty()) return "needs a number, got ''";
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (error != std::errc() || end != text.data() + text.size()) return {};  // CLI11 says

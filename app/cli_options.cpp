@@ -61,7 +61,9 @@ std::string messageWithFlags(const Error& error) {
 }
 
 int reportError(const Error& error) {
-  std::fprintf(stderr, "lic3d: error: %s\n", messageWithFlags(error).c_str());
+  // A message quotes what it was given (a path, a value): cut, so that no input fills the
+  // terminal or a job's log.
+  std::fprintf(stderr, "lic3d: error: %s\n", cutMessage(messageWithFlags(error), 1000).c_str());
   return exitCodeFor(error);
 }
 

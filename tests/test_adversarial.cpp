@@ -1,0 +1,217 @@
+// The adversarial case list: inputs as an attacker or a careless script gives them, each class
+// of docs/RELIABILITY.md with its cases, generated here (no committed binaries). Every case must
+// end with its exit status and a message naming the flag or file, leave every file it found as it
+// was (inputs untouched) and add nothing: no output, no temporary file.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli_test_support.h"
+#include "io/nrrd.h"
+#include "lic/analytic_fields.h"
+#include "test_support.h"
+
+namespace lic3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliTest;
+using test::CommandRun;
+
+struct Case {
+  std::string name;
+  std::string args;        // of lic3d, run in the test's folder
+  int status;              // the exit status it must give
+  std::string mentions;    // what its message must contain
+  std::string makes = "";  // the one file it may add (a case that succeeds)
+};
+
+std::string gzip(const std::string& data) {
+  z_stream zs{};
+  EXPECT_EQ(deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+std::string randomBytes(std::size_t count, unsigned seed) {
+  std::mt19937 random(seed);
+  std::string bytes(count, '\0');
+  for (char& c : bytes) c = static_cast<char>(random());
+  return bytes;
+}
+
+// A NRRD header for a 3-vector float field of 2x2x2 voxels with `extra` lines, and its data.
+std::string smallNrrd(const std::string& extra) {
+  std::string data(8 * 3 * 4, '\0');
+  for (std::size_t i = 0; i < data.size(); i += 4) data[i + 3] = 0x3f;  // 0.5f little-endian
+  return "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 2\nendian: little\nencoding: raw\n" +
+         extra + "\n" + data;
+}
+
+class AdversarialTest : public CliTest {
+ protected:
+  // Every regular file of the folder and its content.
+  std::map<std::string, std::string> snapshot() const {
+    std::map<std::string, std::string> files;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder()))
+      if (e.is_regular_file())
+        files[fs::relative(e.path(), folder()).string()] = test::readWhole(e.path());
+    return files;
+  }
+
+  void makeInputs() {
+    ASSERT_TRUE(writeVectorFieldNrrd(path("base.nrrd"),
+                                     makeAnalyticField(AnalyticField::Tornado, Dims(8))));
+    fs::create_directories(path("sub"));
+    writeBytes("time_1e400.json", R"({"time": 1e400})");
+    writeBytes("time_neg.json", R"({"time": -1e309})");
+    writeBytes("width_wraps.json", R"({"view": {"width": 4294967328}})");
+    writeBytes("grid_wraps.json", R"({"field": {"grid": [4294967304, 8, 8]}})");
+    writeBytes("length_wraps.json", R"({"lic": {"length": 4294967297}})");
+    writeBytes("length_frac.json", R"({"lic": {"length": 4.7}})");
+    writeBytes("length_huge.json", R"({"lic": {"length": 1e30}})");
+    writeBytes("slices_wrap.json", R"({"view": {"slices": 4294967296}})");
+    writeBytes("version.json", R"({"lic3d_session": 1.9})");
+    writeBytes("seed.json", R"({"noise": {"seed": -1}})");
+    writeBytes("twice.json", R"({"lic": {"length": 7, "length": 8}})");
+    writeBytes("deep.json", std::string(100000, '[') + std::string(100000, ']'));
+    writeBytes("empty.json", "");
+    // 800 KB of deflate that may claim 768 MB, and stops after 800 KB.
+    writeBytes("bomb.nrrd",
+               "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 400 400 400\nendian: little\n"
+               "encoding: gzip\n\n" +
+                   gzip(randomBytes(800'000, 1)));
+    writeBytes("self.nhdr",
+               "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 2\nendian: little\n"
+               "encoding: raw\ndata file: self.nhdr\n#" +
+                   std::string(200, ' ') + "\n");
+    writeBytes("spacing_huge.nrrd", smallNrrd("spacings: NaN 1e308 1e308 1e308\n"));
+    writeBytes("spacing_aniso.nrrd", smallNrrd("spacings: NaN 1e-30 1e30 1\n"));
+    writeBytes("direction_huge.nrrd",
+               smallNrrd("space dimension: 3\nspace directions: none (1e200,0,0) (0,1,0) "
+                         "(0,0,1)\n"));
+    writeBytes("sizes_overflow.nrrd",
+               "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 4294967296 4294967296 "
+               "4294967296\nendian: little\nencoding: raw\n\n");
+    const std::string whole = smallNrrd("");
+    writeBytes("truncated.nrrd", whole.substr(0, whole.size() - 10));
+    writeBytes("garbage.vti", randomBytes(4096, 2));
+    writeBytes("nested.vti", "<?xml version=\"1.0\"?>" + std::string(100000, '<') + "a");
+    writeBytes("empty.vtk", "");
+    for (const char* step : {"dup_1.vti", "dup_01.vti", "dup_001.vti"})
+      fs::copy_file(path("base.nrrd"), path(step));  // the names are refused before reading
+  }
+};
+
+TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
+  makeInputs();
+  const std::string render = "render --grid 8 --width 32 --height 32 -q ";
+  const std::string field = "render -q --width 32 --height 32 -o o.png --field ";
+  std::vector<Case> cases = {
+      // Class 1: numbers beyond a double in sessions.
+      {"session 1e400", "render --session time_1e400.json -o o.png", 2, "time_1e400.json"},
+      {"session -1e309", "compute --session time_neg.json -o o.nrrd", 2, "time_neg.json"},
+      // Class 2: an output that is an input.
+      {"-o is the field", "compute --field base.nrrd -o base.nrrd", 2, "base.nrrd"},
+      {"-o spelt another way", "compute --field base.nrrd -o sub/../base.nrrd", 2, "base.nrrd"},
+      {"rgba volume over the field", field + "base.nrrd --rgba-volume base.nrrd", 2, "base.nrrd"},
+      // Class 3: compressed data that promises more than it holds.
+      {"gzip bomb", field + "bomb.nrrd", 2, "gzip data holds only"},
+      // Class 5: NaN, infinite and huge flag values.
+      {"azimuth nan", render + "--azimuth nan", 2, "--azimuth"},
+      {"azimuth inf", render + "--azimuth inf", 2, "--azimuth"},
+      {"azimuth 1e300", render + "--azimuth 1e300", 2, "--azimuth"},
+      {"elevation nan", render + "--elevation nan", 2, "--elevation"},
+      {"fov nan", render + "--fov nan", 2, "--fov"},
+      {"gain nan", render + "--gain nan", 2, "--gain"},
+      {"brightness nan", render + "--brightness nan", 2, "--brightness"},
+      {"roi-center nan", render + "--roi-center nan,0.5,0.5", 2, "--roi-center"},
+      {"roi-rotate inf", render + "--roi-rotate inf,0,0", 2, "--roi-rotate"},
+      {"time nan", render + "--time nan", 2, "--time"},
+      {"distance nan", render + "--distance nan", 2, "--distance"},
+      {"eye-separation nan", render + "--eye-separation nan", 2, "--eye-separation"},
+      {"zero-parallax nan", render + "--zero-parallax nan", 2, "--zero-parallax"},
+      {"magnitude-opacity nan", render + "--magnitude-opacity nan", 2, "--magnitude-opacity"},
+      {"color-range inf", render + "--color-range 0,inf", 2, "--color-range"},
+      {"background nan", render + "--background 2,2,nan", 2, "--background"},
+      {"width huge", render + "--width 1e9", 2, "--width"},
+      {"step zero", render + "--step 0", 2, "--step"},
+      {"empty number", render + "--length ''", 2, "--length"},
+      {"empty angle", render + "--azimuth ''", 2, "--azimuth"},
+      {"unknown flag", render + "--no-such-flag 1", 2, "--no-such-flag"},
+      // Class 6: integers that would wrap or truncate.
+      {"seed -1", render + "--seed -1", 2, "--seed"},
+      {"sparsity-seed -5", render + "--sparsity-seed -5", 2, "--sparsity-seed"},
+      {"session width wraps", "render --session width_wraps.json -o o.png", 2, "view.width"},
+      {"session grid wraps", "render --session grid_wraps.json -o o.png", 2, "field.grid"},
+      {"session length wraps", "render --session length_wraps.json -o o.png", 2, "lic.length"},
+      {"session length 4.7", "render --session length_frac.json -o o.png", 2, "lic.length"},
+      {"session length 1e30", "render --session length_huge.json -o o.png", 2, "got '1e+30'"},
+      {"session slices wrap", "render --session slices_wrap.json -o o.png", 2, "view.slices"},
+      {"session version 1.9", "render --session version.json -o o.png", 2, "lic3d_session"},
+      {"session seed -1", "render --session seed.json -o o.png", 2, "noise.seed"},
+      {"session key twice", "render --session twice.json -o o.png", 2, "length"},
+      {"session nested deeply", "render --session deep.json -o o.png", 2, "deep.json"},
+      {"session empty", "render --session empty.json -o o.png", 2, "empty.json"},
+      {"session missing", "render --session missing.json -o o.png", 2, "missing.json"},
+      // Class 9: the longest name a file may have.
+      {"250-character name", render + "-o " + std::string(246, 'n') + ".png", 0, "",
+       std::string(246, 'n') + ".png"},
+      // Class 10: an output that cannot be written stops the run before any output.
+      {"unwritable rgba volume", render + "-o out.png --rgba-volume /proc/self/v.vti", 2,
+       "/proc/self"},
+      {"missing folder", render + "-o no/such/folder/out.png", 2, "no/such/folder"},
+      // Class 11 to 14: files that cannot be drawn, or whose message misled.
+      {"data file is itself", field + "self.nhdr", 2, "the header itself"},
+      {"spacing 1e308", field + "spacing_huge.nrrd", 2, "spacing_huge.nrrd"},
+      {"spacing 1e-30 and 1e30", field + "spacing_aniso.nrrd", 2, "spacing_aniso.nrrd"},
+      {"direction 1e200", field + "direction_huge.nrrd", 2, "1e+200"},
+      {"sizes overflow", field + "sizes_overflow.nrrd", 2, "sizes_overflow.nrrd"},
+      {"truncated data", field + "truncated.nrrd", 2, "truncated"},
+      {"garbage VTI", field + "garbage.vti", 2, "garbage.vti"},
+      {"XML nested deeply", field + "nested.vti", 2, "nested.vti"},
+      {"empty VTK", field + "empty.vtk", 2, "empty.vtk"},
+      {"a folder as field", field + "sub", 2, "sub"},
+      {"/dev/zero as field", field + "/dev/zero", 2, "/dev/zero"},
+      {"one step three ways", field + "dup_%d.vti", 2, "dup_"},
+      {"name not UTF-8", field + "\"$(printf 'wa\\353.nrrd')\"", 2, "not UTF-8"},
+      {"100 KB field name", field + std::string(100'000, 'f') + ".nrrd", 2, "fff"},
+  };
+  int handled = 0;
+  for (const Case& c : cases) {
+    const std::map<std::string, std::string> before = snapshot();
+    const CommandRun r = run(c.args);
+    EXPECT_EQ(r.status, c.status) << c.name << ": " << r.output.substr(0, 500);
+    EXPECT_NE(r.output.find(c.mentions), std::string::npos)
+        << c.name << ": " << r.output.substr(0, 500);
+    EXPECT_LT(r.output.size(), 2000u) << c.name << ": the message should be short";
+    std::map<std::string, std::string> after = snapshot();
+    if (!c.makes.empty()) {
+      EXPECT_EQ(after.count(c.makes), 1u) << c.name;
+      after.erase(c.makes);
+      fs::remove(path(c.makes));
+    }
+    EXPECT_TRUE(after == before) << c.name << ": the folder changed";
+    handled += r.status == c.status && after == before ? 1 : 0;
+  }
+  std::printf("adversarial cases: %d of %zu handled\n", handled, cases.size());
+  EXPECT_EQ(handled, static_cast<int>(cases.size()));
+}
+
+}  // namespace
+}  // namespace lic3d
