@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Batch work of `lic3d render` and `lic3d compute`: animations (turntable, bias cycle) and the
 // frame ranges that split them over job arrays, outputs chosen by file extension (LIC and RGBA

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "batch_options.h"
 
 namespace lic3d::cli {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The batch flags of `lic3d render`, `compute` and `render2d` (animations, frame ranges, video,
 // extra outputs) as the command line declares them; batch.h does the work they ask for.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `lic3d bench`: GPU timestamps of the LIC pass and of frames, median of repeats after warm-up.
 #include "bench.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the `lic3d bench` modes share (bench.cpp, bench_kernels.cpp).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `lic3d bench --fidelity`: how far each RK2 scheme's LIC lies from a converged one (RK4 at h/8 on
 // the CPU, convergedLicAtVoxel), on the analytic fields and on files, for the scheme's own CPU
 // reference and for the device's volume with each texture precision. The default scheme is the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `lic3d bench --kernels`: every LIC kernel lic3d ships against the naive reference kernel, the
 // masked (sparsity) pass against the unmasked one, and the launch shapes, in one process on the
 // same field and noise: ratios hold on machines whose absolute speed varies from run to run.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli_flags.h"
 
 namespace lic3d::cli {

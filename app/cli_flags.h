@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the command-line options (cli_options.cpp, cli_view_options.cpp): how a flag is
 // added with its range and its session key, and the small parsers the text flags share.

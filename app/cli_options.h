@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The flags shared by the subcommands (and the viewer), bound straight to a Session: the engine's
 // parameter structs plus where the field and the noise come from.

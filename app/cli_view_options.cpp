@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The view flags of `render` and the app (ViewParams), the look, and the picture flags of
 // `render2d`.
 #include <map>

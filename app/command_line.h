@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The command line of `lic3d`: its subcommands, their flags and the checks of what they were
 // given, apart from running anything, so that the program and the command-line fuzz target

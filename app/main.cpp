@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lic3d: 3D Line Integral Convolution of vector fields with Vulkan, from the command line.
 #include <unistd.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Progress of long work on stderr: a live line on a terminal, a few plain lines in a log.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A swapchain for the context's surface: images to present, recreated on resize. Knows nothing
 // of the window system: the surface comes from the front end.

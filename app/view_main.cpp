@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lic3d-view: the desktop app. A window shows the LIC volume with blended slices; Dear ImGui
 // panels change every parameter, and the LIC volume is recomputed a slab per frame while the old
 // one stays on screen.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app: a GLFW window with a Vulkan swapchain, the engine's passes drawing the LIC
 // volume, and Dear ImGui panels on top.

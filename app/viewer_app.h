@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app itself: one App owns the window, the device, the renderer and the frames, and
 // runs the frame loop (viewer.cpp) around the device's lifetime, the field's loading and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's frames on the window: two in flight, each with its command buffer, fence,
 // acquire semaphore, GPU timer and screenshot buffer; the swapchain with a render-finished

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer_input.h"
 
 #include <GLFW/glfw3.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's mouse and keyboard: GLFW callbacks gather a frame's events, which the app
 // reads once per frame.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's field (docs/TIME.md): read or made on a worker thread so the window stays
 // responsive; for a time series, the steps around the session's time read on a worker thread

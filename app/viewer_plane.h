@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The app's 2D mode (thesis chapter 3): the 2D LIC picture of the session's plane, made again
 // when what it depends on changes, and copied into the window's image at the largest size that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's endurance run (--soak, tests/test_viewer.cpp, docs/RELIABILITY.md): a
 // parameter change every kChangeEvery frames, a window resize now and then, memory samples at

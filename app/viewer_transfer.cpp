@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The transfer function editor: colour and opacity control points (core/transfer_function.h)
 // dragged over a histogram of the scalar they follow, and ParaView colour-map presets loaded
 // and saved.

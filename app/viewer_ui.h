@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's Dear ImGui panels: every parameter of a Session, with tooltips, plus the
 // stats overlay, the colour legend and the help panel. Panels edit the session in place; the

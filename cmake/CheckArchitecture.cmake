@@ -1,5 +1,6 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The architecture checks, run by ctest in script mode:
-#   cmake -DSOURCE_DIR=<repo> -DCHECK=layers|file_size -P cmake/CheckArchitecture.cmake
+#   cmake -DSOURCE_DIR=<repo> -DCHECK=layers|file_size|licence -P cmake/CheckArchitecture.cmake
 #
 # layers: the engine's folders are layers, lowest first (engine/CMakeLists.txt). A file of the
 # engine includes only files of its own layer and of layers below it, always by their layer path
@@ -7,6 +8,8 @@
 # the generated SPIR-V headers are the only bare includes. The layers below gpu/ include no
 # Vulkan header. Every engine file lies in a layer folder.
 # file_size: no source file (engine, app, shaders, paraview, tests) is longer than 700 lines.
+# licence: every source, build and script file names its licence (LICENSE, BSD-3-Clause) by its
+# SPDX identifier in its first lines.
 cmake_minimum_required(VERSION 3.25)
 
 set(layers core io lic gpu passes inputs)
@@ -74,8 +77,26 @@ elseif(CHECK STREQUAL "file_size")
       string(APPEND problems "${file}: ${n} lines (at most ${max_lines}: split it by job)\n")
     endif()
   endforeach()
+elseif(CHECK STREQUAL "licence")
+  file(GLOB files RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/CMakeLists.txt" "${SOURCE_DIR}/.ci/*")
+  foreach(folder engine app shaders paraview tests cmake docs)
+    file(GLOB_RECURSE found RELATIVE "${SOURCE_DIR}"
+         "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.cxx"
+         "${SOURCE_DIR}/${folder}/*.comp" "${SOURCE_DIR}/${folder}/*.frag"
+         "${SOURCE_DIR}/${folder}/*.vert" "${SOURCE_DIR}/${folder}/*.glsl"
+         "${SOURCE_DIR}/${folder}/*.cmake" "${SOURCE_DIR}/${folder}/CMakeLists.txt"
+         "${SOURCE_DIR}/${folder}/*.sh" "${SOURCE_DIR}/${folder}/*.py"
+         "${SOURCE_DIR}/${folder}/*.xml")
+    list(APPEND files ${found})
+  endforeach()
+  foreach(file ${files})
+    file(STRINGS "${SOURCE_DIR}/${file}" head LIMIT_COUNT 3)
+    if(NOT head MATCHES "SPDX-License-Identifier: BSD-3-Clause")
+      string(APPEND problems "${file}: no 'SPDX-License-Identifier: BSD-3-Clause' in its first lines\n")
+    endif()
+  endforeach()
 else()
-  message(FATAL_ERROR "CHECK must be layers or file_size")
+  message(FATAL_ERROR "CHECK must be layers, file_size or licence")
 endif()
 
 if(problems)

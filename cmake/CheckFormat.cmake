@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Every C++ source is formatted by the repository's .clang-format, run by ctest in script mode:
 #   cmake -DSOURCE_DIR=<repo> -DCLANG_FORMAT=<clang-format-14> -P cmake/CheckFormat.cmake
 # Fix a failure with: clang-format-14 -i <the files named>.

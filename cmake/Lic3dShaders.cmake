@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # GLSL -> SPIR-V at build time with glslangValidator, embedded as C arrays.
 #
 # lic3d_add_shaders(<target> SOURCES a.comp b.vert ...) creates an INTERFACE target whose

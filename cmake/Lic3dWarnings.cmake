@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # One place for compiler warnings: every lic3d target calls lic3d_set_warnings().
 function(lic3d_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs every Debian 12 package lic3d needs to build, run and test.
 # Idempotent: apt-get skips what is already installed. Run as root (or with sudo).
 set -eu

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # Renders every picture of docs/GALLERY.md with the lic3d CLI and writes the page, so each picture
 # sits beside the exact command that made it. Usage: docs/make_gallery.sh [path/to/lic3d]
 set -eu

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """3D LIC of a vector field in ParaView with the lic3d plugin, on one process or many.
 
 One process:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // The analytic fields evaluated on the device, one slab of z layers per dispatch, into a buffer
 // the host reads (shared_layout.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The analytic fields of lic/analytic_fields.cpp (the oracle, in double precision) in float, for
 // the shaders that make them on the device. The includer declares nothing: the field is this
 // file's specialization constant.

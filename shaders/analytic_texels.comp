@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // An analytic field and its white noise made on the device straight into the LIC pass' field
 // texture (passes/volume_textures.h), with the field's statistics, so that nothing of the field

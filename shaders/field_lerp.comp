@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // Unsteady fields (docs/TIME.md): the field at a time between two resident time steps, linearly
 // interpolated per voxel and written into the LIC pass' field texture with its packing (xyz = u /

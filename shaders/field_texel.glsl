@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The field and noise texture as a storage image, and its texel encoding (passes/volume_textures.h),
 // for the shaders that write it on the device. Compiled once per format: rgba32f, rgba16f
 // (LIC3D_HALF_FIELD) and rgba8_snorm with its square-root packing (LIC3D_BYTE_FIELD). The includer

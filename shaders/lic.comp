@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // 3D LIC, one invocation per voxel (thesis ch. 4, with the semantics of docs/LIC_SEMANTICS.md):
 // follow the streamline through the voxel centre backward Lb and forward Lf steps and average

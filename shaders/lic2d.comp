@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // 2D LIC (thesis chapter 3, with the semantics of docs/LIC_SEMANTICS.md restricted to a plane),
 // one invocation per output pixel. The output image may be finer than the field: the noise lives

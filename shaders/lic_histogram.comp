@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // Histogram of the drawn voxels of the LIC volume outside empty space: the renderer's contrast
 // stretch and percentile window come from it. Empty space (voxels slower than a small fraction

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The LIC kernel weights and the sparsity mask beyond the grid, one formula for GLSL and C++:
 // lic.comp and lic2d.comp include it, and so do the CPU reference (core/lic_params.h,
 // kernelWeight, in double precision there) and lic/sparsity.h.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the 3D and the 2D LIC passes share (lic.comp, lic2d.comp): the kernel weight of a sample
 // and one step along the streamline. The includer defines, before including this file:
 //   LIC_VEC                  vec3 or vec2, a position in voxels (pixels)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by GLSL and C++: descriptor bindings, specialization ids, workgroup sizes, push-constant
 // and uniform layouts. The structs use only 4-byte scalars and 16-byte vectors/matrices, in an
 // order where std140, std430 and C++ agree (checked by static_assert).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // Shades one slice fragment: region of interest, grey transfer of the LIC intensity, colour and
 // opacity by magnitude, sparsity mask, lighting, opacity correction, fog, anaglyph. Each of these

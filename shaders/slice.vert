@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // Proxy geometry for slice-based volume rendering: instance k is the k-th plane (back to front)
 // cut with the clip box (the volume's box unless clip planes shrink it), a convex polygon of 3 to

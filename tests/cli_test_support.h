@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the command-line tests (test_cli.cpp, test_cli_files.cpp, test_cli_time.cpp): one
 // fixture that runs the lic3d executable in the test's folder, so gtest sees one CliTest suite,

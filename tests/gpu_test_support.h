@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A fixture for tests that use the GPU: a Vulkan context with validation and synchronization
 // validation on; any validation message fails the test.

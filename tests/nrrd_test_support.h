@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the NRRD tests (test_nrrd.cpp, test_nrrd_read.cpp): one fixture, so gtest sees one
 // NrrdTest suite, and the fields and checks that both files build their cases from.

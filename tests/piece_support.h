@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // LIC of a field computed piece by piece, each piece widened by ghost layers and keeping its own
 // voxels, as the ParaView plugin computes it under MPI; compared with LIC of the whole field.

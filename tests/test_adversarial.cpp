@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The adversarial case list: inputs as an attacker or a careless script gives them, each class
 // of docs/RELIABILITY.md with its cases, generated here (no committed binaries). Every case must
 // end with its exit status and a message naming the flag or file, leave every file it found as it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The analytic fields made on the device (passes/analytic_field_pass.h) against the CPU oracle
 // in double precision (lic/analytic_fields.h).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The de-cluttering techniques of thesis chapter 5, each judged by a measured property of the
 // picture or against the CPU reference.
 #include <gtest/gtest.h>

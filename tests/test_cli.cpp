@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line as a user meets it: flags, help, exit status, files. Real data and the files
 // lic3d writes are in test_cli_files.cpp, 2D LIC and time in test_cli_time.cpp.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line with real data in and results out: vector arrays chosen by name, LIC and RGBA
 // volumes, slices, sessions in every PNG, animations, summaries, and failures that leave nothing.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pictures that show the inside without hand-tuning (docs/LOOKS.md), measured on rendered
 // images: how much of the volume's silhouette lets the background through (rendered on black and
 // on white), how much stays solid, and what colour follows.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line for 2D LIC and fields that change with time (docs/TIME.md): render2d, time
 // flags and animations, and series of field files blended between their steps.
 #include <gtest/gtest.h>

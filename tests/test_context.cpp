@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Device discovery and selection, and the no-device error.
 #include <gtest/gtest.h>
 

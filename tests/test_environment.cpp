@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Linked into every test binary: before any test runs, pin the Vulkan driver to lavapipe and turn
 // validation on, for this process and every lic3d process a test starts. Tests that need another
 // setting (no driver at all) change it in their own process; ctest runs each test separately.

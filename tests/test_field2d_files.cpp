@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 2D vector fields from files (2D LIC, thesis chapter 3): NRRD and VTK XML image data on a grid
 // of one layer, with 2- or 3-component vectors.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pieces of a field (engine/field_piece.h): LIC computed piece by piece with ghost layers, as the
 // ParaView plugin does under MPI, against LIC of the whole field, with the CPU reference.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pieces of a field on the GPU (lavapipe): LIC computed piece by piece with ghost layers, as the
 // ParaView plugin does under MPI, against the GPU's LIC of the whole field.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 2D LIC on the GPU against the CPU reference, and unsteady 3D fields: the time interpolation on
 // the GPU against the CPU's blend of the same steps, and the LIC of the blended field.
 #include <gtest/gtest.h>

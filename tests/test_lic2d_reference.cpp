@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 2D LIC on the CPU (thesis chapter 3): the 3D semantics restricted to a plane, on an output
 // image that may be finer than the field; 2D fields and planes of 3D ones.
 #include <gtest/gtest.h>

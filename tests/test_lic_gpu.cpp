@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The GPU LIC pass against the CPU reference, and the recompute-only-on-change contract.
 #include <gtest/gtest.h>
 

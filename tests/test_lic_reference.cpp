@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The CPU reference against properties that follow from the LIC semantics.
 #include <gtest/gtest.h>
 

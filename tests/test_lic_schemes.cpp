@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one-fetch paths: the ab2 and fused schemes against the CPU reference and against the exact
 // scheme, and the byte-packed field texture (docs/LIC_SEMANTICS.md, "Schemes" and "Field packing").
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the looks are made of, on the CPU: transfer functions and their ParaView files, the
 // built-in colour maps' tables, derived quantities, resampling to a finer LIC grid, the
 // --resolution syntax, oblique planes and the looks' parameters.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The memory estimate of a request and the refusal of requests that do not fit, before anything
 // is allocated.
 #include <gtest/gtest.h>

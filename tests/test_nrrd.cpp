@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NRRD round trips through the writers, the file helpers behind them, and readVectorField /
 // readNoise dispatch; what the readers accept and refuse is in test_nrrd_read.cpp.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the NRRD readers accept (every encoding, byte order, type spelling, header detail and
 // detached data file) and how they refuse the rest: with an InvalidInput naming file and field.
 

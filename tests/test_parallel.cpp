@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The CPU work spread over threads (core/parallel.h) gives what one thread gives, bit for bit,
 // and --threads bounds the threads.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ParaView filter's panel (paraview/filters/Lic3dFilter.xml) repeats the defaults and the
 // names of lic3d's parameters, because ParaView reads them from XML. This holds the XML to the
 // engine: every default equals the engine's, every enumeration lists the engine's names in

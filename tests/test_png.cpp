@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PNG writing: 8-bit RGBA and 16-bit grey, text chunks, and refusals; read back with libpng.
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scalars for colour and opacity (readPointScalars) from VTK legacy, VTK XML and NRRD files
 // written here, the scalar names, units and validity mask the vector readers report, and the
 // mask zeroing vectors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Raw float32/float64 vector fields with a JSON sidecar: layouts, byte orders, sidecar names and
 // malformed sidecars.
 

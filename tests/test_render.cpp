@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The slice pass, judged by measured image properties.
 #include <gtest/gtest.h>
 

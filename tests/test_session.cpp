@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Session files: every parameter survives a JSON round trip, and bad files are refused with the
 // file and the key named.
 

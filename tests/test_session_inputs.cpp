@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The engine's one loader of a session's inputs (inputs/session_inputs.h), which the CLI, the
 // desktop app and the ParaView plugin call: what it makes of each kind of field, and the field
 // it brings the renderer to at a time.

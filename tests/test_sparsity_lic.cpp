@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sparsity in the LIC volume (CPU reference): the amount control, and the mask beyond the grid
 // that keeps boundary streamlines from being drawn more often than interior ones.
 #include <gtest/gtest.h>

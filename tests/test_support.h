@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the test suites: the real-data folder and a fixture with a private scratch folder.
 

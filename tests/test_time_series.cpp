@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unsteady fields on the CPU side (docs/TIME.md): series of files, the steps around a time, the
 // reference blend of two steps, the session's time and the memory of two resident steps.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The desktop app under a virtual X server (xvfb-run) on lavapipe: it starts, runs a scripted
 // number of frames with validation on, and its screenshot shows the volume and the panels.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK XML ImageData: files in every encoding VTK writes (made here), cell data, array choice,
 // malformed input, and the LIC and RGBA writers read back.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK legacy reading: the two real data sets in assets/data, files written here in ASCII and
 // BINARY, array selection, and malformed input.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vti_test_files.h"
 
 #include <gtest/gtest.h>

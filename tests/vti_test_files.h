@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // VTK XML ImageData files in every encoding VTK writes, made here for the reader's tests
 // (test_vti.cpp): ascii, binary and appended data, raw or base64, zlib blocks, UInt32 or UInt64

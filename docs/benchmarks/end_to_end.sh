@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Whole-process timings of two lic3d builds (before/after) on this machine, into $OUT.
 OUT=${OUT:-.}
 B=${LIC3D_BINS:-bin}  # the folder holding lic3d-before, lic3d-after and make_abc_vti

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The LIC kernel, masked pass, launch shape, fidelity and frame measurements of
 # docs/BENCHMARKS.md in one run: LIC3D_BINS holds `lic3d` from the bench preset (cmake --preset
 # bench), DATA the two real fields of the fidelity table, OUT receives one text and one JSON file

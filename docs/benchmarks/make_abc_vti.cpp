@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ABC flow on an N^3 grid as two .vti files, <out>_raw.vti (appended raw) and <out>_zlib.vti
 // (zlib blocks of 32 KiB), for the read benchmarks of end_to_end.sh:
 //   g++ -O2 -static -o make_abc_vti make_abc_vti.cpp -lz && ./make_abc_vti 256 /tmp/abc256

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An orbit camera around the centre of the volume's box, z up.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Colour maps for magnitude: the thesis' blue-yellow-red ramp (5.1.2) and two perceptual maps,
 // each a table of 256 colours that the GPU samples and the legend and the CPU colouring read, so

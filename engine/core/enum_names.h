@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One name per value for every parameter enum: the CLI's flag values, the session files, the
 // UI's combo boxes, error messages and pipeline names all read these tables, so a name is

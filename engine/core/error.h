@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Errors that come back as values: user input (bad flag, bad file), unsupported setups (no Vulkan
 // device, missing feature) and runtime failures (device lost, out of memory). Programming errors

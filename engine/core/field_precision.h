@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How the LIC pass' field texture stores the field and the noise (passes/volume_textures.h packs
 // it): a choice of the session, of the memory estimates and of the GPU upload.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the LIC volume depends on. Any change here means the compute pass runs again; nothing
 // else (camera, opacity, slices) does.

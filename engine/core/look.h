@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Looks: named sets of display parameters that show a field's inside without hand-tuning. A look
 // sets relative parameters only (percentiles, optical depth, fractions of the data's ranges),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How much memory a request needs, and whether the device and the host have it, decided before
 // anything is allocated. A request that does not fit is an ErrorKind::ResourceLimit error naming

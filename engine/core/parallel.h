@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one thread fan-out of the CPU work (the reference LIC, the sparsity samplers): tasks
 // handed out in order to the threads the process may run on.

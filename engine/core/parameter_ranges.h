@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The accepted range of every numeric parameter, in one table: validate() (core/lic_params.h,
 // core/view_params.h, core/session.h), the CLI's option checks and the desktop app's sliders all

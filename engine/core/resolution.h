@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The LIC grid of a file's field when it should differ from the file's (FieldSource::resolution):
 // coarse data such as a 76x49x45 MRI scan carries no visible streaks at its own grid, so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An 8-bit RGBA picture in memory, rows top to bottom (io/png_writer.h writes it).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A session: everything that makes a picture (the field, the noise, LicParams, ViewParams) as a
 // JSON file. The desktop app saves and loads it; `lic3d render --session` makes the same picture

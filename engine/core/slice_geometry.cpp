@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "core/slice_geometry.h"
 
 #include <algorithm>

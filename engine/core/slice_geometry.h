@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Where the slice planes go: their normal, spacing, count and back-to-front order. The vertex
 // shader cuts each plane with the box; this part is plain CPU math so it can be tested.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Where a run's time goes: wall-clock seconds per stage (reading or making the field, the noise,
 // the mask, uploads, the LIC, frames, read-backs, encoding, writing), summed over a run's frames.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // JSON text as lic3d reads its own files (sessions, colour-map presets): malformed text, a
 // number beyond a double (1e400), nesting deeper than a file of lic3d can be and a key given twice

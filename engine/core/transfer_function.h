@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Transfer functions: colour and opacity as piecewise-linear functions of a scalar, as ParaView
 // stores them in its colour-map presets ("RGBPoints": x r g b ..., "Points": x opacity midpoint

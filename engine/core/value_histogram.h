@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How the values of a scalar over a grid are spread (speed, vorticity, an array of a file): what
 // automatic colour ranges, opacity and looks are tuned from, so that they follow the data rather

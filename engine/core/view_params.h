@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How the LIC volume is drawn. Changing any of this redraws; it never recomputes the LIC volume.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Plain volume data on uniform grids, shared by the CPU reference, the GPU passes and file I/O.
 // Every volume stores x fastest, then y, then z: index = i + NX * (j + NY * k).

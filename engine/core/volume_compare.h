@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How alike two LIC volumes are, beyond per-voxel differences: used to decide whether a faster
 // kernel may replace the exact one (docs/LIC_SEMANTICS.md) and reported by `lic3d bench --kernels`.

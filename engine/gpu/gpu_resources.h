@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Buffers, images and samplers: move-only owners (DeviceHandle) that free what create() made.
 // Each resource gets its own VkDeviceMemory: lic3d holds a handful of large volumes, far below

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one recipe for GPU work from the CPU's point of view: record, submit, wait on a fence.
 // Uploads and read-backs go through it; so do the LIC and slice passes when run offscreen.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // GPU timestamps around regions of a command buffer: what the benchmark and the stats report.
 

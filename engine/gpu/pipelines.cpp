@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gpu/pipelines.h"
 
 #include "gpu/vk_check.h"

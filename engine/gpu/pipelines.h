@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shader modules, pipeline layouts (with their push-descriptor set layout), pipelines and their
 // variant cache, and the descriptors a pass pushes: the few calls every pass makes to build and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // SPIR-V compiled from shaders/ at build time and embedded in the binary; pipelines are made
 // from it with typed specialization constants.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Programming errors abort loudly with file, line and VkResult. Calls that can fail for reasons
 // outside the program (allocation, submission, device loss) return Result values instead: see

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gpu/vulkan_context.h"
 
 #include <algorithm>

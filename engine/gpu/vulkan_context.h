@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The Vulkan instance, the chosen physical device, the logical device and its one queue.
 // Works without any surface; a front end with a window passes its surface extensions in.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "inputs/plane_inputs.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The field of 2D LIC for the command line and the app: a 2D analytic field, a plane of a 3D
 // analytic field, a 2D file or a plane of a 3D one, or a series of such files, each at a time,

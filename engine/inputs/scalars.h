@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What colour and opacity follow (ViewParams::colorBy, opacityBy) as point scalars on the LIC
 // grid: a quantity derived from the field (lic/derived_fields.h) or an array of the field's file,

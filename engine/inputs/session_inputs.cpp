@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "inputs/session_inputs.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A session's inputs, made or read in one place for every front end (the CLI, the desktop app,
 // the ParaView plugin, the tests): the field (an analytic field, a file, or a time series of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading input volumes by file type, for the CLI and the app: one call, whatever the format.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading and writing files safely: whole-file reads with a size limit, a buffered front-to-back
 // reader for the volume parsers, and writes that never leave a half-written file under the real

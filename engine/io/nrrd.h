@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // NRRD files (teem.sourceforge.net/nrrd/format.html): vector fields, noise, scalar volumes and
 // scalars to colour by in; vector fields, noise, LIC results and RGBA volumes out.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The NRRD header: every spelling the format allows, read line by line within a size limit and
 // turned into a Layout only once each number the payload depends on has been checked.
 

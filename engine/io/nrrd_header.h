@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the NRRD reader and writer (nrrd_header.cpp, nrrd_read.cpp, nrrd_write.cpp): the
 // payload's layout as one checked description, so the payload readers never meet a raw header.

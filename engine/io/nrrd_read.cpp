@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The NRRD readers: the payload, raw or gzip, attached or in a detached header's data file, read
 // in chunks into the volume each reader makes, after the header has been checked (nrrd_header.cpp).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The NRRD writers: lic3d's own volumes as headers that teem, 3D Slicer and ParaView read, with
 // little-endian raw data whatever the host's byte order.
 

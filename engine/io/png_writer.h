@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // PNG files: 8-bit RGBA pictures and 16-bit grey LIC slices, with text chunks that carry the
 // parameters that made them.

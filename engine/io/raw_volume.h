@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Raw vector fields: float32 (or float64) values in a file of their own, described by a small
 // JSON sidecar beside it: `field.raw` with `field.json` (or `field.raw.json`).

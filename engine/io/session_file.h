@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Session files (core/session.h) and transfer-function presets (core/transfer_function.h) on
 // disk: read with a size limit, written atomically.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the volume readers and writers of every format share: what a vector-field reader reports
 // besides the field, the rule for NaN and infinite vectors, VTK's mask of valid points, the scalar

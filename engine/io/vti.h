@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // VTK XML ImageData files (.vti, "VTK File Formats", XML section): vector fields and scalar arrays
 // in, LIC and RGBA volumes out (and back in, so users and tests can check what was written).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The bytes of a VTK XML array (vti_read.cpp): raw in memory, read from the file, or base64
 // decoded on the way as VTK writes it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The structure of a VTK XML ImageData file: the XML split from raw appended data, the grid and
 // its one Piece checked, and the DataArray a reader asks for found by name or by VTK's rules.
 

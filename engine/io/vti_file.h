@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the VTK XML ImageData reader (vti_file.cpp, vti_read.cpp): the file's structure,
 // checked once, apart from the decoding of the arrays' data that it points to.

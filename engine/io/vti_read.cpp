@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The VTK XML ImageData readers: each array's data, ascii, base64 or raw appended, plain or in
 // zlib blocks, checked against the bytes present and decoded into the volume each reader makes.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The VTK XML ImageData writers: one point-data array appended raw, which ParaView reads without
 // decoding, after a plain-text header in which only the caller's array name needs escaping.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Vector fields and scalar arrays from VTK legacy files (the "simple legacy format" of the VTK file
 // formats guide): `DATASET STRUCTURED_POINTS` (DIMENSIONS, SPACING or ASPECT_RATIO, ORIGIN) or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The VTK legacy tokenizer: lines and words within length limits, and data blocks of any VTK type,
 // ASCII or big-endian BINARY, refused when they cannot fit in what is left of the file.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the VTK legacy reader (vtk_legacy_parser.cpp, vtk_legacy.cpp): the file's lines,
 // words and data blocks, ASCII or big-endian BINARY, each checked against the bytes left in the

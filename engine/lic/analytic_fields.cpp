@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "lic/analytic_fields.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Analytic vector fields sampled on a grid: the fields of the thesis plus standard test flows.
 

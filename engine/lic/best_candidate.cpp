@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mitchell's best candidate (1991), the thesis' approximation of Poisson disk; grid and witness
 // searches keep its m n^2 / 2 distance tests affordable without changing which points win.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // LIC values as colours on the CPU, with the grey transfer and colour by magnitude that the 3D
 // slices draw (ViewParams, core/view_params.h): the 2D LIC picture and the RGBA volume.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Scalars derived from the vector field, for colour and opacity (ViewParams::colorBy, opacityBy):
 // speed, the vorticity magnitude and the helicity. Computed on the CPU once per field (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "lic/field_piece.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Pieces of a field for distributed runs (the ParaView plugin under MPI): each process computes
 // LIC on its part of the grid widened by ghost layers, and keeps the voxels of its own part.

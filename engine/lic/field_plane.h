@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // 2D fields for 2D LIC (thesis chapter 3): a VectorField one voxel thick, NX x NY x 1, whose
 // vectors lie in the x-y plane (z components 0). A plane of a 3D field, or a file whose grid is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the point samplers and the sparsity mask (not an API): the fixed-point geometry and
 // the integer random numbers that keep every distribution identical on every machine.

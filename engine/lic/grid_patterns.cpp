@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The distributions laid on a grid: the thesis' jittering (one point per cell, thinned to the
 // radius) and the regular checkerboard of diagonal planes that it compares the others with.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Annotations drawn into finished pictures on the CPU: text and the colour legend (a colour bar
 // with its value range), so CLI images carry their own key.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "lic/lic2d_reference.h"
 
 #include <string>

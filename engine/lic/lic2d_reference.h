@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The CPU reference of 2D LIC (thesis chapter 3): docs/LIC_SEMANTICS.md restricted to a plane, on
 // an output image that may be finer than the field. It is the oracle of the 2D GPU pass

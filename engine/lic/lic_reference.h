@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The CPU reference of 3D LIC: the exact semantics of docs/LIC_SEMANTICS.md in double
 // precision, multi-threaded. It is the oracle of the GPU tests and the `--cpu` fallback.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Halton and Hammersley sequences (thesis 5.1.4.2.2): even without random numbers, and
 // computed as exact integers rounded once, so every machine and compiler gets the same points.
 

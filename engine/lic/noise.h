@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Seeded white noise, the input texture of LIC (the thesis' positional noise): each voxel's value
 // is a hash of (seed, voxel index), so it is bit-identical on every machine and compiler and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Point distributions for sparsity masks (lic/sparsity.h) and seed noise: points that should be
 // even but not regular (thesis 5.1.4.2): Poisson disk (exact, and the thesis' best-candidate

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact Poisson disk sampling (Bridson 2007): slabs sampled at once, then the bands between them,
 // so the points never depend on the threads; plus the evenly spread subset that seed noise takes.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The project's one random-number hash, shared by the noise and the point samplers: a pure
 // function of (seed, index), so every volume and point set is identical on every machine.

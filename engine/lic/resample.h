@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A file's field on a finer (or coarser) LIC grid (FieldSource::resolution, core/resolution.h):
 // the same box, its first and last points where they were, the values trilinearly interpolated.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Sparsity masks (thesis 5.1.4): a volume "T2" with chosen voxels black. A LIC voxel whose
 // streamline touches a black voxel is not drawn, which cuts gaps between the streamlines so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Internal to the sparsity mask and the Poisson sampler (not an API): what the automatic sparsity
 // parameters (points = 0, radius = 0; see kDefaultBlackFraction) resolve to on a grid.

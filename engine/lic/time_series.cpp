@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "lic/time_series.h"
 
 #include <glob.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Unsteady fields (docs/TIME.md): a time series of 3D vector fields, either numbered files
 // (`step_%03d.vti`, or a glob such as `step_*.vti`) or an analytic field sampled at its own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The analytic fields (lic/analytic_fields.h) made on the device, in float; the CPU versions in
 // double stay the oracle (tests/test_analytic_device.cpp holds the device's to them).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Unsteady fields (docs/TIME.md): the field at a time between two time steps of a series, made on
 // the GPU. Two steps are resident as textures; a compute pass (shaders/field_lerp.comp) blends

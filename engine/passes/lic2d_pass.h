@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The 2D LIC compute pass (thesis chapter 3): one invocation per output pixel writes the LIC
 // image. Its inputs are two 2D textures, the field at its own grid and the noise at the output

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A histogram of the drawn voxels of the LIC volume on the GPU. LIC values crowd around the
 // noise mean (their spread shrinks like 1/sqrt(samples)), so the renderer stretches them to full

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The LIC compute pass: one invocation per voxel writes the LIC volume (a 3D storage image).
 // Each (integrator, kernel, noise filter, direction, scheme, packing, sparsity) variant is its own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the 3D and the 2D LIC passes share: the LicParams fields of their push constants
 // (shaders/shared_layout.h), the dispatch size and their pipelines' debug names.

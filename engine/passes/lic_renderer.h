@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Ties the passes together for one field and one noise volume: keeps the LIC volume on the GPU,
 // recomputes it only when LicParams, the field or the noise change, and draws it.

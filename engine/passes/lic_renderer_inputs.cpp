@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // LicRenderer's field texture (passes/lic_renderer.h): uploaded from a host field, made on the
 // device from an analytic field, or interpolated between two resident steps of a time series.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The graphics pass: alpha-blended slice proxies through the LIC volume, back to front, into
 // whatever colour attachment the caller's dynamic rendering has open. Display variants (colour,

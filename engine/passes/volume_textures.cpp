@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "passes/volume_textures.h"
 
 #include <algorithm>

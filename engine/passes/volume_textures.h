@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The LIC inputs on the GPU: one 3D texture holding the vector field and the noise together.
 //

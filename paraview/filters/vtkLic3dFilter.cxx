@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkLic3dFilter.h"
 
 #include <algorithm>

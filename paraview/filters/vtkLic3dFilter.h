@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The "3D LIC" filter: Line Integral Convolution of a 3-component point array of image data,
 // computed by the lic3d engine on a Vulkan device (Mesa's lavapipe where there is no GPU).
 //

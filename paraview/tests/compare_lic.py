@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Compares two LIC volumes (.vti or .pvti) voxel by voxel: run with pvpython.
 
     pvpython compare_lic.py A B [--array-a LIC] [--array-b LIC] [--max T] [--mean T]

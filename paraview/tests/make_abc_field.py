@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the ABC flow (docs/LIC_SEMANTICS.md, the `abc` field of lic3d) on an N^3 grid as .vti:
 the large field of the scaling runs in docs/PARAVIEW.md. Run with pvpython:
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The fuzz_build test (a ctest fixture the fuzz_<target> tests require): configures and builds
 # standalone/ (SOURCE) into BINARY with the clang++ named by CXX, for builds of lic3d made with
 # another compiler. Later runs only rebuild what changed.

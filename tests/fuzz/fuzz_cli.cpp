@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line of lic3d: any arguments (random flags and values, NaN, infinities, huge,
 // negative and empty ones, session files that name anything) give a command to run with a
 // session that validates and writes back to itself, or help (status 0), or a refusal (status 2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NRRD files, attached and detached. Each input is read three ways:
 //  - as a NRRD file, by every reader; inputs with `data file: data.raw` or `data.gz` are detached
 //    headers whose (valid) data files lie beside them;

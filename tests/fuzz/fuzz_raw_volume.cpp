@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Raw vector fields with a JSON sidecar. An input is the sidecar's text, a NUL byte, then the
 // raw file's bytes (all sidecar when there is no NUL).
 

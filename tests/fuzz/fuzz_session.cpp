@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Session files and colour-map presets, the JSON documents lic3d reads: any text gives a session
 // (one that validate() accepts) or an InvalidInput error naming the file, never an exception, an
 // abort or a wrapped number.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the fuzz targets share: the readers take paths, so each input is written to a private
 // scratch folder first; and the one property every reader must keep on any input.

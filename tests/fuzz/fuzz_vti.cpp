@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK XML ImageData files: each input is a .vti file, read as a vector field (default and named
 // array), a scalar volume and an RGBA volume.
 

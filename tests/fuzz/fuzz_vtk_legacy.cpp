@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK legacy files: each input is a .vtk file, read for its default array and for one named "v"
 // (which takes the other array-selection paths: cell data, names listed in errors).
 

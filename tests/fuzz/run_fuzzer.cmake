@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs one libFuzzer target for SECONDS (or $ENV{LIC3D_FUZZ_SECONDS} when set) from the seeds in
 # SEEDS, writing new inputs and crash reproducers under WORK (emptied first), never into the
 # committed corpus. Fails on any finding, naming each reproducer and how to replay it. What the
