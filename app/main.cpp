@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <new>
 #include <string>
 #include <vector>
@@ -54,10 +56,18 @@ int findViewCommand(int argc, char** argv) {
   return 0;
 }
 
-}  // namespace
+// What lic3d writes to stdout (help, the device list, the summary line scripts read) must
+// arrive: a closed or full stdout turns a successful run into a failure.
+int checkStdout(int status) {
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (!failed || status != kExitOk) return status;
+  std::fprintf(stderr, "lic3d: error: cannot write to standard output: %s\n",
+               std::strerror(errno != 0 ? errno : EIO));
+  return kExitFailure;
+}
 
-int main(int argc, char** argv) {
-  if (const int view = findViewCommand(argc, argv)) return execViewer(argc, argv, view);
+int run(int argc, char** argv) {
   // No output of a run may replace one of its inputs (docs/RELIABILITY.md, "Output files").
   lic3d::guardInputsFromWrites(true);
 
@@ -79,4 +89,11 @@ int main(int argc, char** argv) {
     return kExitFailure;
   }
   return kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (const int view = findViewCommand(argc, argv)) return execViewer(argc, argv, view);
+  return checkStdout(run(argc, argv));
 }

@@ -175,6 +175,22 @@ TEST_F(CliTest, BenchRunsAndWritesJson) {
 // `bench --kernels` times every scheme with the texture it names, the masked pass and the launch
 // shapes; `bench --fidelity` gives each scheme's error against the converged LIC.
 // A parser's message never echoes a huge argument whole.
+// What lic3d writes to stdout must arrive: help, the device list and the summary line into a full
+// or closed stdout fail the run (status 1, the reason on stderr); they exited 0.
+TEST_F(CliTest, AStdoutThatCannotBeWrittenFailsTheRun) {
+  for (const std::string args : {"--help >/dev/full", "devices >/dev/full",
+                                 "render --grid 8 --width 16 --height 16 -o out.png >/dev/full",
+                                 "render --grid 8 --width 16 --height 16 -o out.png >&-"}) {
+    const std::string command =
+        "cd '" + folder().string() + "' && '" + LIC3D_EXECUTABLE + "' " + args + " 2>err.txt";
+    const int raw = std::system(command.c_str());
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 1) << args << ": " << raw;
+    EXPECT_NE(test::readWhole(path("err.txt")).find("cannot write to standard output"),
+              std::string::npos)
+        << args;
+  }
+}
+
 TEST_F(CliTest, ErrorsAboutHugeArgumentsAreCut) {
   const CommandRun r = run("render --grid 8 --no-such-flag=" + std::string(100000, 'x'));
   EXPECT_EQ(r.status, 2);
