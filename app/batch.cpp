@@ -260,6 +260,22 @@ std::string framePath(const std::string& pattern, int frame) {
          unescapePercent(std::string_view(pattern).substr(c->end));
 }
 
+FrameSkips findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet) {
+  FrameSkips skips;
+  skips.whole.assign(static_cast<std::size_t>(plan.rendered()), false);
+  const bool animated = plan.animation != Animation::None;
+  for (int frame = plan.first; skipExisting && frame < plan.end; ++frame)
+    if (isCompletePng(animated ? framePath(plan.output, frame) : plan.output)) {
+      skips.whole[static_cast<std::size_t>(frame - plan.first)] = true;
+      ++skips.count;
+    }
+  if (skips.count > 0 && !quiet)
+    std::fprintf(stderr,
+                 "lic3d: --skip-existing: %d of %d frame(s) already whole, left as they are\n",
+                 skips.count, plan.rendered());
+  return skips;
+}
+
 Result<fs::path> findFfmpeg() {
   const char* path = std::getenv("PATH");
   std::string_view folders = path ? path : "";

@@ -65,6 +65,17 @@ int cycledBias(int length, int frame, int count);
 // `pattern` with its frame-number conversion replaced (checked by planFrames).
 std::string framePath(const std::string& pattern, int frame);
 
+// --skip-existing: the frames of `plan` whose PNG is whole already (isCompletePng), left as they
+// are; none without the flag. A note on stderr says how many unless `quiet`.
+struct FrameSkips {
+  std::vector<bool> whole;  // per frame from plan.first
+  int count = 0;
+  bool has(const FramePlan& plan, int frame) const {
+    return whole[static_cast<std::size_t>(frame - plan.first)];
+  }
+};
+FrameSkips findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet);
+
 // ffmpeg from PATH; InvalidInput saying so when there is none.
 Result<std::filesystem::path> findFfmpeg();
 // Encodes the frames of `plan` (all of them) into `video` (H.264 in .mp4, VP9 in .webm) at

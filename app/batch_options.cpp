@@ -26,6 +26,9 @@ void addFrameRangeAndVideoOptions(CLI::App& app, BatchOptions& options) {
   app.add_option("--video", options.video,
                  "After the frames, encode them with ffmpeg (from PATH) into this .mp4 (H.264), "
                  ".webm (VP9) or .gif; needs every frame of the animation");
+  app.add_flag("--skip-existing", options.skipExisting,
+               "Leave every frame (or the picture) whose PNG is already whole and render only "
+               "the rest: a requeued task of a job array redoes only what is missing");
   app.add_option("--fps", options.fps, "Frames per second of --video")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();

@@ -19,8 +19,9 @@ struct BatchOptions {
   TextOption frames;     // A:B, frames A..B-1 of the animation
   std::string video;     // .mp4 or .webm made by ffmpeg from the frames
   double fps = 30.0;
-  std::string rgbaVolume;  // render: the colour-mapped volume, .vti or .nrrd
-  TextOption slice;        // compute: AXIS[:INDEX], the LIC slice written as PNG
+  bool skipExisting = false;  // frames whose PNG is whole already are left as they are
+  std::string rgbaVolume;     // render: the colour-mapped volume, .vti or .nrrd
+  TextOption slice;           // compute: AXIS[:INDEX], the LIC slice written as PNG
 };
 
 // --turntable, --animate-bias, --animate-time, --time-range, --frames, --video, --fps,

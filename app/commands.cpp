@@ -241,11 +241,17 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
                           LicRenderer& renderer, std::vector<std::string>& outputs) {
   const Session& session = options.inputs.session;
   const bool animated = plan.animation != Animation::None;
+  const auto pathOf = [&](int frame) {
+    return animated ? framePath(plan.output, frame) : plan.output;
+  };
+  const FrameSkips skips = findWholeFrames(plan, batch.skipExisting, global.quiet);
+  // Every frame whole already (a requeued task that had finished): no LIC is made.
+  const bool makeNothing = skips.count == plan.rendered() && batch.rgbaVolume.empty();
   const double firstTime = frameSession(session, plan, plan.first).time;
-  LIC3D_TRY(moveToTime(inputs, session, firstTime, renderer, true, options.cpu));
+  if (!makeNothing) LIC3D_TRY(moveToTime(inputs, session, firstTime, renderer, true, options.cpu));
   // Bias and time animations recompute the volume every frame: the frame lines report that
   // progress.
-  if (plan.animation != Animation::Bias && plan.animation != Animation::Time)
+  if (!makeNothing && plan.animation != Animation::Bias && plan.animation != Animation::Time)
     LIC3D_TRY(makeLicVolume(options, inputs, session.lic, renderer, global.quiet));
 
   LIC3D_TRY_ASSIGN(ViewScalars scalars, loadViewScalars(session, inputs));
@@ -270,6 +276,11 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
     return first;
   };
   for (int frame = plan.first; frame < plan.end; ++frame) {
+    if (skips.has(plan, frame)) {
+      outputs.push_back(pathOf(frame));
+      progress.frameDone(frame);
+      continue;
+    }
     const Session frameParams = frameSession(session, plan, frame);
     LIC3D_TRY(moveToTime(inputs, session, frameParams.time, renderer, false, options.cpu));
     if (derivedPerFrame && frame > plan.first) {
@@ -285,7 +296,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       (void)waitAll();  // the frames already made are written before the error is reported
       return !image ? std::move(image).error() : std::move(text).error();
     }
-    std::string path = animated ? framePath(plan.output, frame) : plan.output;
+    std::string path = pathOf(frame);
     if (writes.size() >= inFlight) LIC3D_TRY(waitOldest());
     writes.push_back(
         std::async(std::launch::async, [path, picture = std::move(*image), png = std::move(*text)] {
@@ -416,7 +427,14 @@ int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
     const bool animated = plan->animation != Animation::None;
     FrameProgress progress(plan->rendered(), global.quiet || !animated);
     bool fresh = true;  // `inputs->field` changed since it was uploaded
+    const FrameSkips skips = findWholeFrames(*plan, batch.skipExisting, global.quiet);
     for (int frame = plan->first; frame < plan->end; ++frame) {
+      const std::string path = animated ? framePath(plan->output, frame) : plan->output;
+      if (skips.has(*plan, frame)) {
+        summary.outputs.push_back(path);
+        progress.frameDone(frame);
+        continue;
+      }
       const Session frameParams = frameSession(session, *plan, frame);
       if (inputs->timeDependent && frameParams.time != inputs->time) {
         LIC3D_TRY_ASSIGN(inputs->field,
@@ -443,7 +461,6 @@ int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
       lic.geometry = imageGeometry(inputs->field, inputs->noise.dims);
       const RgbaImage image =
           colourLic2D(lic, inputs->field, frameParams.view, inputs->source.outside);
-      const std::string path = animated ? framePath(plan->output, frame) : plan->output;
       LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams));
       LIC3D_TRY(writePng(path, image, text));
       summary.outputs.push_back(path);

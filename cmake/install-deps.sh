@@ -12,6 +12,7 @@ packages="
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libpugixml-dev libgtest-dev
   xvfb xauth
   clang-14 libclang-rt-14-dev clang-format-14
+  ffmpeg
   paraview paraview-dev python3-paraview openmpi-bin libopenmpi-dev libdouble-conversion-dev
 "
 

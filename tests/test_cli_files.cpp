@@ -2,6 +2,7 @@
 // The command line with real data in and results out: vector arrays chosen by name, LIC and RGBA
 // volumes, slices, sessions in every PNG, animations, summaries, and failures that leave nothing.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -639,6 +640,34 @@ TEST_F(CliTest, AxesOutlineTheBoxWithoutChangingThePicture) {
   const double fraction = changed / (200.0 * 200.0);
   EXPECT_GT(fraction, 0.01);
   EXPECT_LT(fraction, 0.15);
+}
+
+// --skip-existing: a requeued task redoes only what is missing. A frame whose PNG is whole stays
+// the same file (lic3d writes by rename, so a redone frame would be a new inode); a missing frame
+// and one cut short are made again, byte for byte as before; with every frame whole, nothing is.
+TEST_F(CliTest, SkipExistingRedoesOnlyMissingOrCutFrames) {
+  const std::string args = "render --grid 8 --width 32 --height 32 --turntable 4 -o 'f_%d.png'";
+  ASSERT_EQ(run(args + " -q").status, 0);
+  const auto inode = [&](const char* name) {
+    struct stat s {};
+    return ::stat(path(name).c_str(), &s) == 0 ? s.st_ino : 0;
+  };
+  const auto kept0 = inode("f_0.png");
+  const auto kept1 = inode("f_1.png");
+  const std::string original3 = test::readWhole(path("f_3.png"));
+  fs::remove(path("f_2.png"));
+  writeBytes("f_3.png", original3.substr(0, original3.size() / 2));  // cut short
+  const CommandRun again = run(args + " --skip-existing");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("2 of 4 frame(s) already whole"), std::string::npos) << again.output;
+  EXPECT_EQ(inode("f_0.png"), kept0);
+  EXPECT_EQ(inode("f_1.png"), kept1);
+  EXPECT_TRUE(fs::exists(path("f_2.png")));
+  EXPECT_EQ(test::readWhole(path("f_3.png")), original3);
+  const CommandRun done = run(args + " --skip-existing");
+  ASSERT_EQ(done.status, 0) << done.output;
+  EXPECT_NE(done.output.find("4 of 4 frame(s) already whole"), std::string::npos) << done.output;
+  EXPECT_EQ(done.output.find("LIC "), std::string::npos) << "no LIC for a finished task";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <csetjmp>
 #include <cstring>
+#include <fstream>
 #include <new>
 #include <string>
 
@@ -189,6 +190,21 @@ Result<void> writePngGray16(const std::filesystem::path& path, int width, int he
   }
   return encodeAndWrite(path, {width, height, 16, PNG_COLOR_TYPE_GRAY}, bigEndian.data(),
                         2 * static_cast<std::size_t>(width), text);
+}
+
+bool isCompletePng(const std::filesystem::path& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  // A zero-length IEND chunk: its length, its type and its CRC.
+  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  std::ifstream in(path, std::ios::binary);
+  unsigned char start[8];
+  unsigned char end[12];
+  if (!in.read(reinterpret_cast<char*>(start), sizeof start)) return false;
+  if (!in.seekg(-static_cast<std::streamoff>(sizeof end), std::ios::end)) return false;
+  if (!in.read(reinterpret_cast<char*>(end), sizeof end)) return false;
+  return std::memcmp(start, kSignature, sizeof start) == 0 &&
+         std::memcmp(end, kEnd, sizeof end) == 0;
 }
 
 }  // namespace lic3d

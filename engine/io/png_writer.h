@@ -29,4 +29,9 @@ Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
 Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
                             const std::vector<std::uint16_t>& values, const PngText& text = {});
 
+// Whether `path` is a whole PNG file: the signature at its start and the IEND chunk at its end.
+// lic3d writes every file atomically, so one of its frames is whole or absent; this also tells a
+// file cut short by a copy or another program (`--skip-existing` redoes it).
+bool isCompletePng(const std::filesystem::path& path);
+
 }  // namespace lic3d
