@@ -383,7 +383,7 @@ Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& vol
       if (!marked.drawn[i]) marked.values[i] = std::numeric_limits<float>::quiet_NaN();
     out = &marked;
   }
-  if (extensionOf(path) == ".vti") return writeScalarVti(path, *out, "lic");
+  if (extensionOf(path) == ".vti") return writeScalarVti(path, *out);
   return writeScalarNrrd(path, *out);
 }
 

@@ -76,10 +76,11 @@ TEST_F(NrrdTest, ScalarVolumeIsWrittenAsDocumented) {
   const std::size_t end = bytes.find("\n\n");
   ASSERT_NE(end, std::string::npos);
   const std::string header = bytes.substr(0, end + 1);
-  for (const char* line : {"NRRD0004\n", "# written by lic3d\n", "type: float\n", "dimension: 3\n",
-                           "space dimension: 3\n", "sizes: 3 2 2\n",
-                           "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\n", "endian: little\n",
-                           "encoding: raw\n", "space origin: (-1,0,10.5)\n"})
+  for (const char* line :
+       {"NRRD0004\n", "# written by lic3d\n", "type: float\n", "dimension: 3\n",
+        "space dimension: 3\n", "sizes: 3 2 2\n",
+        "space directions: (0.5,0,0) (0,0.25,0) (0,0,2)\n", "endian: little\n",
+        "labels: \"LIC\" \"y\" \"z\"\n", "encoding: raw\n", "space origin: (-1,0,10.5)\n"})
     EXPECT_NE(header.find(line), std::string::npos) << line << " not in:\n" << header;
   EXPECT_EQ(bytes.substr(end + 2), bytesOf(volume.values, std::endian::little));
 
@@ -177,7 +178,7 @@ TEST_F(NrrdTest, RgbaVolumeRoundTripAndHeader) {
   const std::string bytes = readWhole(file);
   for (const char* line :
        {"type: uchar\n", "dimension: 4\n", "sizes: 4 3 2 2\n",
-        "kinds: RGBA-color domain domain domain\n",
+        "kinds: RGBA-color domain domain domain\n", "labels: \"RGBA\" \"x\" \"y\" \"z\"\n",
         "space directions: none (0.5,0,0) (0,1.5,0) (0,0,2.5)\n", "space origin: (1,2,-3)\n"})
     EXPECT_NE(bytes.find(line), std::string::npos) << line;
   const Result<RgbaVolume> read = readRgbaNrrd(file);

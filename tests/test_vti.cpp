@@ -463,7 +463,7 @@ TEST_F(VtiTest, ScalarVolumeRoundTripKeepsValuesNaNAndGeometry) {
   const std::string bytes = readWhole(file);
   for (const char* text : {"<VTKFile type=\"ImageData\"", "header_type=\"UInt64\"",
                            "WholeExtent=\"0 4 0 3 0 2\"", "Spacing=\"0.1 0.3333333333333333 2\"",
-                           "<PointData Scalars=\"lic\">", "type=\"Float32\" Name=\"lic\"",
+                           "<PointData Scalars=\"LIC\">", "type=\"Float32\" Name=\"LIC\"",
                            "format=\"appended\" offset=\"0\"", "<AppendedData encoding=\"raw\">"})
     EXPECT_NE(bytes.find(text), std::string::npos) << text;
   const Result<ScalarVolume> read = readScalarVti(file);

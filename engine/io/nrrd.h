@@ -52,9 +52,11 @@ Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path);
 // `dimension: 4`, `sizes: 4 NX NY NZ`, type uchar: what writeRgbaNrrd writes.
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path);
 
-// Float32, raw, little endian, with `space directions` and `space origin` from the geometry.
-// All writers go through writeFileAtomically, so a failed write leaves no partial file.
-Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume);
+// Float32, raw, little endian, with `space directions` and `space origin` from the geometry, and
+// `labels` whose first names the array in ParaView (`name`). All writers go through
+// writeFileAtomically, so a failed write leaves no partial file.
+Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume,
+                             std::string_view name = kLicArrayName);
 // Float32, raw, little endian: what readVectorFieldNrrd reads back unchanged.
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field);
 // Keeps the noise's type (uchar, ushort or float); raw, little endian.

@@ -59,16 +59,27 @@ std::string directionsText(const GridGeometry& geometry) {
          formatVector({0.0, 0.0, geometry.spacing.z});
 }
 
+// `labels`, one per axis. VTK's and ParaView's NRRD reader names the array by the first label
+// ("ImageFile" without one), so the first axis carries the data's name: the component axis of
+// vectors and colours, the x axis of a scalar volume. (That reader also takes "space dimension"
+// as the number of axes once it comes, so lic3d writes it after "sizes": before, ParaView read a
+// 4-axis RGBA file as one slice.)
+std::string labelsText(std::string_view name, bool componentAxis) {
+  return "labels: \"" + std::string(name) + "\" " +
+         (componentAxis ? "\"x\" \"y\" \"z\"\n" : "\"y\" \"z\"\n");
+}
+
 }  // namespace
 
-Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume) {
+Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume,
+                             std::string_view name) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
   const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nspace dimension: 3\n"
-      "sizes: " +
-      sizesText(volume.dims) + "\nspace directions: " + directionsText(volume.geometry) +
-      "\nkinds: domain domain domain\nendian: little\nencoding: raw\nspace origin: " +
-      formatVector(volume.geometry.origin) + "\n\n";
+      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nsizes: " + sizesText(volume.dims) +
+      "\nspace dimension: 3\nspace directions: " + directionsText(volume.geometry) +
+      "\nkinds: domain domain domain\n" + labelsText(name, false) +
+      "endian: little\nencoding: raw\nspace origin: " + formatVector(volume.geometry.origin) +
+      "\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
     return writeLittleEndian(out, volume.values.data(), volume.values.size(), sizeof(float));
@@ -78,12 +89,11 @@ Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolu
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field) {
   LIC3D_TRY(checkVolumeForWriting(path, field.dims, field.vectors.size(), 1, &field.geometry));
   const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 4\nspace dimension: 3\n"
-      "sizes: 3 " +
-      sizesText(field.dims) + "\nspace directions: none " + directionsText(field.geometry) +
-      "\nkinds: vector domain domain domain\nendian: little\nencoding: raw\n"
-      "space origin: " +
-      formatVector(field.geometry.origin) + "\n\n";
+      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 4\nsizes: 3 " + sizesText(field.dims) +
+      "\nspace dimension: 3\nspace directions: none " + directionsText(field.geometry) +
+      "\nkinds: vector domain domain domain\n" + labelsText("vectors", true) +
+      "endian: little\nencoding: raw\nspace origin: " + formatVector(field.geometry.origin) +
+      "\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
     return writeLittleEndian(out, field.vectors.data(), 3 * field.vectors.size(), sizeof(float));
@@ -102,7 +112,7 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
                                                        : "float";
   const std::string header = std::string("NRRD0004\n# written by lic3d\ntype: ") + type +
                              "\ndimension: 3\nsizes: " + sizesText(noise.dims) +
-                             "\nkinds: domain domain domain\n" +
+                             "\nkinds: domain domain domain\n" + labelsText("noise", false) +
                              (bytesPerValue > 1 ? "endian: little\n" : "") + "encoding: raw\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
@@ -114,11 +124,11 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
 Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& volume) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
   const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: uchar\ndimension: 4\nspace dimension: 3\n"
-      "sizes: 4 " +
-      sizesText(volume.dims) + "\nspace directions: none " + directionsText(volume.geometry) +
-      "\nkinds: RGBA-color domain domain domain\nencoding: raw\nspace origin: " +
-      formatVector(volume.geometry.origin) + "\n\n";
+      "NRRD0004\n# written by lic3d\ntype: uchar\ndimension: 4\nsizes: 4 " +
+      sizesText(volume.dims) + "\nspace dimension: 3\nspace directions: none " +
+      directionsText(volume.geometry) + "\nkinds: RGBA-color domain domain domain\n" +
+      labelsText("RGBA", true) +
+      "encoding: raw\nspace origin: " + formatVector(volume.geometry.origin) + "\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
     return static_cast<bool>(out.write(reinterpret_cast<const char*>(volume.rgba.data()),

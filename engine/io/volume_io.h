@@ -64,6 +64,10 @@ struct RgbaVolume {
   std::vector<std::uint8_t> rgba;  // 4 * voxelCount(dims) bytes
 };
 
+// The name of the LIC array in every file lic3d writes (VTI arrays, NRRD labels) and in the
+// ParaView filter's output: one name, so a script or a ParaView state finds it in any of them.
+inline constexpr std::string_view kLicArrayName = "LIC";
+
 // deflate cannot compress better than about 1032:1, so compressed data that would have to
 // inflate further is corrupt and is refused before its output is allocated.
 inline constexpr std::uint64_t kMaxDeflateRatio = 1032;

@@ -53,7 +53,7 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path);
 // size header in the host's byte order, with Origin and Spacing from the geometry; NaN values are
 // written as they are. Through writeFileAtomically, so a failed write leaves no partial file.
 Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
-                            std::string_view arrayName = "lic");
+                            std::string_view arrayName = kLicArrayName);
 
 // The same layout with one 4-component UInt8 array named "rgba": ParaView shows it as colours
 // with "Map Scalars" off.

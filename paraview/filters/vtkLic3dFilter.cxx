@@ -427,7 +427,7 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const lic3d::Dims outDims = dimsOf(out);
   const vtkIdType count = static_cast<vtkIdType>(lic3d::voxelCount(outDims));
   vtkNew<vtkFloatArray> licArray;
-  licArray->SetName("LIC");
+  licArray->SetName(std::string(lic3d::kLicArrayName).c_str());
   licArray->SetNumberOfValues(count);
   vtkNew<vtkFloatArray> magnitude;
   magnitude->SetName("Magnitude");
