@@ -4,7 +4,6 @@
 // end with its exit status and a message naming the flag or file, leave every file it found as it
 // was (inputs untouched) and add nothing: no output, no temporary file.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -34,20 +33,6 @@ struct Case {
   std::string mentions;    // what its message must contain
   std::string makes = "";  // the one file it may add (a case that succeeds)
 };
-
-std::string gzip(const std::string& data) {
-  z_stream zs{};
-  EXPECT_EQ(deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = static_cast<uInt>(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
 
 std::string randomBytes(std::size_t count, unsigned seed) {
   std::mt19937 random(seed);
@@ -96,7 +81,7 @@ class AdversarialTest : public CliTest {
     writeBytes("bomb.nrrd",
                "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 400 400 400\nendian: little\n"
                "encoding: gzip\n\n" +
-                   gzip(randomBytes(800'000, 1)));
+                   test::deflateBytes(randomBytes(800'000, 1), 15 + 16));
     writeBytes("self.nhdr",
                "NRRD0004\ntype: float\ndimension: 4\nsizes: 3 2 2 2\nendian: little\n"
                "encoding: raw\ndata file: self.nhdr\n#" +

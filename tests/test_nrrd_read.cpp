@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <bit>
@@ -38,20 +37,8 @@ using test::makeField;
 using test::NrrdTest;
 using test::readWhole;
 
-std::string gzipCompress(const std::string& data) {
-  z_stream zs{};
-  // 15 + 16: a gzip header and trailer, as teem writes them.
-  EXPECT_EQ(deflateInit2(&zs, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = static_cast<uInt>(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
-}
+// As teem writes gzip data.
+std::string gzipCompress(const std::string& data) { return test::deflateBytes(data, 15 + 16); }
 
 // The components of a field in file order, for hand-made payloads.
 std::vector<float> componentsOf(const VectorField& field) {

@@ -4,7 +4,6 @@
 // mask zeroing vectors.
 
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <bit>
 #include <cmath>
@@ -29,6 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::bytesOf;
+using test::deflateBytes;
 using test::expectInputError;
 
 class PointScalarsTest : public test::TempFolderTest {};
@@ -286,21 +286,6 @@ std::string base64(const std::string& bytes) {
     encoded += i + 2 < bytes.size() ? kAlphabet[bits & 63] : '=';
   }
   return encoded;
-}
-
-// A zlib stream (windowBits 15) or a gzip one (15 + 16), as VTK and teem write them.
-std::string deflateBytes(const std::string& data, int windowBits) {
-  z_stream zs{};
-  EXPECT_EQ(deflateInit2(&zs, 6, Z_DEFLATED, windowBits, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = static_cast<uInt>(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
 }
 
 // `format`: ascii, binary (base64), or zlib (base64 vtkZLibDataCompressor blocks of 16 bytes).

@@ -16,6 +16,9 @@ std::filesystem::path dataFolder();
 
 std::string readWhole(const std::filesystem::path& file);
 
+// `data` as one zlib stream (windowBits 15) or gzip stream (15 + 16), as VTK and teem write them.
+std::string deflateBytes(const std::string& data, int windowBits);
+
 // Runs `body` in a forked child and returns by how much the child's peak resident set grew over
 // what it had when it started, in MiB: what one call costs in memory, apart from the test process.
 double peakMemoryGrowthMiB(const std::function<void()>& body);
