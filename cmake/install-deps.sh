@@ -5,7 +5,7 @@
 set -eu
 
 packages="
-  ca-certificates cmake ninja-build g++ pkg-config
+  ca-certificates cmake ninja-build g++ pkg-config help2man
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev
   libglm-dev libglfw3-dev libimgui-dev libstb-dev
