@@ -20,6 +20,7 @@
 #include "core/session.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
+#include "io/session_file.h"
 #include "io/vti.h"
 
 namespace lic3d::cli {
@@ -194,7 +195,7 @@ Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& 
 
 Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& plan,
                                 const Session& session) {
-  LIC3D_TRY(pngText(session));
+  LIC3D_TRY(pngText(session, plan.output));
   if (!options.rgbaVolume.empty()) {
     if (plan.animation == Animation::Bias || plan.animation == Animation::Time)
       return inputError(
@@ -346,10 +347,11 @@ Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double f
   return {};
 }
 
-Result<PngText> pngText(const Session& session) {
+Result<PngText> pngText(const Session& session, const std::string& path) {
   PngText text;
   try {
-    text.emplace_back("lic3d-session", sessionToJson(session));
+    text.emplace_back(kPngSessionKey, sessionToJson(sessionForFolder(
+                                          session, std::filesystem::path(path).parent_path())));
   } catch (const std::exception& e) {
     return inputError(std::string("cannot record the parameters in the PNG as JSON: ") + e.what());
   }
@@ -357,20 +359,28 @@ Result<PngText> pngText(const Session& session) {
   return text;
 }
 
-Result<void> checkComputeOutput(const std::string& path, const BatchOptions& options) {
+Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
+                                                   const BatchOptions& options,
+                                                   const SessionOptions& inputs) {
   const std::string extension = extensionOf(path);
   if (options.slice.given()) {
-    LIC3D_TRY(parseSlice(options.slice.text));
+    LIC3D_TRY_ASSIGN(const LicSlice slice, parseSlice(options.slice.text));
     if (extension != ".png")
       return inputError("--slice " + options.slice.text + " writes a PNG: use -o FILE.png, not " +
                         path);
-    return checkOutputPath(path, ".png");
+    LIC3D_TRY(checkOutputPath(path, ".png"));
+    return std::optional<LicSlice>(slice);
+  }
+  if (extension == ".png" && !inputs.sessionFile.empty() && !inputs.session.twoD) {
+    LIC3D_TRY(checkOutputPath(path, ".png"));
+    return std::optional<LicSlice>(LicSlice{inputs.session.plane.axis, inputs.session.plane.index});
   }
   if (extension == ".png")
     return inputError("-o " + path +
                       ": compute writes the LIC volume (.nrrd or .vti); for a 16-bit PNG of one "
                       "slice add --slice AXIS[:INDEX], e.g. --slice z:64");
-  return checkOutputPathOneOf(path, "-o", {".nrrd", ".vti"});
+  LIC3D_TRY(checkOutputPathOneOf(path, "-o", {".nrrd", ".vti"}));
+  return std::optional<LicSlice>();
 }
 
 Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume) {
@@ -379,8 +389,7 @@ Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& vol
   const ScalarVolume* out = &volume;
   if (!volume.drawn.empty()) {
     marked = volume;
-    for (std::size_t i = 0; i < marked.values.size(); ++i)
-      if (!marked.drawn[i]) marked.values[i] = std::numeric_limits<float>::quiet_NaN();
+    markHiddenVoxels(marked);
     out = &marked;
   }
   if (extensionOf(path) == ".vti") return writeScalarVti(path, *out);
@@ -427,7 +436,11 @@ Result<void> writeLicSlicePng(const std::string& path, const ScalarVolume& volum
       values[static_cast<std::size_t>(row) * width + column] =
           static_cast<std::uint16_t>(std::lround(v * 65535.0f));
     }
-  LIC3D_TRY_ASSIGN(const PngText text, pngText(session));
+  // The session records the slice, so that `compute --session` of this PNG remakes it.
+  Session recorded = session;
+  recorded.plane.axis = slice.axis;
+  recorded.plane.index = index;
+  LIC3D_TRY_ASSIGN(const PngText text, pngText(recorded, path));
   return writePngGray16(path, width, height, values, text);
 }
 

@@ -83,14 +83,13 @@ Result<std::filesystem::path> findFfmpeg();
 Result<void> encodeVideo(const std::filesystem::path& ffmpeg, const FramePlan& plan, double fps,
                          const std::string& video);
 
-// The PNG text of a picture made from `session`: "lic3d-session" (sessionToJson) and
-// "Software". An error when the session cannot be written as JSON (a file name that is not
-// UTF-8).
-Result<PngText> pngText(const Session& session);
+// The PNG text of a picture made from `session` for the PNG `path`: kPngSessionKey (sessionToJson,
+// its file paths relative to the PNG's folder) and "Software". An error when the session cannot
+// be written as JSON (a file name that is not UTF-8).
+Result<PngText> pngText(const Session& session, const std::string& path);
 
 // compute's -o: .nrrd or .vti (the LIC volume, float32, with spacing and origin; voxels that
-// sparsity hides are NaN) or .png with --slice. Checked before any work.
-Result<void> checkComputeOutput(const std::string& path, const BatchOptions& options);
+// sparsity hides are NaN), or a slice PNG (checkComputeOutput below).
 Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume);
 
 // A slice through the LIC volume: axis 0, 1, 2 for x, y, z; index -1 means the middle one.
@@ -99,6 +98,12 @@ struct LicSlice {
   int index = -1;
 };
 Result<LicSlice> parseSlice(const std::string& text);
+// Checks compute's output before any work: a volume (.nrrd, .vti; nothing returned) or a slice
+// PNG, whose slice is --slice or, with a session (a slice PNG remaking itself), the slice the
+// session records (its plane's axis and index).
+Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
+                                                   const BatchOptions& options,
+                                                   const SessionOptions& inputs);
 // The slice as a 16-bit grey PNG: LIC value v in [0,1] as round(65535 v), hidden voxels 0. Rows
 // run along the slice's second axis from its top (highest index) down, columns along its first
 // (z: x right, y up; y: x right, z up; x: y right, z up). An index outside the grid is

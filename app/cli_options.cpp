@@ -120,15 +120,16 @@ void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool v
   app.add_option("--session", options.sessionFile,
                  "Start from a session file (JSON, as the viewer saves it); other flags override "
                  "its values");
-  app.add_option("--field", s.field.field,
-                 planar ? "Vector field: a 2D analytic field (" + enumChoices<AnalyticField2D>() +
-                              "), a plane of a 3D one (" + enumChoices<AnalyticField>() +
-                              ", see --slice), a file (.vtk, .vti, .nrrd, .nhdr, .raw; 2D, or a "
-                              "plane of a 3D one), or a time series of files: step_%03d.vti or "
-                              "'step_*.vti' (docs/TIME.md)"
-                        : "Vector field: an analytic field (" + enumChoices<AnalyticField>() +
-                              "), a file (.vtk, .vti, .nrrd, .nhdr, .raw), or a time series of "
-                              "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
+  app.add_option(
+         "--field", s.field.field,
+         planar ? "Vector field: a 2D analytic field (" + enumChoices<AnalyticField2D>() +
+                      "), a plane of a 3D one (" + enumChoices<AnalyticField>() +
+                      ", see --slice), a file (.vtk, .vti, .pvti, .nrrd, .nhdr, .raw; 2D, or a "
+                      "plane of a 3D one), or a time series of files: step_%03d.vti or "
+                      "'step_*.vti' (docs/TIME.md)"
+                : "Vector field: an analytic field (" + enumChoices<AnalyticField>() +
+                      "), a file (.vtk, .vti, .pvti, .nrrd, .nhdr, .raw), or a time series of "
+                      "files: step_%03d.vti or 'step_*.vti' (docs/TIME.md)")
       ->capture_default_str();
   nameFlag("field.source", "--field");
   nameFlag("field.array", "--array");
@@ -227,6 +228,17 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
                              : "Output: the LIC volume as .nrrd or .vti (float32), or one slice "
                                "as .png with --slice")
           ->capture_default_str();
+}
+
+Result<void> parseArguments(CLI::App& app, int argc, char** argv,
+                            std::initializer_list<SessionOptions*> sessions) {
+  try {
+    for (SessionOptions* options : sessions) LIC3D_TRY(preloadSession(argc, argv, *options));
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return inputError(cutMessage(e.what()));
+  }
+  return {};
 }
 
 std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const char* program,

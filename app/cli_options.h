@@ -108,6 +108,11 @@ void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane
 // Applies --slice to session.plane (InvalidInput naming the flag).
 Result<void> finishPlaneOptions(const PlaneOptions& plane, Session& session);
 
+// Parses `argv` for a front end that prints nothing (the Python module): a refused flag or
+// value is an InvalidInput error with CLI11's message; help and the version are not offered.
+Result<void> parseArguments(CLI::App& app, int argc, char** argv,
+                            std::initializer_list<SessionOptions*> sessions);
+
 // Parses the command line once the session files it names are read into `sessions` (flags
 // given then override them). Nothing when the program goes on; else its exit status: help and
 // the version are printed (0), a bad flag is named with `hint` (kExitBadInput).

@@ -139,6 +139,11 @@ std::optional<int> parseAndCheck(CommandLine& line, int argc, char** argv) {
           line.app, argc, argv, "lic3d", "Run `lic3d --help` or `lic3d <command> --help`.",
           {&line.compute.inputs, &line.render.inputs, &line.render2d.inputs}))
     return *status;
+  if (Result<void> checked = finishCommand(line); !checked) return reportError(checked.error());
+  return std::nullopt;
+}
+
+Result<void> finishCommand(CommandLine& line) {
   Result<void> checked;
   if (line.computeCommand->parsed()) checked = finishSessionOptions(line.compute.inputs, false);
   if (line.renderCommand->parsed()) checked = finishSessionOptions(line.render.inputs, true);
@@ -147,8 +152,7 @@ std::optional<int> parseAndCheck(CommandLine& line, int argc, char** argv) {
     checked = finishPlaneOptions(line.plane, line.render2d.inputs.session);
     if (checked) checked = finishSessionOptions(line.render2d.inputs, true);
   }
-  if (!checked) return reportError(checked.error());
-  return std::nullopt;
+  return checked;
 }
 
 }  // namespace lic3d::cli

@@ -63,4 +63,8 @@ std::unique_ptr<CommandLine> makeCommandLine();
 // refused (the message printed, naming it).
 std::optional<int> parseAndCheck(CommandLine& line, int argc, char** argv);
 
+// The second half of parseAndCheck, for front ends that parse with parseArguments: finishes the
+// session options of the subcommand given (InvalidInput naming the flag).
+Result<void> finishCommand(CommandLine& line);
+
 }  // namespace lic3d::cli

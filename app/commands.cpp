@@ -177,62 +177,13 @@ Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& i
 }
 
 // compute's output: the volume (.nrrd, .vti) or one slice (.png with --slice).
-Result<void> writeComputeOutput(const ComputeOptions& options, const BatchOptions& batch,
+Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<LicSlice> slice,
                                 const ScalarVolume& volume) {
-  if (!batch.slice.given()) {
+  if (!slice) {
     const StageTimer timer("volume write");
     return writeLicVolumeFile(options.output, volume);
   }
-  LIC3D_TRY_ASSIGN(const LicSlice slice, parseSlice(batch.slice.text));
-  return writeLicSlicePng(options.output, volume, slice, options.inputs.session);
-}
-
-// The scalars colour and opacity follow, when they are not the speed (inputs/scalars.h): loaded
-// only where the view uses them, once when both name the same one.
-struct ViewScalars {
-  std::optional<PointScalars> color;
-  std::optional<PointScalars> opacity;
-  VolumeScalars pointers() const {
-    return {color ? &*color : nullptr, opacity ? &*opacity : nullptr};
-  }
-};
-
-// Whether opacity follows a scalar: the magnitude ramp, a threshold or a transfer function.
-bool opacityWeighted(const ViewParams& view) {
-  return view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
-         !view.transfer.opacities.empty();
-}
-
-// Whether colour or opacity follow a quantity derived from the field's vectors on the host.
-bool viewDerivesFromField(const ViewParams& view) {
-  const auto derived = [](const std::string& name) {
-    const std::optional<DerivedQuantity> quantity = derivedQuantity(name);
-    return quantity && *quantity != DerivedQuantity::Speed;
-  };
-  return (view.color == ColorMode::Magnitude && derived(view.colorBy)) ||
-         (opacityWeighted(view) && derived(view.opacityBy));
-}
-
-Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs) {
-  const StageTimer timer("scalars");
-  const ViewParams& view = session.view;
-  ViewScalars scalars;
-  if (view.color == ColorMode::Magnitude) {
-    LIC3D_TRY_ASSIGN(scalars.color, loadScalars(view.colorBy, "view.color_by", session, inputs));
-  }
-  const bool weighted = opacityWeighted(view);
-  if (weighted && view.opacityBy == view.colorBy && view.color == ColorMode::Magnitude) {
-    scalars.opacity = scalars.color;
-  } else if (weighted) {
-    LIC3D_TRY_ASSIGN(scalars.opacity,
-                     loadScalars(view.opacityBy, "view.opacity_by", session, inputs));
-  }
-  return scalars;
-}
-
-Result<void> setViewScalars(LicRenderer& renderer, const ViewScalars& scalars) {
-  return renderer.setScalars(scalars.color ? &*scalars.color : nullptr,
-                             scalars.opacity ? &*scalars.opacity : nullptr);
+  return writeLicSlicePng(options.output, volume, *slice, options.inputs.session);
 }
 
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
@@ -291,7 +242,8 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
     const Result<void> made = makeLicVolume(options, inputs, frameParams.lic, renderer, true);
     Result<RgbaImage> image =
         made ? renderer.render(frameParams.lic, frameParams.view) : Result<RgbaImage>(made.error());
-    Result<PngText> text = image ? pngText(frameParams) : Result<PngText>(image.error());
+    Result<PngText> text =
+        image ? pngText(frameParams, pathOf(frame)) : Result<PngText>(image.error());
     if (!image || !text) {
       (void)waitAll();  // the frames already made are written before the error is reported
       return !image ? std::move(image).error() : std::move(text).error();
@@ -461,7 +413,7 @@ int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
       lic.geometry = imageGeometry(inputs->field, inputs->noise.dims);
       const RgbaImage image =
           colourLic2D(lic, inputs->field, frameParams.view, inputs->source.outside);
-      LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams));
+      LIC3D_TRY_ASSIGN(const PngText text, pngText(frameParams, path));
       LIC3D_TRY(writePng(path, image, text));
       summary.outputs.push_back(path);
       progress.frameDone(frame);
@@ -523,9 +475,11 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
                const BatchOptions& batch) {
   const Clock::time_point start = Clock::now();
   const Session& session = options.inputs.session;
-  if (auto r = checkComputeOutput(options.output, batch); !r) return reportError(r.error());
-  if (batch.slice.given())
-    if (auto r = pngText(session); !r) return reportError(r.error());
+  const Result<std::optional<LicSlice>> slice =
+      checkComputeOutput(options.output, batch, options.inputs);
+  if (!slice) return reportError(slice.error());
+  if (*slice)
+    if (auto r = pngText(session, options.output); !r) return reportError(r.error());
   // On the GPU, the device comes first, so that an analytic field too large for it is refused
   // before it is made.
   std::optional<Result<Context>> context;
@@ -547,15 +501,16 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   if (!inputs) return fail(inputs.error());
   if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
-  if (batch.slice.given()) {
+  if (const std::optional<LicSlice> chosen = *slice) {
     // The index against the grid, before any work.
-    const LicSlice slice = *parseSlice(batch.slice.text);
-    if (slice.index >= inputs->field.dims[slice.axis])
-      return fail(inputError("--slice " + batch.slice.text + ": the grid " +
-                             gridText(inputs->field.dims) + " has " +
-                             std::to_string(inputs->field.dims[slice.axis]) + " slices along " +
-                             std::string(1, static_cast<char>('x' + slice.axis)) + " (0.." +
-                             std::to_string(inputs->field.dims[slice.axis] - 1) + ")"));
+    const std::string text =
+        std::string(1, static_cast<char>('x' + chosen->axis)) + ":" + std::to_string(chosen->index);
+    if (chosen->index >= inputs->field.dims[chosen->axis])
+      return fail(inputError("--slice " + text + ": the grid " + gridText(inputs->field.dims) +
+                             " has " + std::to_string(inputs->field.dims[chosen->axis]) +
+                             " slices along " +
+                             std::string(1, static_cast<char>('x' + chosen->axis)) + " (0.." +
+                             std::to_string(inputs->field.dims[chosen->axis] - 1) + ")"));
   }
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.outputs = {options.output};
@@ -569,7 +524,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     }
     const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
     if (!volume) return reportError(volume.error());
-    if (auto r = writeComputeOutput(options, batch, *volume); !r) return reportError(r.error());
+    if (auto r = writeComputeOutput(options, *slice, *volume); !r) return reportError(r.error());
     if (!global.quiet)
       std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
                    fieldText(session.field, *inputs).c_str());
@@ -596,7 +551,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     Result<ScalarVolume> volume =
         done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
     if (volume) {
-      done = writeComputeOutput(options, batch, *volume);
+      done = writeComputeOutput(options, *slice, *volume);
       if (done) noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
     } else {
       done = volume.error();

@@ -62,7 +62,7 @@ if(CHECK STREQUAL "layers")
   endforeach()
 elseif(CHECK STREQUAL "file_size")
   set(files "")
-  foreach(folder engine app shaders paraview tests)
+  foreach(folder engine app shaders paraview python tests)
     file(GLOB_RECURSE found RELATIVE "${SOURCE_DIR}"
          "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.cxx"
          "${SOURCE_DIR}/${folder}/*.comp" "${SOURCE_DIR}/${folder}/*.frag"
@@ -79,7 +79,7 @@ elseif(CHECK STREQUAL "file_size")
   endforeach()
 elseif(CHECK STREQUAL "licence")
   file(GLOB files RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/CMakeLists.txt" "${SOURCE_DIR}/.ci/*")
-  foreach(folder engine app shaders paraview tests cmake docs)
+  foreach(folder engine app shaders paraview python tests cmake docs)
     file(GLOB_RECURSE found RELATIVE "${SOURCE_DIR}"
          "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.cxx"
          "${SOURCE_DIR}/${folder}/*.comp" "${SOURCE_DIR}/${folder}/*.frag"

@@ -5,7 +5,7 @@
 cmake_minimum_required(VERSION 3.25)
 
 set(files "")
-foreach(folder engine app shaders paraview tests)
+foreach(folder engine app shaders paraview python tests)
   file(GLOB_RECURSE found "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cpp"
        "${SOURCE_DIR}/${folder}/*.cxx")
   list(APPEND files ${found})

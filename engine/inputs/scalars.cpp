@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/resolution.h"
+#include "core/stage_times.h"
 #include "io/file_util.h"
 #include "lic/derived_fields.h"
 #include "lic/resample.h"
@@ -59,6 +60,42 @@ std::vector<std::string> scalarChoices(const SessionInputs& inputs) {
     names.emplace_back(enumName(q));
   for (const std::string& name : inputs.info.scalarNames) names.push_back(name);
   return names;
+}
+
+bool opacityWeighted(const ViewParams& view) {
+  return view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f ||
+         !view.transfer.opacities.empty();
+}
+
+bool viewDerivesFromField(const ViewParams& view) {
+  const auto derived = [](const std::string& name) {
+    const std::optional<DerivedQuantity> quantity = derivedQuantity(name);
+    return quantity && *quantity != DerivedQuantity::Speed;
+  };
+  return (view.color == ColorMode::Magnitude && derived(view.colorBy)) ||
+         (opacityWeighted(view) && derived(view.opacityBy));
+}
+
+Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs) {
+  const StageTimer timer("scalars");
+  const ViewParams& view = session.view;
+  ViewScalars scalars;
+  if (view.color == ColorMode::Magnitude) {
+    LIC3D_TRY_ASSIGN(scalars.color, loadScalars(view.colorBy, "view.color_by", session, inputs));
+  }
+  const bool weighted = opacityWeighted(view);
+  if (weighted && view.opacityBy == view.colorBy && view.color == ColorMode::Magnitude) {
+    scalars.opacity = scalars.color;
+  } else if (weighted) {
+    LIC3D_TRY_ASSIGN(scalars.opacity,
+                     loadScalars(view.opacityBy, "view.opacity_by", session, inputs));
+  }
+  return scalars;
+}
+
+Result<void> setViewScalars(LicRenderer& renderer, const ViewScalars& scalars) {
+  return renderer.setScalars(scalars.color ? &*scalars.color : nullptr,
+                             scalars.opacity ? &*scalars.opacity : nullptr);
 }
 
 }  // namespace lic3d

@@ -12,6 +12,8 @@
 #include "core/session.h"
 #include "inputs/session_inputs.h"
 #include "io/field_io.h"
+#include "lic/colouring.h"
+#include "passes/lic_renderer.h"
 
 namespace lic3d {
 
@@ -29,5 +31,24 @@ Result<std::optional<PointScalars>> loadScalars(const std::string& name, const s
 // The names a colour-by or opacity-by choice can take for these inputs: the derived quantities,
 // then the scalar arrays of the field's file (the app's menu).
 std::vector<std::string> scalarChoices(const SessionInputs& inputs);
+
+// The scalars a view's colour and opacity follow, when they are not the speed: loaded only where
+// the view uses them, once when both name the same one.
+struct ViewScalars {
+  std::optional<PointScalars> color;
+  std::optional<PointScalars> opacity;
+  VolumeScalars pointers() const {
+    return {color ? &*color : nullptr, opacity ? &*opacity : nullptr};
+  }
+};
+
+// Whether opacity follows a scalar: the magnitude ramp, a threshold or a transfer function.
+bool opacityWeighted(const ViewParams& view);
+// Whether colour or opacity follow a quantity derived from the field's vectors on the host (the
+// field must then be on the host, InputOptions::fieldOnDevice off).
+bool viewDerivesFromField(const ViewParams& view);
+
+Result<ViewScalars> loadViewScalars(const Session& session, const SessionInputs& inputs);
+Result<void> setViewScalars(LicRenderer& renderer, const ViewScalars& scalars);
 
 }  // namespace lic3d

@@ -225,6 +225,26 @@ Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptio
   return inputs;
 }
 
+Result<SessionInputs> sessionInputsOf(const Session& session, VectorField field,
+                                      std::optional<NoiseVolume> noise, const std::string& what) {
+  SessionInputs inputs;
+  inputs.time = session.time;
+  inputs.fromFile = true;
+  LIC3D_TRY(finishVectorField(what, field, &inputs.info));
+  LIC3D_TRY_ASSIGN(inputs.field, atResolution(std::move(field), session.field));
+  LIC3D_TRY(validate(session.lic.sparsity, inputs.field.dims));
+  if (!noise) {
+    const StageTimer timer("noise");
+    LIC3D_TRY_ASSIGN(inputs.noise, loadNoise(session.noise, inputs.field));
+  } else if (noise->dims != inputs.field.dims) {
+    return inputError("noise: the noise grid " + gridText(noise->dims) +
+                      " does not match the LIC grid " + gridText(inputs.field.dims));
+  } else {
+    inputs.noise = std::move(*noise);
+  }
+  return inputs;
+}
+
 Result<VectorField> loadSeriesStep(const TimeSeries& series, std::string_view array, int k,
                                    Dims dims, const GridGeometry& geometry, FieldReadInfo* info) {
   FieldReadInfo read;

@@ -104,6 +104,13 @@ struct SessionInputs {
 // around it, and its grid's noise). Validates the sparsity parameters against the grid.
 Result<SessionInputs> loadSessionInputs(const Session& session, const InputOptions& options = {});
 
+// Inputs a front end holds in memory (the Python module's arrays): `field`, finished as a file's
+// (non-finite vectors read as zero, counted in info; InvalidInput naming `what` when no vector
+// flows) and brought to the session's resolution; `noise` when given (it must have the LIC grid),
+// else the session's noise.
+Result<SessionInputs> sessionInputsOf(const Session& session, VectorField field,
+                                      std::optional<NoiseVolume> noise, const std::string& what);
+
 // Step `k` of `series`, checked against the grid, spacing and origin of the steps read before
 // (`dims`, `geometry`); its non-finite vectors are counted in `info` when given. Thread-safe.
 Result<VectorField> loadSeriesStep(const TimeSeries& series, std::string_view array, int k,

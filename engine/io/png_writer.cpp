@@ -4,7 +4,9 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <csetjmp>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <new>
@@ -205,6 +207,60 @@ bool isCompletePng(const std::filesystem::path& path) {
   if (!in.read(reinterpret_cast<char*>(end), sizeof end)) return false;
   return std::memcmp(start, kSignature, sizeof start) == 0 &&
          std::memcmp(end, kEnd, sizeof end) == 0;
+}
+
+bool isPngFile(const std::filesystem::path& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::ifstream in(path, std::ios::binary);
+  unsigned char start[8];
+  return in.read(reinterpret_cast<char*>(start), sizeof start) &&
+         std::memcmp(start, kSignature, sizeof start) == 0;
+}
+
+namespace {
+
+// libpng's text chunks of `file` into `found` (when one has `key`); false with state.error set
+// when it is not a readable PNG. Plain C data only between setjmp and the end.
+bool readText(std::FILE* file, const char* key, EncodeState& state, std::string& found, bool& has) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, onError, onWarning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    return false;
+  }
+  png_init_io(png, file);
+  png_read_info(png, info);
+  png_textp texts = nullptr;
+  const int count = png_get_text(png, info, &texts, nullptr);
+  for (int i = 0; i < count; ++i)
+    if (std::strcmp(texts[i].key, key) == 0) {
+      has = true;
+      found.assign(texts[i].text,
+                   texts[i].itxt_length > 0 ? texts[i].itxt_length : texts[i].text_length);
+    }
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
+}  // namespace
+
+Result<std::optional<std::string>> readPngText(const std::filesystem::path& path,
+                                               const std::string& key) {
+  if (!isPngFile(path)) {
+    if (!std::filesystem::exists(path)) return fileError(path, "no such file");
+    return fileError(path, "not a PNG file");
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return fileError(path, std::string("cannot open: ") + std::strerror(errno));
+  EncodeState state;
+  std::string found;
+  bool has = false;
+  const bool read = readText(file, key.c_str(), state, found, has);
+  std::fclose(file);
+  if (!read) return fileError(path, std::string("not a readable PNG: ") + state.error);
+  if (!has) return std::optional<std::string>();
+  return std::optional<std::string>(std::move(found));
 }
 
 }  // namespace lic3d

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,5 +34,12 @@ Result<void> writePngGray16(const std::filesystem::path& path, int width, int he
 // lic3d writes every file atomically, so one of its frames is whole or absent; this also tells a
 // file cut short by a copy or another program (`--skip-existing` redoes it).
 bool isCompletePng(const std::filesystem::path& path);
+
+// Whether the file starts with the PNG signature.
+bool isPngFile(const std::filesystem::path& path);
+// The value of the text chunk `key` (tEXt, zTXt or iTXt before the image data, where lic3d writes
+// them), or nothing when the PNG has none; InvalidInput naming the file when it is not a PNG.
+Result<std::optional<std::string>> readPngText(const std::filesystem::path& path,
+                                               const std::string& key);
 
 }  // namespace lic3d

@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The Python module lic3d (docs/PYTHON.md): LIC volumes and pictures of numpy arrays, made by the
+// engine the command line uses. Parameters are the command line's long options with underscores
+// (length=30 is --length 30), parsed and checked by the same code, so a refused value raises
+// ValueError with the message `lic3d` prints.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "command_line.h"
+#include "core/parameter_ranges.h"
+#include "core/text.h"
+#include "gpu/vulkan_context.h"
+#include "inputs/scalars.h"
+#include "inputs/session_inputs.h"
+#include "lic/lic_reference.h"
+#include "passes/lic_renderer.h"
+
+namespace py = pybind11;
+
+namespace lic3d::python {
+namespace {
+
+// An engine error as a Python exception: bad input ValueError, not enough memory MemoryError,
+// anything else (no device, a GPU failure) RuntimeError.
+[[noreturn]] void raise(const Error& error) {
+  const std::string message = cutMessage(cli::messageWithFlags(error), 1000);
+  if (error.kind == ErrorKind::InvalidInput) throw py::value_error(message);
+  if (error.kind == ErrorKind::ResourceLimit) {
+    PyErr_SetString(PyExc_MemoryError, message.c_str());
+    throw py::error_already_set();
+  }
+  throw std::runtime_error(message);
+}
+
+template <class T>
+T take(Result<T> result) {
+  if (!result) raise(result.error());
+  return std::move(*result);
+}
+
+void take(const Result<void>& result) {
+  if (!result) raise(result.error());
+}
+
+// The command line's flags that are not parameters of a LIC volume or picture: outputs,
+// animations and what only a terminal shows.
+const std::set<std::string>& notParameters() {
+  static const std::set<std::string> flags = {
+      "--output", "--session",   "--help",          "--version",
+      "--quiet",  "--timings",   "--rgba-volume",   "--slice",
+      "--frames", "--turntable", "--animate-bias",  "--animate-time",
+      "--video",  "--fps",       "--skip-existing", "--time-range"};
+  return flags;
+}
+
+// A value as the command line takes it: True/False as on/off, a sequence as its items with commas.
+std::string valueText(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::sequence>(value) || py::isinstance<py::array>(value)) {
+    std::string text;
+    for (const py::handle item : py::iter(value))
+      text += (text.empty() ? "" : ",") + valueText(item);
+    return text;
+  }
+  return py::str(value).cast<std::string>();
+}
+
+// A parsed request: the command line of `compute` or `render`, filled from keyword arguments.
+struct Request {
+  std::unique_ptr<cli::CommandLine> line;
+  cli::ComputeOptions* options = nullptr;
+  std::set<std::string> given;  // the flags given
+
+  Session& session() const { return options->inputs.session; }
+  const cli::GlobalOptions& global() const { return line->global; }
+};
+
+Request parseRequest(const std::string& command, const py::object& session,
+                     const py::object& noiseFile, const py::kwargs& params) {
+  Request request;
+  request.line = cli::makeCommandLine();
+  cli::CommandLine& line = *request.line;
+  const bool render = command == "render";
+  CLI::App& sub = render ? *line.renderCommand : *line.computeCommand;
+  request.options = render ? &line.render : &line.compute;
+
+  std::vector<std::string> args = {"lic3d", command};
+  if (py::isinstance<py::dict>(session)) {
+    // A dict is a session as JSON holds it (lic3d.session() makes one).
+    const auto text = py::module_::import("json").attr("dumps")(session).cast<std::string>();
+    request.session() = take(sessionFromJson(text, "session"));
+    request.options->inputs.sessionFile = "session";  // no default look over it
+  } else if (!session.is_none()) {
+    args.push_back("--session=" + py::str(session).cast<std::string>());  // a file: JSON or PNG
+  }
+  if (!noiseFile.is_none()) args.push_back("--noise=" + py::str(noiseFile).cast<std::string>());
+  for (const auto& [key, value] : params) {
+    std::string name = key.cast<std::string>();
+    for (char& c : name) c = c == '_' ? '-' : c;
+    const std::string flag = "--" + name;
+    CLI::Option* option = sub.get_option_no_throw(flag);
+    if (!option) option = line.app.get_option_no_throw(flag);
+    if (!option || notParameters().contains(flag))
+      throw py::type_error("lic3d." + command + "() got an unexpected keyword argument '" +
+                           key.cast<std::string>() +
+                           "' (its parameters are the long options of `lic3d " + command +
+                           " --help` with underscores)");
+    if (value.is_none()) continue;
+    request.given.insert(flag);
+    // A flag takes no value: True gives it, False leaves it out.
+    if (option->get_type_size_max() == 0) {
+      if (!py::isinstance<py::bool_>(value))
+        throw py::value_error(flag + " is a switch: give True or False");
+      if (value.cast<bool>()) args.push_back(flag);
+      continue;
+    }
+    args.push_back(flag + "=" + valueText(value));
+  }
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  take(cli::parseArguments(line.app, static_cast<int>(argv.size()), argv.data(),
+                           {&request.options->inputs}));
+  take(cli::finishCommand(line));
+  return request;
+}
+
+std::array<double, 3> triple(const py::object& value, const char* what) {
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
+    const double v = value.cast<double>();
+    return {v, v, v};
+  }
+  const auto items = py::cast<std::vector<double>>(value);
+  if (items.size() != 3)
+    throw py::value_error(std::string(what) + ": expected 3 numbers (x, y, z) or one");
+  return {items[0], items[1], items[2]};
+}
+
+std::string shapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t d = 0; d < array.ndim(); ++d)
+    text += (d ? ", " : "") + std::to_string(array.shape(d));
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+Dims gridOf(const py::array& array, const char* what) {
+  const Dims dims(static_cast<int>(array.shape(2)), static_cast<int>(array.shape(1)),
+                  static_cast<int>(array.shape(0)));
+  for (int a = 0; a < 3; ++a)
+    if (!ranges::kGrid.contains(static_cast<double>(array.shape(2 - a))))
+      throw py::value_error(std::string(what) + ": each of nz, ny, nx must be in " +
+                            ranges::kGrid.text() + ", got the shape " + shapeText(array));
+  return dims;
+}
+
+// (nz, ny, nx, 3) numbers, x fastest as VTK and NRRD store them, as the engine's field.
+VectorField fieldOf(const py::array& vectors, const py::object& spacing, const py::object& origin) {
+  const auto floats =
+      py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(vectors);
+  if (!floats) throw py::value_error("vectors: expected an array of numbers");
+  if (floats.ndim() != 4 || floats.shape(3) != 3)
+    throw py::value_error("vectors: expected the shape (nz, ny, nx, 3), got " + shapeText(floats));
+  VectorField field;
+  field.dims = gridOf(floats, "vectors");
+  const auto s = triple(spacing, "spacing");
+  const auto o = triple(origin, "origin");
+  field.geometry = {{s[0], s[1], s[2]}, {o[0], o[1], o[2]}};
+  field.vectors.resize(voxelCount(field.dims));
+  std::memcpy(field.vectors.data(), floats.data(), field.vectors.size() * sizeof(glm::vec3));
+  return field;
+}
+
+// (nz, ny, nx) of uint8, uint16 or float32, read as the engine reads noise files.
+NoiseVolume noiseOf(const py::array& noise) {
+  NoiseVolume volume;
+  const py::dtype type = noise.dtype();
+  if (type.is(py::dtype::of<std::uint8_t>())) {
+    volume.type = NoiseType::UInt8;
+  } else if (type.is(py::dtype::of<std::uint16_t>())) {
+    volume.type = NoiseType::UInt16;
+  } else if (type.is(py::dtype::of<float>())) {
+    volume.type = NoiseType::Float32;
+  } else {
+    throw py::value_error("noise: expected uint8, uint16 or float32 values, got " +
+                          type.attr("name").cast<std::string>());
+  }
+  if (noise.ndim() != 3)
+    throw py::value_error("noise: expected the shape (nz, ny, nx), got " + shapeText(noise));
+  volume.dims = gridOf(noise, "noise");
+  const auto contiguous = py::array::ensure(noise, py::array::c_style);
+  const auto* bytes = static_cast<const std::uint8_t*>(contiguous.data());
+  volume.bytes.assign(bytes, bytes + contiguous.nbytes());
+  return volume;
+}
+
+// The inputs of a request: the arrays given, else the session's field (analytic or a file).
+SessionInputs inputsOf(Request& request, const py::object& vectors, const py::object& spacing,
+                       const py::object& origin, const py::object& noise) {
+  Session& session = request.session();
+  if (session.twoD) throw py::value_error("the session is a 2D one (mode 2d)");
+  if (vectors.is_none()) {
+    // An analytic field is made on the device where the command line makes it there, so that
+    // both give the same numbers.
+    const bool compute = request.options == &request.line->compute;
+    const bool onDevice = !request.options->cpu && (compute || !viewDerivesFromField(session.view));
+    return take(loadSessionInputs(session, {.gridGiven = request.given.contains("--grid"),
+                                            .analyticTimeSteps = session.timeSteps,
+                                            .fieldOnDevice = onDevice}));
+  }
+  for (const char* flag : {"--field", "--grid", "--array", "--time", "--time-steps"})
+    if (request.given.contains(flag))
+      throw py::value_error(std::string(flag) + " chooses the field: give it or vectors, not both");
+  session.field = {.field = "array", .resolution = session.field.resolution};
+  std::optional<NoiseVolume> noiseVolume;
+  if (py::isinstance<py::array>(noise)) noiseVolume = noiseOf(noise);
+  return take(sessionInputsOf(session, fieldOf(vectors, spacing, origin), std::move(noiseVolume),
+                              "vectors"));
+}
+
+// With validation on, a message is an error even when the work succeeded.
+Result<void> checkValidation(const Context& context) {
+  if (context.validationEnabled() && context.validationMessageCount() > 0)
+    return Error{ErrorKind::Runtime,
+                 std::to_string(context.validationMessageCount()) + " validation message(s)"};
+  return {};
+}
+
+Result<Context> openDevice(const cli::GlobalOptions& global) {
+  return Context::create({.validation = global.validation, .device = global.device});
+}
+
+// The LIC volume, on the device the options choose or (cpu) the CPU reference. No Python here:
+// it runs with the GIL released.
+Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
+  const Session& session = request.session();
+  if (request.options->cpu) {
+    if (inputs.series) {
+      LIC3D_TRY_ASSIGN(inputs.field, hostFieldAt(inputs, session, session.time));
+    }
+    return computeLicReference(inputs.field, inputs.noise, session.lic, 0, {});
+  }
+  LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
+  LIC3D_TRY(checkRequestMemory(context, session, inputs.field.dims,
+                               {.volumeReadback = true, .timeSeries = inputs.series.has_value()}));
+  Result<ScalarVolume> volume = [&]() -> Result<ScalarVolume> {
+    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
+    LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic));
+    return renderer.readLicVolume();
+  }();
+  LIC3D_TRY(checkValidation(context));
+  return volume;
+}
+
+// The picture of the session's view, as `lic3d render` makes it.
+Result<RgbaImage> picture(const Request& request, SessionInputs& inputs) {
+  const Session& session = request.session();
+  LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
+  LIC3D_TRY(checkRequestMemory(
+      context, session, inputs.field.dims,
+      {.frame = true, .timeSeries = inputs.series.has_value() && !request.options->cpu}));
+  Result<RgbaImage> image = [&]() -> Result<RgbaImage> {
+    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
+    LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true, request.options->cpu));
+    if (request.options->cpu) {
+      LIC3D_TRY_ASSIGN(const ScalarVolume volume,
+                       computeLicReference(inputs.field, inputs.noise, session.lic, 0, {}));
+      LIC3D_TRY(renderer.setLicVolume(volume, session.lic));
+    } else {
+      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic));
+    }
+    LIC3D_TRY_ASSIGN(const ViewScalars scalars, loadViewScalars(session, inputs));
+    LIC3D_TRY(setViewScalars(renderer, scalars));
+    return renderer.render(session.lic, session.view);
+  }();
+  LIC3D_TRY(checkValidation(context));
+  return image;
+}
+
+void warnNonFinite(const SessionInputs& inputs) {
+  if (inputs.info.nonFiniteVectors == 0) return;
+  const std::string message = std::to_string(inputs.info.nonFiniteVectors) +
+                              " vector(s) with a NaN or infinite component were read as zero "
+                              "(streamlines stop there)";
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+// A vector's values as a numpy array that owns them.
+template <class T>
+py::array_t<T> arrayOf(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  const py::capsule release(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owned->data(), release);
+}
+
+py::array_t<float> compute(const py::object& vectors, const py::object& spacing,
+                           const py::object& origin, const py::object& noise,
+                           const py::object& session, const py::kwargs& params) {
+  const bool noiseArray = py::isinstance<py::array>(noise);
+  Request request = parseRequest("compute", session, noiseArray ? py::none() : noise, params);
+  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
+  Result<ScalarVolume> volume = Error{};
+  {
+    const py::gil_scoped_release unlocked;
+    volume = licVolume(request, inputs);
+  }
+  ScalarVolume result = take(std::move(volume));
+  markHiddenVoxels(result);
+  warnNonFinite(inputs);
+  const Dims d = result.dims;
+  return arrayOf(std::move(result.values), {d.z, d.y, d.x});
+}
+
+py::array_t<std::uint8_t> render(const py::object& vectors, const py::object& spacing,
+                                 const py::object& origin, const py::object& noise,
+                                 const py::object& session, const py::kwargs& params) {
+  const bool noiseArray = py::isinstance<py::array>(noise);
+  Request request = parseRequest("render", session, noiseArray ? py::none() : noise, params);
+  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
+  Result<RgbaImage> image = Error{};
+  {
+    const py::gil_scoped_release unlocked;
+    image = picture(request, inputs);
+  }
+  RgbaImage result = take(std::move(image));
+  warnNonFinite(inputs);
+  return arrayOf(std::move(result.pixels), {result.height, result.width, 4});
+}
+
+// The session the parameters make, as a dict (the JSON a saved session or a PNG holds).
+py::object sessionDict(const py::object& session, const py::kwargs& params) {
+  const Request request = parseRequest("render", session, py::none(), params);
+  return py::module_::import("json").attr("loads")(sessionToJson(request.session()));
+}
+
+py::list devices() {
+  py::list list;
+  for (const DeviceInfo& info : take(listDevices())) {
+    py::dict device;
+    device["index"] = info.index;
+    device["name"] = info.name;
+    device["type"] = deviceTypeName(info.type);
+    list.append(device);
+  }
+  return list;
+}
+
+}  // namespace
+}  // namespace lic3d::python
+
+PYBIND11_MODULE(lic3d, module) {
+  using namespace lic3d::python;
+  module.doc() =
+      "3D Line Integral Convolution of vector fields with Vulkan (docs/PYTHON.md).\n\n"
+      "Parameters are the long options of `lic3d compute --help` and `lic3d render --help` with "
+      "underscores: length=30, integrator='rk4', noise_filter='nearest', look='streamlines', "
+      "size=(800, 600). A refused value raises ValueError with the message of the command line.";
+  module.attr("__version__") = LIC3D_VERSION;
+  module.def("compute", &compute, py::arg("vectors") = py::none(), py::kw_only(),
+             py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
+             py::arg("session") = py::none(),
+             "compute(vectors=None, *, spacing=1.0, origin=0.0, noise=None, "
+             "session=None, **params) -> numpy.ndarray\n\n"
+             "The LIC volume of `vectors` (numbers shaped (nz, ny, nx, 3), x fastest) as "
+             "float32 shaped (nz, ny, nx), as `lic3d compute` writes it. Without vectors, "
+             "the field of field=... (an analytic field or a file). noise: an array "
+             "(nz, ny, nx) of uint8, uint16 or float32 on the LIC grid, or a noise file; "
+             "default seeded white noise. session: a dict (lic3d.session()) or a session "
+             "file (JSON or a PNG lic3d wrote) the parameters then override. "
+             "device='' picks as `lic3d --device` does; cpu=True uses the CPU reference. "
+             "The GIL is released while the LIC is made.");
+  module.def("render", &render, py::arg("vectors") = py::none(), py::kw_only(),
+             py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
+             py::arg("session") = py::none(),
+             "render(vectors=None, *, spacing=1.0, origin=0.0, noise=None, "
+             "session=None, **params) -> numpy.ndarray\n\n"
+             "The picture `lic3d render` makes, as uint8 RGBA shaped (height, width, 4), "
+             "rows top to bottom. Arguments as for compute, plus the view parameters "
+             "(look, size, azimuth, elevation, colormap, ...).");
+  module.def("session", &sessionDict, py::arg("session") = py::none(),
+             "session(session=None, **params) -> dict\n\n"
+             "The whole session the parameters make (over `session`, a dict or file), as the "
+             "dict that compute and render take and session files hold.");
+  module.def("devices", &devices,
+             "devices() -> list of dict\n\nThe Vulkan devices lic3d can use: index, name, type "
+             "(device=index or a part of the name chooses one).");
+}
