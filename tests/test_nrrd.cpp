@@ -321,8 +321,9 @@ TEST_F(NrrdTest, ReadVectorFieldDispatchesByExtension) {
   expectInputError(readVectorField(file, "velocity"), file, "applies only to .vtk and .vti files");
 
   const fs::path unknown = writeBytes("field.xyz", "whatever");
-  expectInputError(readVectorField(unknown), unknown,
-                   "unsupported extension '.xyz' (supported: .vtk, .vti, .nrrd, .nhdr, .raw)");
+  expectInputError(
+      readVectorField(unknown), unknown,
+      "unsupported extension '.xyz' (supported: .vtk, .vti, .pvti, .nrrd, .nhdr, .raw)");
   const fs::path noExtension = writeBytes("field", "whatever");
   expectInputError(readVectorField(noExtension), noExtension, "no extension");
   expectInputError(readVectorField(path("missing.nrrd")), path("missing.nrrd"), "no such file");

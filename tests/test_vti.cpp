@@ -521,5 +521,64 @@ TEST_F(VtiTest, WritersRefuseBadVolumesAndLeaveNoFile) {
   EXPECT_TRUE(listFolder().empty());
 }
 
+// A .pvti's pieces (what ParaView writes under MPI) make the whole field by their extents; they
+// may share points, and must cover the whole extent.
+TEST_F(VtiTest, PvtiAssemblesItsPiecesByTheirExtents) {
+  const auto piece = [&](const std::string& name, int x0, int x1) {
+    Image image;
+    image.wholeExtent = std::to_string(x0) + " " + std::to_string(x1) + " 0 1 0 1";
+    image.pointAttributes = "Vectors=\"v\"";
+    Array v{.name = "v"};
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = x0; i <= x1; ++i)
+          v.values.insert(v.values.end(), {i + 10.0 * j + 100.0 * k, 1.0, -1.0});
+    image.arrays.push_back(v);
+    fs::create_directories(path("p"));
+    writeBytes("p/" + name, makeVti(image, Encoding{.format = "appended"}));
+  };
+  piece("a.vti", 0, 2);
+  piece("b.vti", 2, 3);
+  const auto pvti = [&](const std::string& name, const std::string& pieces) {
+    return writeBytes(
+        name,
+        "<VTKFile type=\"PImageData\" version=\"0.1\"><PImageData WholeExtent=\"0 3 0 "
+        "1 0 1\" GhostLevel=\"0\" Origin=\"1 2 3\" Spacing=\"0.5 0.25 2\"><PPointData "
+        "Vectors=\"v\"><PDataArray type=\"Float32\" Name=\"v\" "
+        "NumberOfComponents=\"3\"/></PPointData>" +
+            pieces + "</PImageData></VTKFile>");
+  };
+  const std::string a = "<Piece Extent=\"0 2 0 1 0 1\" Source=\"p/a.vti\"/>";
+  const std::string b = "<Piece Extent=\"2 3 0 1 0 1\" Source=\"p/b.vti\"/>";
+  FieldReadInfo info;
+  const Result<VectorField> field = readVectorField(pvti("whole.pvti", a + b), "", &info);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  EXPECT_EQ(field->dims, Dims(4, 2, 2));
+  EXPECT_EQ(field->geometry.spacing, glm::dvec3(0.5, 0.25, 2.0));
+  EXPECT_EQ(field->geometry.origin, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(info.arrayName, "v");
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i)
+        EXPECT_EQ(field->at(i, j, k),
+                  glm::vec3(static_cast<float>(i + 10 * j + 100 * k), 1.0f, -1.0f))
+            << i << " " << j << " " << k;
+
+  // A missing piece, a piece whose file does not match its extent, a piece outside the whole.
+  const Result<VectorField> missing = readVectorField(pvti("missing.pvti", a));
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("without data"), std::string::npos)
+      << missing.error().message;
+  const Result<VectorField> wrong =
+      readVectorField(pvti("wrong.pvti", a + "<Piece Extent=\"1 3 0 1 0 1\" Source=\"p/b.vti\"/>"));
+  ASSERT_FALSE(wrong.ok());
+  EXPECT_NE(wrong.error().message.find("b.vti: holds a grid of 2x2x2"), std::string::npos)
+      << wrong.error().message;
+  const Result<VectorField> outside = readVectorField(
+      pvti("outside.pvti", a + "<Piece Extent=\"2 4 0 1 0 1\" Source=\"p/b.vti\"/>"));
+  ASSERT_FALSE(outside.ok());
+  EXPECT_EQ(outside.error().kind, ErrorKind::InvalidInput);
+}
+
 }  // namespace
 }  // namespace lic3d

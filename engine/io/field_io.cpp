@@ -13,7 +13,7 @@
 namespace lic3d {
 namespace {
 
-constexpr char kVectorExtensions[] = ".vtk, .vti, .nrrd, .nhdr, .raw";
+constexpr char kVectorExtensions[] = ".vtk, .vti, .pvti, .nrrd, .nhdr, .raw";
 
 // The readers would say much the same, but this wording is what a user needs for a mistyped path.
 Result<void> checkRegularFile(const std::filesystem::path& path) {
@@ -42,7 +42,7 @@ std::string describeExtension(const std::string& extension) {
 Result<VectorField> readVectorField(const std::filesystem::path& path, std::string_view arrayName,
                                     FieldReadInfo* info) {
   const std::string extension = lowerCaseExtension(path);
-  const bool named = extension == ".vtk" || extension == ".vti";
+  const bool named = extension == ".vtk" || extension == ".vti" || extension == ".pvti";
   const bool single = extension == ".nrrd" || extension == ".nhdr" || extension == ".raw";
   if (!named && !single)
     return fileError(path, "cannot read a vector field from a file with " +
@@ -51,6 +51,7 @@ Result<VectorField> readVectorField(const std::filesystem::path& path, std::stri
   LIC3D_TRY(checkRegularFile(path));
   if (extension == ".vtk") return readVectorFieldVtk(path, arrayName, info);
   if (extension == ".vti") return readVectorFieldVti(path, arrayName, info);
+  if (extension == ".pvti") return readVectorFieldPvti(path, arrayName, info);
   if (!arrayName.empty())
     return fileError(path, "an array name (" + quoteForMessage(arrayName) +
                                ") applies only to .vtk and .vti files; a " +

@@ -14,6 +14,7 @@ namespace lic3d {
 // By extension, compared case-insensitively:
 //   .vtk          readVectorFieldVtk  (VTK legacy)
 //   .vti          readVectorFieldVti  (VTK XML ImageData)
+//   .pvti         readVectorFieldPvti (its pieces, as ParaView writes under MPI)
 //   .nrrd, .nhdr  readVectorFieldNrrd (attached or detached header)
 //   .raw          readVectorFieldRaw  (with its JSON sidecar)
 // `arrayName` picks a vector array in .vtk and .vti files; NRRD and raw files hold one unnamed

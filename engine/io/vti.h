@@ -34,6 +34,19 @@ namespace lic3d {
 Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                                        std::string_view arrayName = {},
                                        FieldReadInfo* info = nullptr);
+// The same without finishVectorField (non-finite vectors kept, no flow allowed): one piece of a
+// .pvti, which is checked as a whole.
+Result<VectorField> readVectorFieldVtiPiece(const std::filesystem::path& path,
+                                            std::string_view arrayName, FieldReadInfo* info);
+
+// A parallel .pvti (what ParaView and VTK write under MPI): its pieces' .vti files (Source,
+// relative to the .pvti's folder) read as readVectorFieldVti reads one and placed by their
+// Extent in the WholeExtent, which they must cover; overlapping points (pieces share their
+// boundaries) hold the same values. The array is chosen in the first piece. Errors name the
+// .pvti or the piece.
+Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
+                                        std::string_view arrayName = {},
+                                        FieldReadInfo* info = nullptr);
 
 // The 1-component DataArray (NumberOfComponents 1 or absent) named `name`, or when `name` is empty
 // PointData's active `Scalars`, else its first 1-component array, else the same in CellData; the

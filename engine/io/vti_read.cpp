@@ -479,6 +479,13 @@ Result<ScalarVolume> readScalarArray(const VtiFile& file, const ArrayRef& array)
 
 Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
                                        std::string_view arrayName, FieldReadInfo* info) {
+  LIC3D_TRY_ASSIGN(VectorField field, readVectorFieldVtiPiece(path, arrayName, info));
+  LIC3D_TRY(finishVectorField(path, field, info));
+  return field;
+}
+
+Result<VectorField> readVectorFieldVtiPiece(const std::filesystem::path& path,
+                                            std::string_view arrayName, FieldReadInfo* info) {
   LIC3D_TRY_ASSIGN(const std::unique_ptr<VtiFile> file, openVti(path));
   LIC3D_TRY_ASSIGN(const std::vector<ArrayRef> arrays, listArrays(*file));
   LIC3D_TRY_ASSIGN(const ArrayRef array, chooseArray(*file, arrays, arrayName, 3, "Vectors", 2));
@@ -521,7 +528,6 @@ Result<VectorField> readVectorFieldVti(const std::filesystem::path& path,
     }
     info->maskedVectors = masked;
   }
-  LIC3D_TRY(finishVectorField(path, field, info));
   return field;
 }
 

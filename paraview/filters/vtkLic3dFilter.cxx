@@ -419,11 +419,10 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
     return 0;
   }
 
-  // The output: LIC (NaN where sparsity hides the voxel) and |v| on `out`.
-  output->SetExtent(out.data());
-  output->SetOrigin(input->GetOrigin());
-  output->SetSpacing(input->GetSpacing());
-  output->SetDirectionMatrix(input->GetDirectionMatrix());
+  // The output: the input's arrays passed through, cut to `out`, with LIC (the active scalars, NaN
+  // where sparsity hides the voxel) and |v| added.
+  output->ShallowCopy(input);
+  output->Crop(out.data());
   const lic3d::Dims outDims = dimsOf(out);
   const vtkIdType count = static_cast<vtkIdType>(lic3d::voxelCount(outDims));
   vtkNew<vtkFloatArray> licArray;

@@ -7,8 +7,9 @@
 // the largest |v| of the whole field from all processes, and makes noise and sparsity mask from
 // indices in the whole grid, so the pieces together are the serial result (docs/PARAVIEW.md).
 //
-// Output: image data on the input's own (non-ghost) extent with the point arrays "LIC" (float in
-// [0,1], NaN where sparsity hides the voxel) and "Magnitude" (|v| of the input vectors).
+// Output: image data on the input's own (non-ghost) extent with the input's point and cell
+// arrays passed through, and the point arrays "LIC" (the active scalars: float in [0,1], NaN where
+// sparsity hides the voxel) and "Magnitude" (|v| of the input vectors) added.
 #ifndef vtkLic3dFilter_h
 #define vtkLic3dFilter_h
 
