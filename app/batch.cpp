@@ -464,6 +464,7 @@ std::string summaryLine(const RunSummary& summary) {
                {"outputs", summary.outputs},
                {"device", summary.device},
                {"field", field}};
+  if (summary.bricks) line["bricks"] = *summary.bricks;
   if (summary.hiddenFraction)
     line["hidden_fraction"] = std::round(*summary.hiddenFraction * 10000.0) / 10000.0;
   Json timings = Json::object();

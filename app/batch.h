@@ -129,6 +129,8 @@ struct RunSummary {
   std::size_t nonFiniteVectors = 0;
   // With a sparsity mask: the fraction of the LIC voxels it hid (the last frame's volume).
   std::optional<double> hiddenFraction;
+  // compute on a device: the bricks the LIC was made in (1: the grid in one piece).
+  std::optional<int> bricks;
   // Seconds per stage (core/stage_times.h), in the order the stages first ran.
   std::vector<std::pair<std::string, double>> timings;
 };

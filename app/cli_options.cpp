@@ -219,6 +219,11 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
   app.add_flag("--cpu", options.cpu,
                "Compute the LIC volume with the CPU reference (multi-threaded, double "
                "precision) instead of the GPU");
+  app.add_option("--memory-budget", options.memoryBudget,
+                 "At most this much device memory: BYTES, or with kB, MB, GB (1000s) or KiB, "
+                 "MiB, GiB (1024s); compute makes a LIC that does not fit in bricks with ghost "
+                 "layers (docs/SCALE.md), render refuses it (default: what the device has)")
+      ->transform(CLI::AsSizeValue(true));
   options.output = defaultOutput;
   const bool picture = std::string_view(defaultOutput).ends_with(".png");
   options.outputOption =

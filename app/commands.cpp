@@ -15,6 +15,7 @@
 #include "core/stage_times.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
+#include "inputs/bricks.h"
 #include "inputs/plane_inputs.h"
 #include "inputs/scalars.h"
 #include "io/file_util.h"
@@ -481,15 +482,17 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   if (*slice)
     if (auto r = pngText(session, options.output); !r) return reportError(r.error());
   // On the GPU, the device comes first, so that an analytic field too large for it is refused
-  // before it is made.
+  // before it is made (unless it can be made in bricks: white noise, one time).
   std::optional<Result<Context>> context;
   if (!options.cpu) {
     context.emplace(openContext(global));
     if (!*context) return reportError(context->error());
-    if (parseEnum<AnalyticField>(session.field.field))
-      if (auto r =
-              checkRequestMemory(**context, session, session.field.grid,
-                                 {.volumeReadback = true, .timeSeries = session.timeSteps > 0});
+    const bool bricked = session.timeSteps == 0 && isWhiteNoise(session.noise);
+    if (parseEnum<AnalyticField>(session.field.field) && !bricked)
+      if (auto r = checkRequestMemory(**context, session, session.field.grid,
+                                      {.volumeReadback = true,
+                                       .timeSeries = session.timeSteps > 0,
+                                       .deviceCap = options.memoryBudget});
           !r)
         return finish(**context, reportError(r.error()));
   }
@@ -535,36 +538,33 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   }
 
   Context& device = **context;
-  // A file's grid is known once it is read (an analytic one was checked above).
-  if (inputs->fromFile || inputs->series)
-    if (auto r =
-            checkRequestMemory(device, session, inputs->field.dims,
-                               {.volumeReadback = true, .timeSeries = inputs->series.has_value()});
-        !r)
-      return fail(r.error());
   int status = kExitOk;
   {
-    Result<LicRenderer> renderer = LicRenderer::create(device, {session.precision});
-    Result<void> done = renderer ? moveToTime(*inputs, session, session.time, *renderer, true)
-                                 : Result<void>(renderer.error());
-    if (done) done = makeLicVolume(options, *inputs, session.lic, *renderer, global.quiet);
-    Result<ScalarVolume> volume =
-        done ? renderer->readLicVolume() : Result<ScalarVolume>(done.error());
-    if (volume) {
-      done = writeComputeOutput(options, *slice, *volume);
-      if (done) noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
+    // In one piece when it fits the device (or --memory-budget), else in bricks.
+    Progress progress("LIC " + gridText(inputs->field.dims) + " on " + device.deviceInfo().name,
+                      global.quiet);
+    Result<LicVolumeRun> run = computeLicVolume(device, session, *inputs, options.memoryBudget,
+                                                [&](double f) { progress.update(f); });
+    if (run) {
+      progress.finish();
     } else {
-      done = volume.error();
+      progress.cancel();
+    }
+    Result<void> done =
+        run ? writeComputeOutput(options, *slice, run->volume) : Result<void>(run.error());
+    if (done) {
+      noteHiddenFraction(global, session.lic, hiddenFractionOf(run->volume), summary);
+      summary.bricks = run->bricks;
     }
     if (!done)
       status = reportError(done.error());
     else if (!global.quiet)
-      std::fprintf(stderr, "lic3d: wrote %s (%s, on %s)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str());
-    if (renderer) {
-      const StageTimer timer("teardown");
-      const LicRenderer released = std::move(*renderer);
-    }
+      std::fprintf(stderr, "lic3d: wrote %s (%s, on %s%s)\n", options.output.c_str(),
+                   fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str(),
+                   run->bricks > 1 ? (", in " + std::to_string(run->bricks) + " bricks of " +
+                                      gridText(run->brickCore) + " and ghost layers")
+                                         .c_str()
+                                   : "");
   }
   status = finish(device, status);
   if (status == kExitOk) {
@@ -588,9 +588,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   if (!context) return reportError(context.error());
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
   if (parseEnum<AnalyticField>(session.field.field))
-    if (auto r = checkRequestMemory(
-            *context, session, session.field.grid,
-            {.frame = true, .timeSeries = session.timeSteps > 0 && !options.cpu});
+    if (auto r = checkRequestMemory(*context, session, session.field.grid,
+                                    {.frame = true,
+                                     .timeSeries = session.timeSteps > 0 && !options.cpu,
+                                     .deviceCap = options.memoryBudget});
         !r)
       return finish(*context, reportError(r.error()));
   // The field is made on the device unless the host needs it: for the CPU LIC, colour or opacity
@@ -603,7 +604,9 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   reportFieldFile(global, session.field, *inputs);
   if (inputs->fromFile || inputs->series)
     if (auto r = checkRequestMemory(*context, session, inputs->field.dims,
-                                    {.frame = true, .timeSeries = inputs->series && !options.cpu});
+                                    {.frame = true,
+                                     .timeSeries = inputs->series && !options.cpu,
+                                     .deviceCap = options.memoryBudget});
         !r)
       return finish(*context, reportError(r.error()));
 

@@ -35,6 +35,12 @@ void Progress::update(double fraction) {
     std::fprintf(stderr, "lic3d: %s %d%%\n", what_.c_str(), percent);
 }
 
+void Progress::cancel() {
+  if (finished_) return;
+  finished_ = true;
+  if (!quiet_ && terminal_ && lastReported_ >= 0) std::fputc('\n', stderr);
+}
+
 void Progress::finish() {
   if (quiet_ || finished_) return;
   finished_ = true;

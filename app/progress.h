@@ -14,6 +14,8 @@ class Progress {
   ~Progress();
   void update(double fraction);
   void finish();
+  // Ends without the "done" line (the work failed; the error says why).
+  void cancel();
 
  private:
   std::string what_;

@@ -19,6 +19,7 @@
 #include "core/parameter_ranges.h"
 #include "core/text.h"
 #include "gpu/vulkan_context.h"
+#include "inputs/bricks.h"
 #include "inputs/scalars.h"
 #include "inputs/session_inputs.h"
 #include "lic/lic_reference.h"
@@ -249,25 +250,22 @@ Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
     return computeLicReference(inputs.field, inputs.noise, session.lic, 0, {});
   }
   LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
-  LIC3D_TRY(checkRequestMemory(context, session, inputs.field.dims,
-                               {.volumeReadback = true, .timeSeries = inputs.series.has_value()}));
-  Result<ScalarVolume> volume = [&]() -> Result<ScalarVolume> {
-    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
-    LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic));
-    return renderer.readLicVolume();
-  }();
+  // In one piece when it fits the device (or memory_budget), else in bricks, as lic3d compute.
+  Result<LicVolumeRun> run =
+      computeLicVolume(context, session, inputs, request.options->memoryBudget);
   LIC3D_TRY(checkValidation(context));
-  return volume;
+  if (!run) return run.error();
+  return std::move(run->volume);
 }
 
 // The picture of the session's view, as `lic3d render` makes it.
 Result<RgbaImage> picture(const Request& request, SessionInputs& inputs) {
   const Session& session = request.session();
   LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
-  LIC3D_TRY(checkRequestMemory(
-      context, session, inputs.field.dims,
-      {.frame = true, .timeSeries = inputs.series.has_value() && !request.options->cpu}));
+  LIC3D_TRY(checkRequestMemory(context, session, inputs.field.dims,
+                               {.frame = true,
+                                .timeSeries = inputs.series.has_value() && !request.options->cpu,
+                                .deviceCap = request.options->memoryBudget}));
   Result<RgbaImage> image = [&]() -> Result<RgbaImage> {
     LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
     LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true, request.options->cpu));

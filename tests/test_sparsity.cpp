@@ -127,6 +127,17 @@ SparsityParams paramsFor(SparsityDistribution distribution) {
   return params;
 }
 
+// The mask's grid limit (2^31 voxels) is the mask's only: a grid past it without sparsity is
+// valid (1792^3 on a large device, or in bricks).
+TEST(Sparsity, TheMasksVoxelLimitAppliesOnlyWithAMask) {
+  SparsityParams none;
+  EXPECT_TRUE(validate(none, Dims(1792)));
+  SparsityParams jitter;
+  jitter.distribution = SparsityDistribution::Jitter;
+  EXPECT_FALSE(validate(jitter, Dims(1792)));
+  EXPECT_TRUE(validate(jitter, Dims(1024)));
+}
+
 TEST(Sparsity, NamesRoundTrip) {
   std::vector<std::string_view> names;
   for (const auto& n : enumNames<SparsityDistribution>()) names.push_back(n.name);

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "core/memory_budget.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 namespace lic3d {
 namespace {
@@ -34,8 +36,26 @@ std::uint64_t hostBytesNeeded(const MemoryEstimate& e, const MemoryBudget& b) {
 
 }  // namespace
 
-// MemAvailable from /proc/meminfo (what the host can give without swapping), else physical pages.
-std::uint64_t hostAvailableBytes() {
+namespace {
+
+// What the address-space limit (`ulimit -v`, RLIMIT_AS) leaves this process, or nothing when
+// there is none.
+std::optional<std::uint64_t> addressSpaceLeft() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return std::nullopt;
+  unsigned long long pages = 0;
+  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%llu", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  const std::uint64_t used =
+      static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(sysconf(_SC_PAGE_SIZE));
+  const auto cap = static_cast<std::uint64_t>(limit.rlim_cur);
+  return cap > used ? cap - used : 0;
+}
+
+// MemAvailable from /proc/meminfo, else physical pages.
+std::uint64_t memAvailableBytes() {
   if (std::FILE* f = std::fopen("/proc/meminfo", "r")) {
     char line[256];
     unsigned long long kib = 0;
@@ -52,6 +72,15 @@ std::uint64_t hostAvailableBytes() {
   return pages > 0 && page > 0
              ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page)
              : 0;
+}
+
+}  // namespace
+
+// MemAvailable (what the host can give without swapping), within what `ulimit -v` leaves.
+std::uint64_t hostAvailableBytes() {
+  const std::uint64_t available = memAvailableBytes();
+  const std::optional<std::uint64_t> left = addressSpaceLeft();
+  return left ? std::min(available, *left) : available;
 }
 
 MemoryEstimate estimateMemory(const MemoryRequest& r) {

@@ -57,7 +57,8 @@ struct MemoryBudget {
   bool fromBudgetExtension = false;  // VK_EXT_memory_budget, else the heap size
 };
 
-// MemAvailable of /proc/meminfo, else the physical memory.
+// MemAvailable of /proc/meminfo, else the physical memory; at most what the address-space limit
+// (`ulimit -v`) leaves the process.
 std::uint64_t hostAvailableBytes();
 // Host memory only (no device yet): MemAvailable, else the physical memory.
 MemoryBudget hostMemoryBudget();

@@ -60,8 +60,9 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
         shape.frameWidth > 0 ? shape.frameWidth : session.view.width * (sideBySide ? 2 : 1);
     request.frameHeight = shape.frameHeight > 0 ? shape.frameHeight : session.view.height;
   }
-  return checkMemoryBudget(request, queryMemoryBudget(context),
-                           "the LIC of " + session.field.field);
+  MemoryBudget budget = queryMemoryBudget(context);
+  if (shape.deviceCap > 0) budget.deviceBytes = std::min(budget.deviceBytes, shape.deviceCap);
+  return checkMemoryBudget(request, budget, "the LIC of " + session.field.field);
 }
 
 namespace {
@@ -81,11 +82,11 @@ Result<void> checkAnalyticSource(const FieldSource& source) {
   return {};
 }
 
+}  // namespace
+
 bool isWhiteNoise(const NoiseSource& source) {
   return source.file.empty() && source.seedSpots == 0 && source.seedFraction <= 0.0f;
 }
-
-}  // namespace
 
 Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldReadInfo* info,
                               double time) {

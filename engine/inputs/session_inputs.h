@@ -46,7 +46,8 @@ struct RequestShape {
   bool frame = false;           // a frame of the session's size (or frameWidth x frameHeight)
   int frameWidth = 0;
   int frameHeight = 0;
-  bool timeSeries = false;  // two resident time steps blended on the GPU (docs/TIME.md)
+  bool timeSeries = false;      // two resident time steps blended on the GPU (docs/TIME.md)
+  std::uint64_t deviceCap = 0;  // > 0: at most this many bytes of device memory (--memory-budget)
 };
 // ResourceLimit error (exit status 3) if the request does not fit the device and the host:
 // checked before anything of it is allocated on the device.
@@ -70,6 +71,9 @@ Result<NoiseVolume> loadNoise(const NoiseSource& source, Dims dims);
 // The noise of `field`: for a piece of a larger field (FieldPiece, the ParaView plugin under
 // MPI), the whole grid's white noise cut to the piece, so the pieces agree with the whole.
 Result<NoiseVolume> loadNoise(const NoiseSource& source, const VectorField& field);
+
+// Whether the noise is the seeded white noise (no file, no seed noise).
+bool isWhiteNoise(const NoiseSource& source);
 
 struct InputOptions {
   bool gridGiven = false;     // the grid was given explicitly (a file field refuses it)

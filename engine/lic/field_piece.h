@@ -22,6 +22,9 @@ int licGhostLayers(const LicParams& params);
 // The voxels [offset, offset + dims) of `whole` as a piece of it (VectorField::piece set, with
 // the whole field's max|u|). InvalidInput unless the box lies inside the whole grid.
 Result<VectorField> cutFieldPiece(const VectorField& whole, Dims offset, Dims dims);
+// The same with the whole field's max|u| given (maxVoxelSpeedOverVoxels), for many pieces of it.
+Result<VectorField> cutFieldPiece(const VectorField& whole, Dims offset, Dims dims,
+                                  double wholeMaxVoxelSpeed);
 
 // The voxels [offset, offset + dims) of a volume on a piece's or the whole grid.
 Result<ScalarVolume> cutVolume(const ScalarVolume& volume, Dims offset, Dims dims);

@@ -27,13 +27,16 @@ NoiseVolume makeWhiteNoisePiece(Dims wholeDims, Dims offset, Dims dims, std::uin
   noise.dims = dims;
   noise.type = NoiseType::UInt8;
   resizeLarge(noise.bytes, voxelCount(dims));
-  for (int k = 0; k < dims.z; ++k)
+  // Layers on the available threads: each voxel's value depends on its whole-grid index only.
+  parallelFor(static_cast<std::size_t>(dims.z), 0, [&](std::size_t layer) {
+    const int k = static_cast<int>(layer);
     for (int j = 0; j < dims.y; ++j)
       for (int i = 0; i < dims.x; ++i) {
         const std::size_t whole = voxelIndex(wholeDims, offset.x + i, offset.y + j, offset.z + k);
         noise.bytes[voxelIndex(dims, i, j, k)] =
             static_cast<std::uint8_t>(noiseHash(seed, whole) >> 56);
       }
+  });
   return noise;
 }
 

@@ -24,7 +24,10 @@ std::size_t voxelOf(Dims dims, const glm::vec3& p) {
 }  // namespace
 
 Result<void> validate(const SparsityParams& params, Dims dims) {
-  if (!validDims(dims) || voxelCount(dims) > kMaxVoxels)
+  // The voxel limit is the mask's: without a distribution no mask is made (grids past 2^31
+  // voxels fit a large device, or go in bricks).
+  const bool masked = params.distribution != SparsityDistribution::None;
+  if (!validDims(dims) || (masked && voxelCount(dims) > kMaxVoxels))
     return inputError("sparsity mask: grid " + gridText(dims) + " must have 1.." +
                       std::to_string(kMaxAxisSize) + " voxels per axis and at most " +
                       std::to_string(kMaxVoxels) + " voxels");
