@@ -300,20 +300,31 @@ py::array_t<T> arrayOf(std::vector<T>&& values, std::vector<py::ssize_t> shape) 
   return py::array_t<T>(std::move(shape), owned->data(), release);
 }
 
+// A request of `command` made with the GIL released by `work` (licVolume or picture), its result
+// taken (an error raised), and the inputs' non-finite vectors warned of.
+template <class Work>
+auto runRequest(const char* command, const py::object& vectors, const py::object& spacing,
+                const py::object& origin, const py::object& noise, const py::object& session,
+                const py::kwargs& params, Work work) {
+  const bool noiseArray = py::isinstance<py::array>(noise);
+  Request request = parseRequest(command, session, noiseArray ? py::none() : noise, params);
+  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
+  decltype(work(request, inputs)) made = Error{};
+  {
+    const py::gil_scoped_release unlocked;
+    made = work(request, inputs);
+  }
+  auto result = take(std::move(made));
+  warnNonFinite(inputs);
+  return result;
+}
+
 py::array_t<float> compute(const py::object& vectors, const py::object& spacing,
                            const py::object& origin, const py::object& noise,
                            const py::object& session, const py::kwargs& params) {
-  const bool noiseArray = py::isinstance<py::array>(noise);
-  Request request = parseRequest("compute", session, noiseArray ? py::none() : noise, params);
-  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
-  Result<ScalarVolume> volume = Error{};
-  {
-    const py::gil_scoped_release unlocked;
-    volume = licVolume(request, inputs);
-  }
-  ScalarVolume result = take(std::move(volume));
+  ScalarVolume result =
+      runRequest("compute", vectors, spacing, origin, noise, session, params, licVolume);
   markHiddenVoxels(result);
-  warnNonFinite(inputs);
   const Dims d = result.dims;
   return arrayOf(std::move(result.values), {d.z, d.y, d.x});
 }
@@ -321,16 +332,8 @@ py::array_t<float> compute(const py::object& vectors, const py::object& spacing,
 py::array_t<std::uint8_t> render(const py::object& vectors, const py::object& spacing,
                                  const py::object& origin, const py::object& noise,
                                  const py::object& session, const py::kwargs& params) {
-  const bool noiseArray = py::isinstance<py::array>(noise);
-  Request request = parseRequest("render", session, noiseArray ? py::none() : noise, params);
-  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
-  Result<RgbaImage> image = Error{};
-  {
-    const py::gil_scoped_release unlocked;
-    image = picture(request, inputs);
-  }
-  RgbaImage result = take(std::move(image));
-  warnNonFinite(inputs);
+  RgbaImage result =
+      runRequest("render", vectors, spacing, origin, noise, session, params, picture);
   return arrayOf(std::move(result.pixels), {result.height, result.width, 4});
 }
 
