@@ -152,41 +152,6 @@ void installTemporaryCleanup() {
   });
 }
 
-// Removes the temporary file on every path out of writeFileAtomically except success, including
-// an exception thrown by the writer, and (registered for the signal handler) a SIGINT or SIGTERM.
-class TemporaryFile {
- public:
-  TemporaryFile(std::filesystem::path path, int fd)
-      : path_(std::move(path)), fd_(fd), slot_(registerTemporary(path_)) {}
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!committed_) ::unlink(path_.c_str());
-    releaseTemporary(slot_);
-  }
-
-  // close() reports delayed write errors (NFS, quotas), so its result matters.
-  int close() {
-    const int result = ::close(fd_);
-    fd_ = -1;
-    return result;
-  }
-  void commit() { committed_ = true; }
-  // The file is complete and someone else removes or renames it: returns the signal slot that
-  // still holds it (releaseTemporary once it is renamed or removed).
-  int handOver() {
-    committed_ = true;
-    return std::exchange(slot_, -1);
-  }
-
- private:
-  std::filesystem::path path_;
-  int fd_;
-  int slot_;
-  bool committed_ = false;
-};
-
 // OutputGroup's files: each complete under its temporary name until the group commits.
 struct PendingOutput {
   std::filesystem::path temporary;
@@ -312,6 +277,21 @@ Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_
 
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  const std::function<bool(std::ostream&)>& writer) {
+  // The temporary file is removed on every path out of here but success, including an exception
+  // thrown by the writer.
+  LIC3D_TRY_ASSIGN(TemporaryOutput temporary, TemporaryOutput::create(path));
+  FdStreamBuf buffer(temporary.fd());
+  std::ostream out(&buffer);
+  const bool produced = writer(out);
+  out.flush();
+  if (buffer.errorNumber() != 0)
+    return writeError(ErrorKind::Runtime, path, systemError(buffer.errorNumber()));
+  if (!produced || !out)
+    return writeError(ErrorKind::Runtime, path, "producing the content failed");
+  return temporary.commit();
+}
+
+Result<TemporaryOutput> TemporaryOutput::create(const std::filesystem::path& path) {
   const std::filesystem::path name = path.filename();
   if (name.empty() || name == "." || name == "..")
     return writeError(ErrorKind::InvalidInput, path, "the path does not name a file");
@@ -325,34 +305,71 @@ Result<void> writeFileAtomically(const std::filesystem::path& path,
   std::string temporaryName = "." + name.string() + suffix;
   if (temporaryName.size() > NAME_MAX) temporaryName = ".lic3d" + suffix;
   installTemporaryCleanup();
-  const std::filesystem::path temporaryPath = path.parent_path() / temporaryName;
+  std::filesystem::path temporaryPath = path.parent_path() / temporaryName;
   const int fd = ::open(temporaryPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) return writeError(ErrorKind::InvalidInput, path, systemError(errno));
-  TemporaryFile temporary(temporaryPath, fd);
+  return TemporaryOutput(path, std::move(temporaryPath), fd);
+}
 
-  FdStreamBuf buffer(fd);
-  std::ostream out(&buffer);
-  const bool produced = writer(out);
-  out.flush();
-  if (buffer.errorNumber() != 0)
-    return writeError(ErrorKind::Runtime, path, systemError(buffer.errorNumber()));
-  if (!produced || !out)
-    return writeError(ErrorKind::Runtime, path, "producing the content failed");
+TemporaryOutput::TemporaryOutput(std::filesystem::path path, std::filesystem::path temporary,
+                                 int fd)
+    : path_(std::move(path)),
+      temporary_(std::move(temporary)),
+      fd_(fd),
+      slot_(registerTemporary(temporary_)) {}
+
+TemporaryOutput::TemporaryOutput(TemporaryOutput&& other) noexcept
+    : path_(std::move(other.path_)),
+      temporary_(std::move(other.temporary_)),
+      fd_(std::exchange(other.fd_, -1)),
+      slot_(std::exchange(other.slot_, -1)),
+      pending_(std::exchange(other.pending_, false)) {}
+
+TemporaryOutput& TemporaryOutput::operator=(TemporaryOutput&& other) noexcept {
+  if (this != &other) {
+    discard();
+    path_ = std::move(other.path_);
+    temporary_ = std::move(other.temporary_);
+    fd_ = std::exchange(other.fd_, -1);
+    slot_ = std::exchange(other.slot_, -1);
+    pending_ = std::exchange(other.pending_, false);
+  }
+  return *this;
+}
+
+TemporaryOutput::~TemporaryOutput() { discard(); }
+
+void TemporaryOutput::discard() {
+  if (fd_ >= 0) ::close(fd_);
+  if (pending_) ::unlink(temporary_.c_str());
+  releaseTemporary(slot_);
+  fd_ = -1;
+  slot_ = -1;
+  pending_ = false;
+}
+
+Result<void> TemporaryOutput::commit() {
+  if (!pending_) return writeError(ErrorKind::Runtime, path_, "the file was already committed");
   // Without fsync a crash shortly after the rename can leave an empty file under the real name.
-  if (::fsync(fd) != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
-  if (temporary.close() != 0) return writeError(ErrorKind::Runtime, path, systemError(errno));
+  if (::fsync(fd_) != 0) return writeError(ErrorKind::Runtime, path_, systemError(errno));
+  // close() reports delayed write errors (NFS, quotas), so its result matters.
+  const int closed = ::close(std::exchange(fd_, -1));
+  if (closed != 0) return writeError(ErrorKind::Runtime, path_, systemError(errno));
   {
     const std::lock_guard lock(groupMutex);
     if (groupOpen) {
-      pendingOutputs.push_back({temporaryPath, path, temporary.handOver()});
+      // The group renames or removes it; the signal slot goes with it.
+      pendingOutputs.push_back({temporary_, path_, std::exchange(slot_, -1)});
+      pending_ = false;
       return {};
     }
   }
   // Renaming fails for reasons the user can fix: a folder in the way, no permission.
-  if (::rename(temporaryPath.c_str(), path.c_str()) != 0)
-    return writeError(ErrorKind::InvalidInput, path, systemError(errno));
-  temporary.commit();
-  syncFolderOf(path);
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0)
+    return writeError(ErrorKind::InvalidInput, path_, systemError(errno));
+  pending_ = false;
+  releaseTemporary(std::exchange(slot_, -1));
+  syncFolderOf(path_);
   return {};
 }
 
@@ -547,6 +564,25 @@ std::uint64_t FileReader::skip(std::uint64_t count) {
 
 std::string FileReader::failureReason() const {
   return errorNumber_ != 0 ? systemError(errorNumber_) : std::string("unexpected end of file");
+}
+
+Result<void> FileReader::readAt(std::uint64_t offset, void* data, std::size_t count,
+                                std::string_view what) const {
+  char* out = static_cast<char*>(data);
+  for (std::size_t done = 0; done < count;) {
+    const ssize_t got =
+        ::pread(fd_, out + done, std::min<std::size_t>(count - done, std::size_t{1} << 30),
+                static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0)
+      return fileError(path_, "cannot read " + std::string(what) + ": " + systemError(errno));
+    if (got == 0)
+      return fileError(path_, std::string(what) + " is truncated: the file ends at byte " +
+                                  std::to_string(offset + done) + ", " +
+                                  std::to_string(count - done) + " bytes short");
+    done += static_cast<std::size_t>(got);
+  }
+  return {};
 }
 
 NumberScan scanNumberConversion(std::string_view pattern) {

@@ -24,6 +24,9 @@ namespace lic3d {
 // Limits on grids read from untrusted files: each axis and the voxel count.
 inline constexpr std::uint64_t kMaxAxisSize = 16384;
 inline constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
+// Streams (FieldStream, ScalarVolumeStream) hold only pieces of a grid, so theirs may be larger:
+// each axis still at most kMaxAxisSize.
+inline constexpr std::uint64_t kMaxStreamedVoxels = std::uint64_t{1} << 40;
 
 // An InvalidInput error about a file, worded "<path>: <problem>".
 Error fileError(const std::filesystem::path& path, std::string_view problem);
@@ -75,6 +78,37 @@ Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_
 Result<void> writeFileAtomically(const std::filesystem::path& path,
                                  const std::function<bool(std::ostream&)>& writer);
 
+// A file written in place, piece by piece, under writeFileAtomically's temporary name beside
+// `path` (removed like its files when a signal ends the process), for outputs too large to
+// produce front to back. commit() flushes it to disk and renames it over `path`, or hands it to
+// the open OutputGroup; destroyed without a commit, the temporary file is removed. Errors as for
+// writeFileAtomically, input guard included. Move-only.
+class TemporaryOutput {
+ public:
+  static Result<TemporaryOutput> create(const std::filesystem::path& path);
+
+  TemporaryOutput(TemporaryOutput&& other) noexcept;
+  TemporaryOutput& operator=(TemporaryOutput&& other) noexcept;
+  TemporaryOutput(const TemporaryOutput&) = delete;
+  TemporaryOutput& operator=(const TemporaryOutput&) = delete;
+  ~TemporaryOutput();
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& temporaryPath() const { return temporary_; }
+  int fd() const { return fd_; }  // open for writing until commit()
+  Result<void> commit();
+
+ private:
+  TemporaryOutput(std::filesystem::path path, std::filesystem::path temporary, int fd);
+  void discard();
+
+  std::filesystem::path path_;
+  std::filesystem::path temporary_;
+  int fd_ = -1;
+  int slot_ = -1;        // the signal handler's record of the temporary file
+  bool pending_ = true;  // the temporary file exists and is this object's to remove
+};
+
 // Outputs that appear together or not at all. While a group is open, writeFileAtomically (from
 // any thread) leaves each complete file under its temporary name, still removed if a signal ends
 // the process; commit() renames them into place in the order they were written, and a group
@@ -120,6 +154,11 @@ class FileReader {
   std::uint64_t skip(std::uint64_t count);
   // Why reading stopped early: the system's error text or "unexpected end of file".
   std::string failureReason() const;
+  // Exactly `count` bytes at `offset` with pread, apart from the front-to-back position: safe
+  // from several threads at once. An error names the file: a read error, or the file ending
+  // early (`what` names the data read).
+  Result<void> readAt(std::uint64_t offset, void* data, std::size_t count,
+                      std::string_view what) const;
 
  private:
   FileReader(std::filesystem::path path, int fd, std::uint64_t size);

@@ -311,9 +311,9 @@ class HeaderInterpreter {
     layout.dims = Dims(static_cast<int>(values[first]), static_cast<int>(values[first + 1]),
                        static_cast<int>(depth));
     layout.voxels = values[first] * values[first + 1] * depth;
-    if (layout.voxels > kMaxVoxels)
+    if (layout.voxels > expected_.maxVoxels)
       return fail("sizes", std::to_string(layout.voxels) + " voxels exceed the limit of " +
-                               std::to_string(kMaxVoxels));
+                               std::to_string(expected_.maxVoxels));
     return {};
   }
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Internal to the NRRD reader and writer (nrrd_header.cpp, nrrd_read.cpp, nrrd_write.cpp): the
-// payload's layout as one checked description, so the payload readers never meet a raw header.
+// Internal to the NRRD reader and writer (nrrd_header.cpp, nrrd_read.cpp, nrrd_write.cpp) and the
+// streams (field_stream.cpp, volume_stream.cpp): the payload's layout as one checked description,
+// so the payload readers never meet a raw header.
 
 #include <bit>
 #include <cstddef>
@@ -71,6 +72,8 @@ struct Expectation {
   // Also a 2D grid (one layer along z), `dimension` - 1 axes. For vector fields the first axis
   // holds 2 or `components` values (2D vectors lie in the x-y plane); scalars have no such axis.
   bool planar = false;
+  // kMaxVoxels for the whole-file readers, kMaxStreamedVoxels for a stream.
+  std::uint64_t maxVoxels = kMaxVoxels;
 };
 
 // Reads the header from its magic line to the blank line that ends it (a detached header may end
@@ -78,5 +81,19 @@ struct Expectation {
 // that nothing is allocated from a bad number. The reader is then at the first byte after the
 // header. An error names reader.path() and the field.
 Result<Layout> readLayout(FileReader& reader, const Expectation& expected);
+
+// A file's header read and checked, and a reader at the first payload byte, in the header's file
+// or its detached data file (past `line skip` and, for raw data, `byte skip`), the payload's size
+// checked against the bytes there. Errors about the data file name the header too.
+struct Opened {
+  std::filesystem::path header;
+  FileReader reader;
+  Layout layout;
+};
+Result<Opened> openPayload(const std::filesystem::path& path, const Expectation& expected);
+
+// The header writeScalarNrrd writes before the values: float, raw, little endian, with the
+// geometry and `labels` whose first names the array.
+std::string scalarHeader(Dims dims, const GridGeometry& geometry, std::string_view name);
 
 }  // namespace lic3d::nrrd

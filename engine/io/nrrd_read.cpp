@@ -24,6 +24,7 @@ using nrrd::Encoding;
 using nrrd::Expectation;
 using nrrd::kChunkBytes;
 using nrrd::Layout;
+using nrrd::Opened;
 using nrrd::valueBytes;
 using nrrd::ValueType;
 
@@ -204,19 +205,15 @@ Result<void> readPayload(FileReader& reader, const Layout& layout, const ChunkSi
                                           : readGzip(reader, layout, sink);
 }
 
-struct Opened {
-  std::filesystem::path header;
-  FileReader reader;  // at the first payload byte, in the header's file or its data file
-  Layout layout;
-};
-
 // An error about a detached header's data file names both files.
 Error inDataFile(const std::filesystem::path& header, Error error) {
   error.message = header.string() + ": data file " + error.message;
   return error;
 }
 
-Result<Opened> openNrrd(const std::filesystem::path& path, const Expectation& expected) {
+}  // namespace
+
+Result<Opened> nrrd::openPayload(const std::filesystem::path& path, const Expectation& expected) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   LIC3D_TRY_ASSIGN(const Layout layout, nrrd::readLayout(reader, expected));
   if (!layout.dataFile.empty()) {
@@ -238,6 +235,8 @@ Result<Opened> openNrrd(const std::filesystem::path& path, const Expectation& ex
   return Opened{path, std::move(reader), layout};
 }
 
+namespace {
+
 Result<void> readPayload(Opened& opened, const ChunkSink& sink) {
   Result<void> read = readPayload(opened.reader, opened.layout, sink);
   if (read.ok() || opened.layout.dataFile.empty()) return read;
@@ -248,7 +247,7 @@ Result<void> readPayload(Opened& opened, const ChunkSink& sink) {
 // header's `sample units`.
 Result<ScalarVolume> readScalars(const std::filesystem::path& path, const Expectation& expected,
                                  std::string* unit = nullptr) {
-  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   ScalarVolume volume;
   volume.dims = layout.dims;
@@ -275,7 +274,7 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
                              {ValueType::Float, ValueType::Double},
                              "float or double",
                              true};
-  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   VectorField field;
   field.dims = layout.dims;
@@ -338,7 +337,7 @@ Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path) {
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path) {
   const Expectation expected{
       4, 4, "4 colour channels on a 3D grid", "RGBA channels", {ValueType::UInt8}, "uchar"};
-  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   RgbaVolume volume;
   volume.dims = layout.dims;
@@ -361,7 +360,7 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
                              "",
                              {ValueType::UInt8, ValueType::UInt16, ValueType::Float},
                              "uchar, ushort or float"};
-  LIC3D_TRY_ASSIGN(Opened opened, openNrrd(path, expected));
+  LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   NoiseVolume noise;
   noise.dims = layout.dims;

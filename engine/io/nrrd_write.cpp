@@ -71,15 +71,17 @@ std::string labelsText(std::string_view name, bool componentAxis) {
 
 }  // namespace
 
+std::string nrrd::scalarHeader(Dims dims, const GridGeometry& geometry, std::string_view name) {
+  return "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nsizes: " + sizesText(dims) +
+         "\nspace dimension: 3\nspace directions: " + directionsText(geometry) +
+         "\nkinds: domain domain domain\n" + labelsText(name, false) +
+         "endian: little\nencoding: raw\nspace origin: " + formatVector(geometry.origin) + "\n\n";
+}
+
 Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume,
                              std::string_view name) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nsizes: " + sizesText(volume.dims) +
-      "\nspace dimension: 3\nspace directions: " + directionsText(volume.geometry) +
-      "\nkinds: domain domain domain\n" + labelsText(name, false) +
-      "endian: little\nencoding: raw\nspace origin: " + formatVector(volume.geometry.origin) +
-      "\n\n";
+  const std::string header = nrrd::scalarHeader(volume.dims, volume.geometry, name);
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
     return writeLittleEndian(out, volume.values.data(), volume.values.size(), sizeof(float));

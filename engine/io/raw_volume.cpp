@@ -28,14 +28,6 @@ using Json = nlohmann::json;
 
 struct TooDeep {};
 
-struct Sidecar {
-  Dims dims{0};
-  GridGeometry geometry;
-  bool planar = false;
-  std::size_t valueBytes = 4;
-  std::endian order = std::endian::little;
-};
-
 bool fileExists(const std::filesystem::path& path) {
   std::error_code error;
   return std::filesystem::exists(path, error);
@@ -43,21 +35,22 @@ bool fileExists(const std::filesystem::path& path) {
 
 class SidecarReader {
  public:
-  SidecarReader(const std::filesystem::path& rawPath, const std::filesystem::path& sidecarPath)
-      : rawPath_(rawPath), sidecarName_(sidecarPath.filename().string()) {}
+  SidecarReader(const std::filesystem::path& rawPath, const std::filesystem::path& sidecarPath,
+                std::uint64_t maxVoxels)
+      : rawPath_(rawPath), sidecarName_(sidecarPath.filename().string()), maxVoxels_(maxVoxels) {}
 
   Error fail(const std::string& problem) const {
     return fileError(rawPath_, "sidecar " + quoteForMessage(sidecarName_) + ": " + problem);
   }
 
-  Result<Sidecar> interpret(const Json& json) const {
+  Result<RawLayout> interpret(const Json& json) const {
     if (!json.is_object()) return fail("expected a JSON object {\"dims\": [nx, ny, nz], ...}");
     for (const auto& [key, value] : json.items()) {
       if (std::find(std::begin(kKnownKeys), std::end(kKnownKeys), key) == std::end(kKnownKeys))
         return fail("unknown key " + quoteForMessage(key) +
                     " (known: dims, spacing, origin, components, order, type, endian)");
     }
-    Sidecar sidecar;
+    RawLayout sidecar;
     if (!json.contains("dims")) return fail("missing \"dims\": [nx, ny, nz]");
     const Json& dims = json["dims"];
     std::array<std::uint64_t, 3> sizes{};
@@ -67,7 +60,7 @@ class SidecarReader {
       if (good) sizes[axis] = dims[axis].get<std::uint64_t>();
     }
     if (!good) return fail("dims: expected 3 whole numbers [nx, ny, nz], found " + shown(dims));
-    if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]);
+    if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2], maxVoxels_);
         !problem.empty())
       return fail("dims: " + problem);
     sidecar.dims =
@@ -125,11 +118,12 @@ class SidecarReader {
 
   const std::filesystem::path& rawPath_;
   std::string sidecarName_;
+  std::uint64_t maxVoxels_;
 };
 
-Result<Sidecar> readSidecar(const std::filesystem::path& rawPath,
-                            const std::filesystem::path& sidecarPath) {
-  const SidecarReader reader(rawPath, sidecarPath);
+Result<RawLayout> readSidecar(const std::filesystem::path& rawPath,
+                              const std::filesystem::path& sidecarPath, std::uint64_t maxVoxels) {
+  const SidecarReader reader(rawPath, sidecarPath, maxVoxels);
   LIC3D_TRY_ASSIGN(const std::string text, readFile(sidecarPath, kMaxSidecarBytes));
   Json json;
   try {
@@ -167,9 +161,13 @@ Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPat
                                 " beside it (with dims, spacing, origin, order, type, endian)");
 }
 
+Result<RawLayout> readRawLayout(const std::filesystem::path& rawPath, std::uint64_t maxVoxels) {
+  LIC3D_TRY_ASSIGN(const std::filesystem::path sidecarPath, findRawSidecar(rawPath));
+  return readSidecar(rawPath, sidecarPath, maxVoxels);
+}
+
 Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldReadInfo* info) {
-  LIC3D_TRY_ASSIGN(const std::filesystem::path sidecarPath, findRawSidecar(path));
-  LIC3D_TRY_ASSIGN(const Sidecar sidecar, readSidecar(path, sidecarPath));
+  LIC3D_TRY_ASSIGN(const RawLayout sidecar, readRawLayout(path, kMaxVoxels));
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   const std::uint64_t voxels = voxelCount(sidecar.dims);
   const std::uint64_t expected = voxels * 3 * sidecar.valueBytes;

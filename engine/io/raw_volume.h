@@ -17,6 +17,9 @@
 // exactly before anything is allocated. Every error is InvalidInput and names the raw file (and
 // the sidecar when the problem is there).
 
+#include <bit>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 
 #include "core/error.h"
@@ -28,6 +31,19 @@ namespace lic3d {
 // The sidecar of `rawPath`: "<stem>.json" or "<name>.json" beside it; an error when neither or
 // both exist.
 Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPath);
+
+// What a raw file's sidecar describes, checked.
+struct RawLayout {
+  Dims dims{0};
+  GridGeometry geometry;
+  bool planar = false;
+  std::size_t valueBytes = 4;  // 4: float32, 8: float64
+  std::endian order = std::endian::little;
+};
+
+// The sidecar of `rawPath` found and read; the grid at most `maxVoxels` voxels (kMaxVoxels for
+// the whole-file reader, kMaxStreamedVoxels for a stream).
+Result<RawLayout> readRawLayout(const std::filesystem::path& rawPath, std::uint64_t maxVoxels);
 
 // Vectors with a NaN or infinite component become zero and are counted (finishVectorField).
 Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path,

@@ -78,16 +78,21 @@ CellCentredGrid cellCentredGrid(Dims pointDims, const GridGeometry& pointGeometr
 }
 
 std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz) {
+  return gridLimitProblem(nx, ny, nz, kMaxVoxels);
+}
+
+std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz,
+                             std::uint64_t maxVoxels) {
   for (const std::uint64_t n : {nx, ny, nz})
     if (n < 1 || n > kMaxAxisSize)
       return "the grid " + std::to_string(nx) + "x" + std::to_string(ny) + "x" +
              std::to_string(nz) + " has an axis outside [1, " + std::to_string(kMaxAxisSize) + "]";
   // Each factor is at most 2^14, so the product cannot overflow 64 bits.
   const std::uint64_t voxels = nx * ny * nz;
-  if (voxels > kMaxVoxels)
+  if (voxels > maxVoxels)
     return "the grid " + std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) +
            " has " + std::to_string(voxels) + " voxels, more than the limit of " +
-           std::to_string(kMaxVoxels);
+           std::to_string(maxVoxels);
   return {};
 }
 

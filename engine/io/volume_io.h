@@ -93,8 +93,10 @@ struct CellCentredGrid {
 CellCentredGrid cellCentredGrid(Dims pointDims, const GridGeometry& pointGeometry);
 
 // An empty string when nx x ny x nz is a grid lic3d reads (each axis in [1, kMaxAxisSize], at most
-// kMaxVoxels voxels), else the problem in words.
+// kMaxVoxels voxels, or `maxVoxels` for a stream), else the problem in words.
 std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz);
+std::string gridLimitProblem(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz,
+                             std::uint64_t maxVoxels);
 
 // A zlib inflate stream (zlib or gzip header detected), ended when it goes out of scope.
 class InflateStream {

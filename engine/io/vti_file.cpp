@@ -81,9 +81,10 @@ void useAppended(VtiFile& file, std::string_view bytes, const AppendedSplit& spl
 // A large file whose XML, up to AppendedData's '_', lies in its first kHeadBytes: only that head
 // is read (into file.bytes), the appended data stays in the file. False when the file is not such
 // a file; it is then read whole.
-bool openHead(VtiFile& file) {
+bool openHead(VtiFile& file, bool stream) {
   Result<FileReader> reader = FileReader::open(file.path);
-  if (!reader || reader->size() <= kHeadBytes || reader->size() > kMaxFileBytes) return false;
+  if (!reader || reader->size() <= kHeadBytes || (!stream && reader->size() > kMaxFileBytes))
+    return false;
   std::string head(kHeadBytes, '\0');
   if (reader->read(head.data(), head.size()) != head.size()) return false;
   const Result<std::optional<AppendedSplit>> split = findAppended(file, head);
@@ -146,10 +147,18 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
 
 }  // namespace
 
-Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
+Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
   auto file = std::make_unique<VtiFile>();
   file->path = path;
-  const bool head = openHead(*file);
+  const bool head = openHead(*file, stream);
+  if (!head && stream) {
+    LIC3D_TRY_ASSIGN(const FileReader reader, FileReader::open(path));
+    if (reader.size() > kHeadBytes)
+      return unsupportedError(
+          path.string() +
+          ": its data is not all appended raw after an XML header of at most 64 KiB (inline "
+          "ascii or base64 arrays), so it cannot be read piece by piece and is read whole");
+  }
   if (!head) {
     LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
   }
@@ -165,6 +174,7 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
     if (split) {
       useAppended(*file, file->bytes, *split);
       file->appended = std::string_view(file->bytes).substr(split->data);
+      file->appendedAt = split->data;
       file->appendedSize = file->appended.size();
     }
   }
@@ -208,7 +218,7 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
       return file->fail("AppendedData encoding: expected raw or base64, found " +
                         quoteForMessage(encoding));
     file->appendedBase64 = encoding == "base64";
-    if (file->appendedInFile && file->appendedBase64) {
+    if (file->appendedInFile && file->appendedBase64 && !stream) {
       // Base64 is decoded from memory: the rest of the file is read after all.
       LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
       file->appended = std::string_view(file->bytes).substr(file->appendedAt);
@@ -224,7 +234,9 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path) {
   for (std::size_t axis = 0; axis < 3; ++axis)
     sizes[axis] =
         static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
-  if (const std::string problem = gridLimitProblem(sizes[0], sizes[1], sizes[2]); !problem.empty())
+  if (const std::string problem =
+          gridLimitProblem(sizes[0], sizes[1], sizes[2], stream ? kMaxStreamedVoxels : kMaxVoxels);
+      !problem.empty())
     return file->fail("WholeExtent: " + problem);
   file->dims =
       Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));

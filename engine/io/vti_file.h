@@ -50,7 +50,7 @@ struct VtiFile {
   // The appended raw data of a large file is not read with the XML: readers stream it from the
   // file into their arrays, so the host holds an array once rather than the file and the array.
   bool appendedInFile = false;
-  std::uint64_t appendedAt = 0;    // where it starts in the file (appendedInFile)
+  std::uint64_t appendedAt = 0;    // where it starts in the file (either way)
   std::uint64_t appendedSize = 0;  // its bytes, up to the end of the file (either way)
   bool appendedBase64 = false;
   std::endian order = std::endian::little;
@@ -74,7 +74,10 @@ struct ArrayRef {
 
 // The whole file read and parsed, with its grid (WholeExtent, Origin, Spacing) and its one Piece
 // checked; the error names the file and the problem.
-Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path);
+// `stream` (FieldStream): only the XML is read, never the data, and the grid may have up to
+// kMaxStreamedVoxels points; a file larger than 64 KiB whose XML does not end in AppendedData
+// within its first 64 KiB is Unsupported, and base64 appended data stays unread.
+Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream = false);
 
 // "DataArray 'name'", marked when it is cell data: how every error names an array.
 std::string describe(const ArrayRef& array);

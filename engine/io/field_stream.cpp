@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Vector fields read piece by piece: each format's header read as its whole-file reader reads it
+// (nrrd_header, raw_volume, vti_file), then the voxels of a piece read with pread, run by run.
+
+#include "io/field_stream.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "core/parallel.h"
+#include "io/nrrd_header.h"
+#include "io/raw_volume.h"
+#include "io/volume_io.h"
+#include "io/vti_file.h"
+
+namespace lic3d {
+namespace {
+
+// Values that are converted go through a buffer of at most this many bytes.
+constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are read as packed floats");
+
+template <class T>
+double load(const unsigned char* data) {
+  T value;
+  std::memcpy(&value, data, sizeof(T));
+  return static_cast<double>(value);
+}
+
+std::string lowerCaseExtension(const std::filesystem::path& path) {
+  return asciiLowerCase(path.extension().string());
+}
+
+Error readWhole(const std::filesystem::path& path, const std::string& why) {
+  return unsupportedError(path.string() + ": " + why +
+                          ", so it cannot be read piece by piece and is read whole");
+}
+
+}  // namespace
+
+FieldStream::FieldStream(FileReader file, std::filesystem::path path)
+    : file_(std::move(file)), path_(std::move(path)) {}
+
+Result<FieldStream> FieldStream::open(const std::filesystem::path& path,
+                                      std::string_view arrayName) {
+  const std::string extension = lowerCaseExtension(path);
+  if (extension == ".vti") return openVti(path, arrayName);
+  const bool single = extension == ".nrrd" || extension == ".nhdr" || extension == ".raw";
+  if (!single)
+    return readWhole(path, extension == ".vtk"    ? "a VTK legacy file is parsed front to back"
+                           : extension == ".pvti" ? "a .pvti is read as its pieces' files"
+                                                  : "its format is not one that streams (.raw, "
+                                                    ".nrrd, .nhdr, .vti)");
+  if (!arrayName.empty())
+    return fileError(path, "an array name (" + quoteForMessage(arrayName) +
+                               ") applies only to .vtk and .vti files; a " +
+                               (extension == ".raw" ? "raw" : "NRRD") +
+                               " file holds one unnamed array");
+  return extension == ".raw" ? openRaw(path) : openNrrd(path);
+}
+
+Result<FieldStream> FieldStream::openRaw(const std::filesystem::path& path) {
+  LIC3D_TRY_ASSIGN(const RawLayout layout, readRawLayout(path, kMaxStreamedVoxels));
+  LIC3D_TRY_ASSIGN(FileReader file, FileReader::open(path));
+  FieldStream stream(std::move(file), path);
+  stream.dims_ = layout.dims;
+  stream.geometry_ = layout.geometry;
+  stream.vectors_.type = layout.valueBytes == 8 ? ValueType::Float64 : ValueType::Float32;
+  stream.vectors_.valueBytes = layout.valueBytes;
+  stream.vectors_.order = layout.order;
+  stream.vectors_.planar = layout.planar;
+  LIC3D_TRY(stream.checkFileHolds(stream.vectors_, true));
+  return stream;
+}
+
+Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
+  const nrrd::Expectation expected{4,
+                                   3,
+                                   "3 vector components on a 3D grid",
+                                   "vector components",
+                                   {nrrd::ValueType::Float, nrrd::ValueType::Double},
+                                   "float or double",
+                                   true,
+                                   kMaxStreamedVoxels};
+  LIC3D_TRY_ASSIGN(nrrd::Opened opened, nrrd::openPayload(path, expected));
+  const nrrd::Layout& layout = opened.layout;
+  if (layout.encoding != nrrd::Encoding::Raw)
+    return readWhole(path, "its data is gzip compressed, which decompresses only from its start");
+  const std::uint64_t offset = opened.reader.position();
+  FieldStream stream(std::move(opened.reader), path);
+  stream.dims_ = layout.dims;
+  stream.geometry_ = layout.geometry;
+  stream.unit_ = layout.sampleUnits;
+  const bool isDouble = layout.type == nrrd::ValueType::Double;
+  stream.vectors_.offset = offset;
+  stream.vectors_.type = isDouble ? ValueType::Float64 : ValueType::Float32;
+  stream.vectors_.valueBytes = isDouble ? 8 : 4;
+  stream.vectors_.order = layout.order;
+  stream.vectors_.components = layout.components;  // 2 on a 2D grid
+  LIC3D_TRY(stream.checkFileHolds(stream.vectors_, false));
+  return stream;
+}
+
+Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std::string_view name) {
+  LIC3D_TRY_ASSIGN(const std::unique_ptr<vti::VtiFile> file, vti::openVti(path, true));
+  if (file->zlib) return readWhole(path, "its arrays are compressed (vtkZLibDataCompressor)");
+  LIC3D_TRY_ASSIGN(const std::vector<vti::ArrayRef> arrays, vti::listArrays(*file));
+  LIC3D_TRY_ASSIGN(const vti::ArrayRef array,
+                   vti::chooseArray(*file, arrays, name, 3, "Vectors", 2));
+  // Cell data on N cells is a field of N voxels at the cell centres, as the whole-file reader has.
+  const CellCentredGrid grid = array.cellData ? cellCentredGrid(file->dims, file->geometry)
+                                              : CellCentredGrid{file->dims, file->geometry};
+  if (array.components == 2 && grid.dims.z != 1)
+    return file->fail(vti::describe(array) + " holds 2D vectors (2 components) on a grid of " +
+                      std::to_string(grid.dims.z) + " layers along z; they need a 2D grid");
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
+  FieldStream stream(std::move(reader), path);
+  stream.dims_ = grid.dims;
+  stream.geometry_ = grid.geometry;
+  stream.arrayName_ = array.name;
+
+  // Where an array's values start: after its block's byte count, which must be the array's size.
+  const auto appended = [&](const vti::ArrayRef& each) -> Result<ArrayLayout> {
+    const std::string what = vti::describe(each);
+    if (!each.type)
+      return file->fail(what + ": type " + quoteForMessage(each.node.attribute("type").value()) +
+                        " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+    const std::uint64_t tuples = voxelCount(grid.dims);
+    if (const pugi::xml_attribute count = each.node.attribute("NumberOfTuples")) {
+      std::uint64_t declared = 0;
+      if (!parseUnsigned(count.value(), declared) || declared != tuples)
+        return file->fail(what + ": NumberOfTuples " + quoteForMessage(count.value()) +
+                          " does not match the " + std::to_string(tuples) +
+                          (each.cellData ? " cells" : " points") + " of the grid");
+    }
+    const std::string format = each.node.attribute("format").value();
+    if (format != "appended")
+      return readWhole(path, what + " is stored inline as " +
+                                 (format == "binary" ? std::string("base64") : format));
+    if (file->appendedBase64) return readWhole(path, "its appended data is base64 encoded");
+    std::uint64_t offset = 0;
+    const pugi::xml_attribute offsetAttribute = each.node.attribute("offset");
+    if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
+      return file->fail(what + ": an appended array needs a whole-number offset, found " +
+                        quoteForMessage(offsetAttribute.value()));
+    if (offset > file->appendedSize)
+      return file->fail(what + ": offset " + std::to_string(offset) + " is beyond the " +
+                        std::to_string(file->appendedSize) + " bytes of AppendedData");
+    const std::size_t headerBytes = file->header64 ? 8 : 4;
+    std::array<unsigned char, 8> header{};
+    LIC3D_TRY(stream.file_.readAt(file->appendedAt + offset, header.data(), headerBytes,
+                                  what + " (its byte count)"));
+    if (file->order != std::endian::native)
+      std::reverse(header.begin(), header.begin() + static_cast<std::ptrdiff_t>(headerBytes));
+    const std::uint64_t size = headerBytes == 8
+                                   ? static_cast<std::uint64_t>(load<std::uint64_t>(header.data()))
+                                   : static_cast<std::uint64_t>(load<std::uint32_t>(header.data()));
+    ArrayLayout layout;
+    layout.offset = file->appendedAt + offset + headerBytes;
+    layout.type = static_cast<ValueType>(each.type->type);
+    layout.valueBytes = each.type->bytes;
+    layout.order = file->order;
+    layout.components = static_cast<std::size_t>(each.components);
+    const std::uint64_t expected = tuples * layout.components * layout.valueBytes;
+    if (size != expected)
+      return file->fail(what + ": the data block holds " + std::to_string(size) +
+                        " bytes, expected " + std::to_string(expected) + " (" +
+                        std::to_string(tuples) + " tuples of " + std::to_string(layout.components) +
+                        " " + std::string(each.type->name) + ")");
+    LIC3D_TRY(stream.checkFileHolds(layout, false));
+    return layout;
+  };
+  static_assert(static_cast<int>(vti::NumberType::Float64) == static_cast<int>(ValueType::Float64),
+                "the VTI number types map onto ValueType one to one");
+  LIC3D_TRY_ASSIGN(stream.vectors_, appended(array));
+  // VTK's mask of valid points: the vectors it marks invalid are zero, as readVectorField has them.
+  const auto mask = std::find_if(arrays.begin(), arrays.end(), [](const vti::ArrayRef& each) {
+    return !each.cellData && each.components == 1 && each.name == kValidPointMaskName;
+  });
+  if (!array.cellData && mask != arrays.end()) {
+    LIC3D_TRY_ASSIGN(stream.mask_, appended(*mask));
+    stream.hasMask_ = true;
+  }
+  return stream;
+}
+
+Result<void> FieldStream::checkFileHolds(const ArrayLayout& array, bool exact) const {
+  const std::uint64_t values = voxelCount(dims_) * array.components;
+  const std::uint64_t needed = array.offset + values * array.valueBytes;
+  const std::uint64_t size = file_.size();
+  if (exact ? size == needed : size >= needed) return {};
+  std::string problem = "the file holds " + std::to_string(size) + " bytes; the " +
+                        gridText(dims_) + " grid of " + std::to_string(array.components) + " " +
+                        std::to_string(8 * array.valueBytes) + "-bit values per voxel" +
+                        (array.offset > 0 ? " from byte " + std::to_string(array.offset) : "") +
+                        " needs " + (exact ? "" : "at least ") + std::to_string(needed) +
+                        (size < needed ? " (truncated?)" : "");
+  Error error = fileError(file_.path(), problem);
+  if (file_.path() != path_) error.message = path_.string() + ": data file " + error.message;
+  return error;
+}
+
+template <class Store>
+Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t first,
+                                     std::size_t count, std::vector<unsigned char>& buffer,
+                                     Store&& store) const {
+  const std::uint64_t voxels = voxelCount(dims_);
+  const std::size_t bytes = array.valueBytes;
+  // Interleaved: one span of every component. Planar: one span per component.
+  const std::size_t spans = array.planar ? array.components : 1;
+  const std::size_t perVoxel = array.planar ? bytes : bytes * array.components;
+  const std::size_t chunkVoxels = std::max<std::size_t>(1, kChunkBytes / perVoxel);
+  buffer.resize(std::min(count, chunkVoxels) * perVoxel);
+  for (std::size_t span = 0; span < spans; ++span) {
+    for (std::size_t done = 0; done < count;) {
+      const std::size_t n = std::min(chunkVoxels, count - done);
+      const std::uint64_t value =
+          array.planar ? span * voxels + first + done : (first + done) * array.components;
+      LIC3D_TRY(
+          file_.readAt(array.offset + value * bytes, buffer.data(), n * perVoxel, "the data"));
+      const std::size_t values = n * perVoxel / bytes;
+      for (std::size_t i = 0; i < values; ++i) {
+        std::array<unsigned char, 8> native{};
+        std::memcpy(native.data(), buffer.data() + i * bytes, bytes);
+        if (array.order != std::endian::native)
+          std::reverse(native.begin(), native.begin() + static_cast<std::ptrdiff_t>(bytes));
+        double decoded = 0.0;
+        switch (array.type) {
+          case ValueType::Int8: decoded = load<std::int8_t>(native.data()); break;
+          case ValueType::UInt8: decoded = load<std::uint8_t>(native.data()); break;
+          case ValueType::Int16: decoded = load<std::int16_t>(native.data()); break;
+          case ValueType::UInt16: decoded = load<std::uint16_t>(native.data()); break;
+          case ValueType::Int32: decoded = load<std::int32_t>(native.data()); break;
+          case ValueType::UInt32: decoded = load<std::uint32_t>(native.data()); break;
+          case ValueType::Int64: decoded = load<std::int64_t>(native.data()); break;
+          case ValueType::UInt64: decoded = load<std::uint64_t>(native.data()); break;
+          case ValueType::Float32: decoded = load<float>(native.data()); break;
+          case ValueType::Float64: decoded = load<double>(native.data()); break;
+        }
+        const std::size_t voxel = array.planar ? done + i : done + i / array.components;
+        const std::size_t component = array.planar ? span : i % array.components;
+        store(voxel, component, decoded);
+      }
+      done += n;
+    }
+  }
+  return {};
+}
+
+Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t* nonFinite) const {
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 1 || offset[a] < 0 || offset[a] > dims_[a] - dims[a])
+      return fileError(path_, "the piece of " + gridText(dims) + " voxels at " +
+                                  std::to_string(offset.x) + "," + std::to_string(offset.y) + "," +
+                                  std::to_string(offset.z) + " does not lie inside the " +
+                                  gridText(dims_) + " grid");
+  VectorField field;
+  field.dims = dims;
+  field.geometry.spacing = geometry_.spacing;
+  field.geometry.origin = geometry_.origin + glm::dvec3(offset) * geometry_.spacing;
+  field.unit = unit_;
+  resizeLarge(field.vectors, voxelCount(dims));
+  std::vector<std::uint8_t> valid(hasMask_ ? voxelCount(dims) : 0);
+
+  // Runs of voxels adjacent in the file: a row, a layer when the piece spans x, the whole piece
+  // when it spans x and y.
+  const bool wholeRows = dims.x == dims_.x;
+  const bool wholeLayers = wholeRows && dims.y == dims_.y;
+  const std::size_t run = static_cast<std::size_t>(dims.x) *
+                          static_cast<std::size_t>(wholeRows ? dims.y : 1) *
+                          static_cast<std::size_t>(wholeLayers ? dims.z : 1);
+  const int rows = wholeRows ? 1 : dims.y;
+  const int layers = wholeLayers ? 1 : dims.z;
+  // Float32 vectors in the host's order are read straight into the field.
+  const bool direct = vectors_.type == ValueType::Float32 && vectors_.components == 3 &&
+                      !vectors_.planar && vectors_.order == std::endian::native;
+  std::vector<unsigned char> buffer;
+  for (int k = 0; k < layers; ++k) {
+    for (int j = 0; j < rows; ++j) {
+      const std::uint64_t first = voxelIndex(dims_, offset.x, offset.y + j, offset.z + k);
+      const std::size_t local = voxelIndex(dims, 0, j, k);
+      glm::vec3* vectors = field.vectors.data() + local;
+      if (direct) {
+        LIC3D_TRY(file_.readAt(vectors_.offset + first * sizeof(glm::vec3), vectors,
+                               run * sizeof(glm::vec3), "the data"));
+      } else {
+        LIC3D_TRY(readValues(vectors_, first, run, buffer,
+                             [&](std::size_t voxel, std::size_t component, double value) {
+                               vectors[voxel][static_cast<glm::length_t>(component)] =
+                                   vectorComponent(value);
+                             }));
+      }
+      if (hasMask_) {
+        std::uint8_t* flags = valid.data() + local;
+        LIC3D_TRY(readValues(mask_, first, run, buffer,
+                             [&](std::size_t voxel, std::size_t, double value) {
+                               flags[voxel] = value != 0.0 ? 1 : 0;
+                             }));
+      }
+    }
+  }
+
+  std::uint64_t zeroed = 0;
+  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
+    glm::vec3& v = field.vectors[i];
+    if (hasMask_ && valid[i] == 0) {
+      v = glm::vec3(0.0f);
+    } else if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+      v = glm::vec3(0.0f);
+      ++zeroed;
+    }
+  }
+  if (nonFinite) *nonFinite = zeroed;
+  return field;
+}
+
+}  // namespace lic3d

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// A vector field read piece by piece from its file, never whole: for fields larger than host or
+// device memory (a 2048^3 float field is 96 GiB), whose LIC is computed brick by brick.
+//
+// Streamed: `.raw` with its JSON sidecar (raw_volume.h), `.nrrd` and `.nhdr` with raw encoding
+// (attached or detached data), and `.vti` whose vectors are appended raw and uncompressed. Only
+// the header is read on open; each piece is read with pread, so threads may read pieces at once.
+// The grid may have up to kMaxStreamedVoxels voxels (each axis at most kMaxAxisSize); the data's
+// size is checked against the file's before anything is read.
+//
+// Files whose data must be decoded from the start (gzip NRRD; ascii, base64 or compressed VTI;
+// .vtk; .pvti) are Unsupported: the caller reads them whole (readVectorField), within host memory.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/volume.h"
+#include "io/file_util.h"
+
+namespace lic3d {
+
+class FieldStream {
+ public:
+  // The header read and checked. `arrayName` picks a .vti array as readVectorField does (a NRRD or
+  // raw file holds one unnamed array). InvalidInput for a bad file, Unsupported (naming the file
+  // and the reason) for one that must be read whole.
+  static Result<FieldStream> open(const std::filesystem::path& path,
+                                  std::string_view arrayName = {});
+
+  const std::filesystem::path& path() const { return path_; }
+  Dims dims() const { return dims_; }
+  const GridGeometry& geometry() const { return geometry_; }
+  const std::string& unit() const { return unit_; }            // NRRD `sample units`, else empty
+  const std::string& arrayName() const { return arrayName_; }  // the .vti array, else empty
+
+  // The voxels [offset, offset + dims) as a field of `dims` voxels whose origin is the piece's
+  // first voxel (as cutFieldPiece places it; `piece` is left for the caller), with unit(). Vectors
+  // with a NaN or infinite component become zero and are counted in `*nonFinite` (VTK's
+  // vtkValidPointMask applied first, as readVectorField applies it). Safe from several threads at
+  // once; errors name the file.
+  Result<VectorField> readPiece(Dims offset, Dims dims, std::uint64_t* nonFinite = nullptr) const;
+
+ private:
+  // The values as stored.
+  enum class ValueType : std::uint8_t {
+    Int8,
+    UInt8,
+    Int16,
+    UInt16,
+    Int32,
+    UInt32,
+    Int64,
+    UInt64,
+    Float32,
+    Float64
+  };
+  // One array in a file: `components` values per voxel of `valueBytes`, from byte `offset` on;
+  // interleaved (xyzxyz...) or planar (every x, then every y, then every z).
+  struct ArrayLayout {
+    std::uint64_t offset = 0;
+    ValueType type = ValueType::Float32;
+    std::size_t valueBytes = 4;
+    std::endian order = std::endian::little;
+    std::size_t components = 3;
+    bool planar = false;
+  };
+
+  FieldStream(FileReader file, std::filesystem::path path);
+  static Result<FieldStream> openRaw(const std::filesystem::path& path);
+  static Result<FieldStream> openNrrd(const std::filesystem::path& path);
+  static Result<FieldStream> openVti(const std::filesystem::path& path, std::string_view name);
+  // The file holds the array (exactly: nothing after it).
+  Result<void> checkFileHolds(const ArrayLayout& array, bool exact) const;
+  // The values of `count` voxels of `array` from voxel `first` on, handed to
+  // store(voxel in the run, component, value), through `buffer`.
+  template <class Store>
+  Result<void> readValues(const ArrayLayout& array, std::uint64_t first, std::size_t count,
+                          std::vector<unsigned char>& buffer, Store&& store) const;
+
+  FileReader file_;
+  std::filesystem::path path_;  // as given (a detached header's, not its data file's)
+  Dims dims_{0};
+  GridGeometry geometry_;
+  std::string unit_;
+  std::string arrayName_;
+  ArrayLayout vectors_;
+  bool hasMask_ = false;  // vtkValidPointMask, on the same points
+  ArrayLayout mask_;
+};
+
+}  // namespace lic3d
