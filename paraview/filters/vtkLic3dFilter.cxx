@@ -16,6 +16,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLogger.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -24,6 +25,13 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+#include <mpi.h>
+
+#include "vtkMPI.h"
+#include "vtkMPICommunicator.h"
+#endif
+
 // The lic3d engine.
 #include "core/enum_names.h"
 #include "gpu/vulkan_context.h"
@@ -31,6 +39,9 @@
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_renderer.h"
+
+// The plugin's own.
+#include "device_for_rank.h"
 
 vtkStandardNewMacro(vtkLic3dFilter);
 
@@ -41,6 +52,10 @@ struct vtkLic3dFilter::Engine {
   std::optional<lic3d::LicRenderer> renderer;  // destroyed before the context
   std::string device;
   std::optional<lic3d::FieldPrecision> precision;
+  std::optional<std::string> sharedDevice;  // this process's share of the node's devices
+
+  // The selector for an empty Device property: this process's device among the node's.
+  const std::string& deviceOfNode(int localRank);
 
   lic3d::Result<lic3d::ScalarVolume> compute(const lic3d::VectorField& field,
                                              const lic3d::NoiseVolume& noise,
@@ -157,6 +172,32 @@ vtkDataArray* defaultVectors(vtkImageData* input) {
   return nullptr;
 }
 
+// This process's rank among those of its node (MPI_COMM_TYPE_SHARED), 0 without MPI. Collective
+// on the global controller's processes the first time, so the caller calls it on every process;
+// it is kept for the life of the process, which never changes node.
+int nodeLocalRank() {
+  static const int rank = [] {
+#if VTK_MODULE_ENABLE_VTK_ParallelMPI
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    auto* communicator =
+        controller ? vtkMPICommunicator::SafeDownCast(controller->GetCommunicator()) : nullptr;
+    if (communicator && communicator->GetMPIComm() && communicator->GetMPIComm()->GetHandle()) {
+      MPI_Comm node = MPI_COMM_NULL;
+      MPI_Comm_split_type(*communicator->GetMPIComm()->GetHandle(), MPI_COMM_TYPE_SHARED,
+                          communicator->GetLocalProcessId(), MPI_INFO_NULL, &node);
+      int local = 0;
+      if (node != MPI_COMM_NULL) {
+        MPI_Comm_rank(node, &local);
+        MPI_Comm_free(&node);
+      }
+      return local;
+    }
+#endif
+    return 0;
+  }();
+  return rank;
+}
+
 int processCount() {
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   return controller ? controller->GetNumberOfProcesses() : 1;
@@ -229,6 +270,16 @@ int vtkLic3dFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** 
   return 1;
 }
 
+const std::string& vtkLic3dFilter::Engine::deviceOfNode(int localRank) {
+  if (!this->sharedDevice) {
+    // Where listing fails, "" leaves the choice, and the error, to lic3d.
+    const lic3d::Result<std::vector<lic3d::DeviceInfo>> devices = lic3d::listDevices();
+    this->sharedDevice =
+        devices ? lic3d::paraview::deviceSelectorForLocalRank(*devices, localRank) : "";
+  }
+  return *this->sharedDevice;
+}
+
 lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
     const lic3d::VectorField& field, const lic3d::NoiseVolume& noise,
     const lic3d::LicParams& params, const std::string& wanted,
@@ -252,6 +303,12 @@ lic3d::Result<lic3d::ScalarVolume> vtkLic3dFilter::Engine::compute(
     this->renderer.emplace(std::move(*created));
     this->device = wanted;
     this->precision = wantedPrecision;
+    // Which device each process took, in pvbatch's log at INFO (its default verbosity).
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    const lic3d::DeviceInfo& info = this->context->deviceInfo();
+    vtkLogF(INFO, "3D LIC: process %d (node-local rank %d) computes on device %d: %s (%s)",
+            controller ? controller->GetLocalProcessId() : 0, nodeLocalRank(), info.index,
+            info.name.c_str(), lic3d::deviceTypeName(info.type));
   }
   auto run = [&]() -> lic3d::Result<lic3d::ScalarVolume> {
     LIC3D_TRY(this->renderer->setInputs(field, noise));
@@ -339,7 +396,9 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
     }
   }
 
-  // Every process takes part, an empty one too: the whole field's largest |u|.
+  // Every process takes part, an empty one too: its rank on its node, which picks its device when
+  // the Device property is empty, and the whole field's largest |u|.
+  const int localRank = nodeLocalRank();
   const bool valid = failure.empty() && !empty && !isEmpty(own);
   Shared mine;
   mine.failed = !failure.empty();
@@ -411,9 +470,12 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
 
   const lic3d::ProgressCallback progress = [this](double f) { this->UpdateProgress(f); };
   lic3d::Result<lic3d::ScalarVolume> lic =
-      this->CpuReference ? lic3d::computeLicReference(field, *noise, params, 0, progress)
-                         : this->Gpu->compute(field, *noise, params, this->Device,
-                                              this->Params->precision, progress);
+      this->CpuReference
+          ? lic3d::computeLicReference(field, *noise, params, 0, progress)
+          : this->Gpu->compute(
+                field, *noise, params,
+                this->Device.empty() ? this->Gpu->deviceOfNode(localRank) : this->Device,
+                this->Params->precision, progress);
   if (!lic) {
     vtkErrorMacro(<< lic.error().message);
     return 0;

@@ -64,8 +64,9 @@ class LIC3DFILTERS_EXPORT vtkLic3dFilter : public vtkImageAlgorithm {
   void SetFieldPrecision(int value);
   int GetFieldPrecision() const;
 
-  // The device: "" for lic3d's choice (discrete GPU, integrated, virtual, CPU), an index of
-  // `lic3d devices`, or part of a device name.
+  // The device: an index of `lic3d devices` or part of a device name, the same on every process;
+  // "" for lic3d's choice: the usable devices of the best kind (discrete GPU, integrated, virtual,
+  // CPU) shared out among the processes of a node by node-local rank (device_for_rank.h).
   vtkSetStdStringFromCharMacro(Device);
   vtkGetCharFromStdStringMacro(Device);
   // Compute with lic3d's CPU reference (double precision, every hardware thread) instead of the
