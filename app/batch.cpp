@@ -21,6 +21,7 @@
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/session_file.h"
+#include "io/volume_stream.h"
 #include "io/vti.h"
 
 namespace lic3d::cli {
@@ -376,10 +377,11 @@ Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
     return std::optional<LicSlice>(LicSlice{inputs.session.plane.axis, inputs.session.plane.index});
   }
   if (extension == ".png")
-    return inputError("-o " + path +
-                      ": compute writes the LIC volume (.nrrd or .vti); for a 16-bit PNG of one "
-                      "slice add --slice AXIS[:INDEX], e.g. --slice z:64");
-  LIC3D_TRY(checkOutputPathOneOf(path, "-o", {".nrrd", ".vti"}));
+    return inputError(
+        "-o " + path +
+        ": compute writes the LIC volume (.nrrd, .vti or .raw); for a 16-bit PNG of one "
+        "slice add --slice AXIS[:INDEX], e.g. --slice z:64");
+  LIC3D_TRY(checkOutputPathOneOf(path, "-o", {".nrrd", ".vti", ".raw"}));
   return std::optional<LicSlice>();
 }
 
@@ -393,6 +395,13 @@ Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& vol
     out = &marked;
   }
   if (extensionOf(path) == ".vti") return writeScalarVti(path, *out);
+  if (extensionOf(path) == ".raw") {
+    // Float32 with its JSON sidecar (io/volume_stream.h), in one block.
+    LIC3D_TRY_ASSIGN(ScalarVolumeStream stream,
+                     ScalarVolumeStream::create(path, out->dims, out->geometry));
+    LIC3D_TRY(stream.write(Dims(0), out->dims, out->values.data()));
+    return stream.finish();
+  }
   return writeScalarNrrd(path, *out);
 }
 
@@ -458,6 +467,7 @@ std::string summaryLine(const RunSummary& summary) {
   field["spacing"] = {g.spacing.x, g.spacing.y, g.spacing.z};
   field["origin"] = {g.origin.x, g.origin.y, g.origin.z};
   field["non_finite_vectors"] = summary.nonFiniteVectors;
+  if (summary.readByBricks) field["read_by_bricks"] = true;
   Json line = {{"command", summary.command},
                {"frames", summary.frames},
                {"seconds", std::round(summary.seconds * 1000.0) / 1000.0},
@@ -465,6 +475,20 @@ std::string summaryLine(const RunSummary& summary) {
                {"device", summary.device},
                {"field", field}};
   if (summary.bricks) line["bricks"] = *summary.bricks;
+  if (!summary.shares.empty()) {
+    Json shares = Json::array();
+    for (const DeviceShare& share : summary.shares)
+      shares.push_back({{"device", share.device},
+                        {"bricks", share.bricks},
+                        {"voxels", share.voxels},
+                        {"seconds", std::round(share.seconds * 1000.0) / 1000.0},
+                        {"peak_device_mib", share.peakDeviceBytes >> 20}});
+    line["devices"] = shares;
+  }
+  if (summary.reduction > 0)
+    line["reduced"] = {
+        {"factor", summary.reduction},
+        {"grid", {summary.reducedGrid.x, summary.reducedGrid.y, summary.reducedGrid.z}}};
   if (summary.hiddenFraction)
     line["hidden_fraction"] = std::round(*summary.hiddenFraction * 10000.0) / 10000.0;
   Json timings = Json::object();

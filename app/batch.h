@@ -15,6 +15,7 @@
 #include "cli_options.h"
 #include "core/rgba_image.h"
 #include "core/volume.h"
+#include "inputs/bricks.h"
 #include "io/png_writer.h"
 #include "io/volume_io.h"
 #include "passes/slice_pass.h"
@@ -116,6 +117,10 @@ Result<void> writeRgbaVolumeFile(const std::string& path, const RgbaVolume& volu
 // The machine-readable last line of render and compute on stdout:
 // `lic3d-summary {"command":...,"frames":...,"seconds":...,"outputs":[...],"device":...,
 // "field":{...}}`.
+// Beside the session in a picture drawn from a reduced copy of its LIC (docs/SCALE.md): what
+// was drawn, e.g. "LIC 2048x2048x2048 made in 12 bricks, drawn as every 2nd voxel: 1024x1024x1024".
+inline constexpr char kPngReducedKey[] = "lic3d-reduced";
+
 struct RunSummary {
   std::string command;
   int frames = 0;  // PNG frames rendered (0 for compute)
@@ -131,6 +136,12 @@ struct RunSummary {
   std::optional<double> hiddenFraction;
   // compute on a device: the bricks the LIC was made in (1: the grid in one piece).
   std::optional<int> bricks;
+  // ... and each device's share of that work (inputs/bricks.h).
+  std::vector<DeviceShare> shares;
+  // render of a LIC too large to draw whole: every `reduction`-th voxel of it (reduced_volume.h).
+  int reduction = 0;
+  Dims reducedGrid{0};
+  bool readByBricks = false;  // the field file was read brick by brick (io/field_stream.h)
   // Seconds per stage (core/stage_times.h), in the order the stages first ran.
   std::vector<std::pair<std::string, double>> timings;
 };

@@ -224,6 +224,10 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
                  "MiB, GiB (1024s); compute makes a LIC that does not fit in bricks with ghost "
                  "layers (docs/SCALE.md), render refuses it (default: what the device has)")
       ->transform(CLI::AsSizeValue(true));
+  app.add_option("--devices", options.devices,
+                 "Spread the LIC over several devices: all (every GPU of the best kind) or "
+                 "indices or name parts of `lic3d devices`, separated by commas; the grid goes "
+                 "out in bricks, at least one a device (docs/SCALE.md). Replaces --device");
   options.output = defaultOutput;
   const bool picture = std::string_view(defaultOutput).ends_with(".png");
   options.outputOption =

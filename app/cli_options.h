@@ -69,6 +69,7 @@ struct ComputeOptions {
   SessionOptions inputs;
   bool cpu = false;
   std::uint64_t memoryBudget = 0;  // --memory-budget: at most this many bytes of device memory
+  std::string devices;             // --devices: all, or indices or name parts (empty: --device)
   std::string output;
   CLI::Option* outputOption = nullptr;  // to tell a given -o from the default
 };

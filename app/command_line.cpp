@@ -81,7 +81,11 @@ std::unique_ptr<CommandLine> makeCommandLine() {
       ->capture_default_str();
   addEnumOption(*benchCommand, "--field-precision", bench.precision,
                 "Field texture precision: auto (float on CPU drivers, half on GPUs)");
-  benchCommand->add_option("--sizes", bench.sizes, "Volume sizes N (N^3) of the LIC table")
+  benchCommand
+      ->add_option(
+          "--sizes", bench.sizes,
+          "Volume sizes N (N^3) of the LIC table; one larger than the device is made in bricks, "
+          "once (docs/SCALE.md)")
       ->capture_default_str();
   benchCommand->add_option("--lengths", bench.lengths, "LIC lengths L of the LIC table")
       ->capture_default_str();

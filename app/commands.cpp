@@ -10,13 +10,16 @@
 #include <map>
 #include <optional>
 
+#include "command_support.h"
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
+#include "gpu/device_choice.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
 #include "inputs/bricks.h"
 #include "inputs/plane_inputs.h"
+#include "inputs/reduced_volume.h"
 #include "inputs/scalars.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
@@ -26,6 +29,7 @@
 #include "lic/field_plane.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
+#include "lic/noise.h"
 #include "lic/time_series.h"
 #include "passes/field_interpolation.h"
 #include "passes/lic2d_pass.h"
@@ -34,133 +38,6 @@
 
 namespace lic3d::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-Result<Context> openContext(const GlobalOptions& global) {
-  ContextOptions options;
-  options.validation = global.validation;
-  options.device = global.device;
-  const StageTimer timer("device");
-  return Context::create(options);
-}
-
-// With validation on, any message fails the command even if it otherwise succeeded.
-int finish(const Context& context, int status) {
-  if (context.validationEnabled() && context.validationMessageCount() > 0) {
-    std::fprintf(stderr, "lic3d: error: %zu validation message(s)\n",
-                 context.validationMessageCount());
-    return status == kExitOk ? kExitFailure : status;
-  }
-  return status;
-}
-
-std::string tripleText(glm::dvec3 v) {
-  return formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z);
-}
-
-// --time given for a field that has none is a mistake worth naming.
-Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {
-  if (options.time && options.time->count() > 0 && !domain.timeDependent)
-    return inputError("--time: " + options.session.field.field +
-                      " does not change with time (the tornado, the 2D wave and series of files "
-                      "do)");
-  return {};
-}
-
-// `fieldOnDevice`: the run needs no host copy of an analytic field (InputOptions::fieldOnDevice).
-Result<SessionInputs> loadInputs(const ComputeOptions& options, bool fieldOnDevice) {
-  const Session& session = options.inputs.session;
-  if (session.twoD)
-    return inputError(
-        "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
-  LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
-  LIC3D_TRY(checkTimeGiven(options.inputs, domain));
-  return loadSessionInputs(session, {.gridGiven = options.inputs.grid.given(),
-                                     .analyticTimeSteps = session.timeSteps,
-                                     .fieldOnDevice = fieldOnDevice});
-}
-
-// What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.
-void reportFieldFile(const GlobalOptions& global, const FieldSource& source,
-                     const SessionInputs& inputs) {
-  const FieldReadInfo& info = inputs.info;
-  if (info.nonFiniteVectors > 0)
-    std::fprintf(stderr,
-                 "lic3d: warning: %s: %zu vector(s) with a NaN or infinite component were read "
-                 "as zero (streamlines stop there)\n",
-                 source.field.c_str(), info.nonFiniteVectors);
-  if (global.quiet || !source.array.empty() || info.arrayNames.size() < 2) return;
-  std::string others;
-  for (const std::string& name : info.arrayNames)
-    if (name != info.arrayName) others += (others.empty() ? "'" : ", '") + name + "'";
-  std::fprintf(stderr,
-               "lic3d: %s has %zu vector arrays: read '%s'; the others are %s (choose one with "
-               "--array NAME)\n",
-               source.field.c_str(), info.arrayNames.size(), info.arrayName.c_str(),
-               others.c_str());
-}
-
-// "tornado 128x128x128", or for a file its array, grid, spacing and origin.
-std::string fieldText(const FieldSource& source, const SessionInputs& inputs) {
-  const VectorField& field = inputs.field;
-  if (!inputs.fromFile) return source.field + " " + gridText(field.dims);
-  std::string text = inputs.series ? inputs.series->describe() : source.field;
-  if (!inputs.info.arrayName.empty()) text += " array '" + inputs.info.arrayName + "'";
-  return text + " " + gridText(field.dims) + ", spacing " + tripleText(field.geometry.spacing) +
-         ", origin " + tripleText(field.geometry.origin);
-}
-
-RunSummary makeSummary(const char* command, const FieldSource& source,
-                       const SessionInputs& inputs) {
-  RunSummary summary;
-  summary.command = command;
-  summary.field = source.field;
-  summary.array = inputs.info.arrayName;
-  summary.grid = inputs.field.dims;
-  summary.geometry = inputs.field.geometry;
-  summary.nonFiniteVectors = inputs.info.nonFiniteVectors;
-  return summary;
-}
-
-// The fraction of the voxels that sparsity hid, reported on stderr and in the summary.
-void noteHiddenFraction(const GlobalOptions& global, const LicParams& lic,
-                        std::optional<double> hidden, RunSummary& summary) {
-  if (lic.sparsity.distribution == SparsityDistribution::None || !hidden) return;
-  summary.hiddenFraction = hidden;
-  if (global.quiet) return;
-  std::fprintf(
-      stderr, "lic3d: sparsity (%s%s) hid %.1f %% of the voxels\n",
-      std::string(enumName(lic.sparsity.distribution)).c_str(),
-      lic.sparsity.amount > 0.0f ? (", amount " + formatNumber(lic.sparsity.amount)).c_str() : "",
-      100.0 * *hidden);
-}
-
-std::optional<double> hiddenFractionOf(const ScalarVolume& volume) {
-  if (volume.drawn.empty()) return std::nullopt;
-  const auto drawn = std::count(volume.drawn.begin(), volume.drawn.end(), 1);
-  return 1.0 - static_cast<double>(drawn) / static_cast<double>(volume.drawn.size());
-}
-
-void printSummary(const GlobalOptions& global, RunSummary summary, Clock::time_point start) {
-  summary.seconds = secondsSince(start);
-  summary.timings = stageTimings();
-  if (global.timings) printTimings(summary.seconds);
-  if (global.quiet) return;
-  std::printf("%s\n", summaryLine(summary).c_str());
-  std::fflush(stdout);
-}
-
-Result<ScalarVolume> computeOnCpu(const SessionInputs& inputs, const LicParams& lic, bool quiet) {
-  Progress progress("LIC " + gridText(inputs.field.dims) + " on the CPU", quiet);
-  return computeLicReference(inputs.field, inputs.noise, lic, 0,
-                             [&](double f) { progress.update(f); });
-}
-
 // Makes the renderer's LIC volume the one of `lic`, on the GPU or (with --cpu) the CPU, unless it
 // already is.
 Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& inputs,
@@ -177,20 +54,96 @@ Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& i
   return {};
 }
 
-// compute's output: the volume (.nrrd, .vti) or one slice (.png with --slice).
-Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<LicSlice> slice,
-                                const ScalarVolume& volume) {
-  if (!slice) {
-    const StageTimer timer("volume write");
-    return writeLicVolumeFile(options.output, volume);
+// A LIC volume made before the frames (in bricks, over --devices), possibly a reduced copy, and
+// what the pictures then say of it beside their session.
+struct GivenLic {
+  ScalarVolume volume;
+  std::string note;  // empty: the whole volume
+};
+
+// A LIC volume made in bricks for render, and the field on its grid where that is not the
+// inputs' (a reduced copy).
+struct ReducedLic {
+  ScalarVolume volume;
+  std::string note;                     // what was drawn, for the pictures and the message
+  std::optional<SessionInputs> inputs;  // the field on the reduced grid
+  int factor = 1;
+  int bricks = 1;
+  std::vector<DeviceShare> shares;
+};
+
+std::string ordinal(int n) {
+  const char* suffix = n % 100 >= 11 && n % 100 <= 13 ? "th"
+                       : n % 10 == 1                  ? "st"
+                       : n % 10 == 2                  ? "nd"
+                       : n % 10 == 3                  ? "rd"
+                                                      : "th";
+  return std::to_string(n) + suffix;
+}
+
+// The LIC of `inputs` made in bricks over `contexts`: whole when the first device can draw it
+// (`drawable`), else every factor-th voxel of it for the smallest factor it can draw
+// (inputs/reduced_volume.h), with the field on that grid.
+Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOptions& options,
+                                  const std::vector<Context>& contexts, SessionInputs& inputs,
+                                  bool drawable) {
+  const Session& session = options.inputs.session;
+  const Dims dims = inputs.field.dims;
+  ReducedLic made;
+  if (!drawable) {
+    const std::optional<int> factor = chooseReduction(dims, 64, [&](Dims reduced) {
+      return checkRequestMemory(contexts.front(), session, reduced,
+                                {.frame = true, .deviceCap = options.memoryBudget})
+          .ok();
+    });
+    if (!factor)
+      return resourceLimitError("the LIC of " + session.field.field + " (" + gridText(dims) +
+                                ") cannot be drawn even as every 64th voxel on " +
+                                contexts.front().deviceInfo().name);
+    made.factor = *factor;
   }
-  return writeLicSlicePng(options.output, volume, *slice, options.inputs.session);
+  ReducedVolume reduced(dims, inputs.field.geometry, made.factor);
+  Progress progress("LIC " + gridText(dims) + " on " + devicesText(contexts), global.quiet);
+  LicVolumeOptions how{.deviceCap = options.memoryBudget};
+  how.sink = [&](const Brick& brick, const ScalarVolume& lic) { return reduced.take(brick, lic); };
+  Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
+                                              [&](double f) { progress.update(f); });
+  if (!run) {
+    progress.cancel();
+    return run.error();
+  }
+  progress.finish();
+  if (!run->volume.values.empty())  // made in one piece after all
+    LIC3D_TRY(reduced.take(Brick{Dims(0), dims, Dims(0), dims}, run->volume));
+  made.bricks = run->bricks;
+  made.shares = std::move(run->devices);
+  made.volume = reduced.volume();
+  if (made.factor == 1) return made;
+  made.note = "LIC " + gridText(dims) + " made in " + std::to_string(made.bricks) +
+              " bricks, drawn as every " + ordinal(made.factor) +
+              " voxel: " + gridText(made.volume.dims);
+  if (inputs.device) {
+    // The analytic field made on the reduced grid, whose geometry the volume takes.
+    Session onReduced = session;
+    onReduced.field.grid = made.volume.dims;
+    LIC3D_TRY_ASSIGN(made.inputs, loadSessionInputs(onReduced, {.fieldOnDevice = true}));
+    made.volume.geometry = made.inputs->field.geometry;
+  } else {
+    SessionInputs field;
+    field.field = reduceField(inputs.field, made.factor);
+    field.noise = makeWhiteNoise(field.field.dims, session.noise.seed);
+    field.fromFile = inputs.fromFile;
+    field.info = inputs.info;
+    made.inputs = std::move(field);
+  }
+  return made;
 }
 
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
 Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& options,
                           const BatchOptions& batch, const FramePlan& plan, SessionInputs& inputs,
-                          LicRenderer& renderer, std::vector<std::string>& outputs) {
+                          LicRenderer& renderer, std::vector<std::string>& outputs,
+                          const GivenLic* given = nullptr) {
   const Session& session = options.inputs.session;
   const bool animated = plan.animation != Animation::None;
   const auto pathOf = [&](int frame) {
@@ -203,8 +156,12 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   if (!makeNothing) LIC3D_TRY(moveToTime(inputs, session, firstTime, renderer, true, options.cpu));
   // Bias and time animations recompute the volume every frame: the frame lines report that
   // progress.
-  if (!makeNothing && plan.animation != Animation::Bias && plan.animation != Animation::Time)
+  if (!makeNothing && given) {
+    LIC3D_TRY(renderer.setLicVolume(given->volume, session.lic));
+  } else if (!makeNothing && plan.animation != Animation::Bias &&
+             plan.animation != Animation::Time) {
     LIC3D_TRY(makeLicVolume(options, inputs, session.lic, renderer, global.quiet));
+  }
 
   LIC3D_TRY_ASSIGN(ViewScalars scalars, loadViewScalars(session, inputs));
   LIC3D_TRY(setViewScalars(renderer, scalars));
@@ -245,6 +202,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
         made ? renderer.render(frameParams.lic, frameParams.view) : Result<RgbaImage>(made.error());
     Result<PngText> text =
         image ? pngText(frameParams, pathOf(frame)) : Result<PngText>(image.error());
+    if (text && given && !given->note.empty()) text->emplace_back(kPngReducedKey, given->note);
     if (!image || !text) {
       (void)waitAll();  // the frames already made are written before the error is reported
       return !image ? std::move(image).error() : std::move(text).error();
@@ -472,108 +430,6 @@ int runDevices(const GlobalOptions& global) {
   return kExitOk;
 }
 
-int runCompute(const GlobalOptions& global, const ComputeOptions& options,
-               const BatchOptions& batch) {
-  const Clock::time_point start = Clock::now();
-  const Session& session = options.inputs.session;
-  const Result<std::optional<LicSlice>> slice =
-      checkComputeOutput(options.output, batch, options.inputs);
-  if (!slice) return reportError(slice.error());
-  if (*slice)
-    if (auto r = pngText(session, options.output); !r) return reportError(r.error());
-  // On the GPU, the device comes first, so that an analytic field too large for it is refused
-  // before it is made (unless it can be made in bricks: white noise, one time).
-  std::optional<Result<Context>> context;
-  if (!options.cpu) {
-    context.emplace(openContext(global));
-    if (!*context) return reportError(context->error());
-    const bool bricked = session.timeSteps == 0 && isWhiteNoise(session.noise);
-    if (parseEnum<AnalyticField>(session.field.field) && !bricked)
-      if (auto r = checkRequestMemory(**context, session, session.field.grid,
-                                      {.volumeReadback = true,
-                                       .timeSeries = session.timeSteps > 0,
-                                       .deviceCap = options.memoryBudget});
-          !r)
-        return finish(**context, reportError(r.error()));
-  }
-  auto fail = [&](const Error& error) {
-    const int status = reportError(error);
-    return context ? finish(**context, status) : status;
-  };
-  Result<SessionInputs> inputs = loadInputs(options, !options.cpu);
-  if (!inputs) return fail(inputs.error());
-  if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
-  reportFieldFile(global, session.field, *inputs);
-  if (const std::optional<LicSlice> chosen = *slice) {
-    // The index against the grid, before any work.
-    const std::string text =
-        std::string(1, static_cast<char>('x' + chosen->axis)) + ":" + std::to_string(chosen->index);
-    if (chosen->index >= inputs->field.dims[chosen->axis])
-      return fail(inputError("--slice " + text + ": the grid " + gridText(inputs->field.dims) +
-                             " has " + std::to_string(inputs->field.dims[chosen->axis]) +
-                             " slices along " +
-                             std::string(1, static_cast<char>('x' + chosen->axis)) + " (0.." +
-                             std::to_string(inputs->field.dims[chosen->axis] - 1) + ")"));
-  }
-  RunSummary summary = makeSummary("compute", session.field, *inputs);
-  summary.outputs = {options.output};
-
-  if (options.cpu) {
-    if (inputs->series) {
-      Result<VectorField> field = hostFieldAt(*inputs, session, session.time);
-      if (!field) return reportError(field.error());
-      inputs->field = std::move(*field);
-      inputs->fieldStep.reset();
-    }
-    const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
-    if (!volume) return reportError(volume.error());
-    if (auto r = writeComputeOutput(options, *slice, *volume); !r) return reportError(r.error());
-    if (!global.quiet)
-      std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str());
-    noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
-    summary.device = "CPU reference";
-    printSummary(global, summary, start);
-    return kExitOk;
-  }
-
-  Context& device = **context;
-  int status = kExitOk;
-  {
-    // In one piece when it fits the device (or --memory-budget), else in bricks.
-    Progress progress("LIC " + gridText(inputs->field.dims) + " on " + device.deviceInfo().name,
-                      global.quiet);
-    Result<LicVolumeRun> run = computeLicVolume(device, session, *inputs, options.memoryBudget,
-                                                [&](double f) { progress.update(f); });
-    if (run) {
-      progress.finish();
-    } else {
-      progress.cancel();
-    }
-    Result<void> done =
-        run ? writeComputeOutput(options, *slice, run->volume) : Result<void>(run.error());
-    if (done) {
-      noteHiddenFraction(global, session.lic, hiddenFractionOf(run->volume), summary);
-      summary.bricks = run->bricks;
-    }
-    if (!done)
-      status = reportError(done.error());
-    else if (!global.quiet)
-      std::fprintf(stderr, "lic3d: wrote %s (%s, on %s%s)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str(), device.deviceInfo().name.c_str(),
-                   run->bricks > 1 ? (", in " + std::to_string(run->bricks) + " bricks of " +
-                                      gridText(run->brickCore) + " and ghost layers")
-                                         .c_str()
-                                   : "");
-  }
-  status = finish(device, status);
-  if (status == kExitOk) {
-    summary.device = device.deviceInfo().name;
-    printSummary(global, summary, start);
-  }
-  return status;
-}
-
 int runRender(const GlobalOptions& global, const ComputeOptions& options,
               const BatchOptions& batch) {
   const Clock::time_point start = Clock::now();
@@ -584,33 +440,54 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   const Result<FramePlan> plan = planFrames(batch, options, *domain);
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
-  Result<Context> context = openContext(global);
-  if (!context) return reportError(context.error());
+  if (options.cpu && !options.devices.empty())
+    return reportError(
+        inputError("--devices " + options.devices + ": --cpu computes on the CPU, not on devices"));
+  Result<std::vector<Context>> contexts = openContexts(global, options.devices);
+  if (!contexts) return reportError(contexts.error());
+  const Context& context = contexts->front();  // draws the pictures
+  // A LIC that cannot be drawn whole is made in bricks and drawn as a reduced copy: one picture
+  // or a turntable (one volume), white noise at one time, coloured by speed.
+  const bool reducible =
+      !options.cpu && session.timeSteps == 0 && isWhiteNoise(session.noise) &&
+      (plan->animation == Animation::None || plan->animation == Animation::Turntable) &&
+      batch.rgbaVolume.empty() && session.view.colorBy == "speed" &&
+      session.view.opacityBy == "speed";
+  const auto fitsWhole = [&](Dims dims, bool series) {
+    return checkRequestMemory(
+        context, session, dims,
+        {.frame = true, .timeSeries = series && !options.cpu, .deviceCap = options.memoryBudget});
+  };
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
-  if (parseEnum<AnalyticField>(session.field.field))
-    if (auto r = checkRequestMemory(*context, session, session.field.grid,
-                                    {.frame = true,
-                                     .timeSeries = session.timeSteps > 0 && !options.cpu,
-                                     .deviceCap = options.memoryBudget});
-        !r)
-      return finish(*context, reportError(r.error()));
+  if (parseEnum<AnalyticField>(session.field.field) && !reducible)
+    if (auto r = fitsWhole(session.field.grid, session.timeSteps > 0); !r)
+      return finish(*contexts, reportError(r.error()));
   // The field is made on the device unless the host needs it: for the CPU LIC, colour or opacity
   // derived from the vectors, or the RGBA volume.
   Result<SessionInputs> inputs = loadInputs(
       options, !options.cpu && batch.rgbaVolume.empty() && !viewDerivesFromField(session.view));
-  if (!inputs) return finish(*context, reportError(inputs.error()));
+  if (!inputs) return finish(*contexts, reportError(inputs.error()));
   if (auto r = checkOutputsAreNotInputs(batch, *plan); !r)
-    return finish(*context, reportError(r.error()));
+    return finish(*contexts, reportError(r.error()));
   reportFieldFile(global, session.field, *inputs);
-  if (inputs->fromFile || inputs->series)
-    if (auto r = checkRequestMemory(*context, session, inputs->field.dims,
-                                    {.frame = true,
-                                     .timeSeries = inputs->series && !options.cpu,
-                                     .deviceCap = options.memoryBudget});
-        !r)
-      return finish(*context, reportError(r.error()));
+  const Result<void> whole = fitsWhole(inputs->field.dims, inputs->series.has_value());
+  if (!whole && !reducible) return finish(*contexts, reportError(whole.error()));
 
   RunSummary summary = makeSummary("render", session.field, *inputs);
+  // In bricks over the devices (and reduced when too large to draw), before the frames.
+  std::optional<GivenLic> given;
+  std::optional<SessionInputs> drawn;
+  if (!whole || contexts->size() > 1) {
+    Result<ReducedLic> made = makeReducedLic(global, options, *contexts, *inputs, whole.ok());
+    if (!made) return finish(*contexts, reportError(made.error()));
+    given = GivenLic{std::move(made->volume), made->note};
+    drawn = std::move(made->inputs);
+    summary.bricks = made->bricks;
+    summary.shares = std::move(made->shares);
+    summary.reduction = made->factor > 1 ? made->factor : 0;
+    if (made->factor > 1) summary.reducedGrid = given->volume.dims;
+  }
+  SessionInputs& frameInputs = drawn ? *drawn : *inputs;
   int status = kExitOk;
   {
     // A picture and its RGBA volume appear together or not at all (a failure while the volume
@@ -618,10 +495,11 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     // half way keeps them.
     std::optional<OutputGroup> together;
     if (plan->animation == Animation::None) together.emplace();
-    Result<LicRenderer> renderer = LicRenderer::create(*context, {session.precision});
-    Result<void> done =
-        renderer ? renderFrames(global, options, batch, *plan, *inputs, *renderer, summary.outputs)
-                 : Result<void>(renderer.error());
+    Result<LicRenderer> renderer = LicRenderer::create(context, {session.precision});
+    Result<void> done = renderer
+                            ? renderFrames(global, options, batch, *plan, frameInputs, *renderer,
+                                           summary.outputs, given ? &*given : nullptr)
+                            : Result<void>(renderer.error());
     if (done && together) done = together->commit();
     together.reset();
     if (!done) {
@@ -634,9 +512,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
               ? plan->output
               : std::to_string(plan->rendered()) + " frames " + summary.outputs.front() +
                     (plan->rendered() > 1 ? " .. " + framePath(plan->output, plan->end - 1) : "");
-      std::fprintf(stderr, "lic3d: wrote %s (%dx%d, %s, on %s)\n", what.c_str(), width,
+      std::fprintf(stderr, "lic3d: wrote %s (%dx%d, %s, on %s%s%s)\n", what.c_str(), width,
                    session.view.height, fieldText(session.field, *inputs).c_str(),
-                   context->deviceInfo().name.c_str());
+                   devicesText(*contexts).c_str(), given && !given->note.empty() ? "; " : "",
+                   given ? given->note.c_str() : "");
     }
     if (done) noteHiddenFraction(global, session.lic, renderer->hiddenFraction(), summary);
     if (renderer) {
@@ -644,10 +523,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
       const LicRenderer released = std::move(*renderer);
     }
   }
-  status = finish(*context, status);
+  status = finish(*contexts, status);
   if (status == kExitOk) {
     summary.frames = plan->rendered();
-    summary.device = context->deviceInfo().name;
+    summary.device = context.deviceInfo().name;
     printSummary(global, summary, start);
   }
   return status;

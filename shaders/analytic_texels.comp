@@ -74,9 +74,10 @@ void main() {
   float binsPerUnit = highest > lowest ? float(kAnalyticHistogramBins) / (highest - lowest) : 0.0;
   if (xy.x < pc.dims.x && xy.y < pc.dims.y && zBegin < zEnd) {
     float speedHigh = 0.0, high = 0.0, low = 3.0e38;
-    uint layer = uint(pc.dims.x) * uint(pc.dims.y);
+    uint layer = uint(pc.whole.x) * uint(pc.whole.y);
     for (int z = zBegin; z < zEnd; ++z) {
-      vec3 v = evaluate(pc.origin.xyz + vec3(ivec3(xy, z)) * pc.spacing.xyz, pc.origin.w);
+      ivec3 at = ivec3(xy, z) + pc.offset.xyz;  // in the whole grid
+      vec3 v = evaluate(pc.origin.xyz + vec3(at) * pc.spacing.xyz, pc.origin.w);
       vec3 u = v * pc.unitScale.xyz;
       float magnitude = length(v);
       if (PHASE == 0) {
@@ -88,8 +89,8 @@ void main() {
       uint bin = uint(max(magnitude - lowest, 0.0) * binsPerUnit);
       atomicAdd(groupBins[min(bin, kAnalyticHistogramBins - 1u)], 1u);
       // The voxel's index in the grid, 64 bits wide.
-      uvec2 index = add64(mul64(uvec2(layer, 0u), uvec2(uint(z), 0u)),
-                          uvec2(uint(xy.x) + uint(pc.dims.x) * uint(xy.y), 0u));
+      uvec2 index = add64(mul64(uvec2(layer, 0u), uvec2(uint(at.z), 0u)),
+                          uvec2(uint(at.x) + uint(pc.whole.x) * uint(at.y), 0u));
       float noise = float(noiseByte(pc.seed.xy, index)) / 255.0;
       imageStore(fieldTexels, ivec3(xy, z),
                  fieldTexel(maxSpeed > 0.0 ? u / maxSpeed : u, noise));

@@ -186,7 +186,9 @@ struct LerpPushConstants {
 // analytic_texels.comp writes the packed field and noise texture (passes/volume_textures.h) in two
 // phases, as field_lerp.comp does: phase 0 measures max |u| (u: v in voxel units) and min and max
 // |v|; phase 1 writes the texels normalised by phase 0's max |u|, the noise of lic/noise.h hashed
-// from each voxel's index in the grid, and the histogram of |v| over [min, max].
+// from each voxel's index in the grid, and the histogram of |v| over [min, max]. For a brick of a
+// larger grid (bricked LIC), phase 0 runs over the whole grid and phase 1 over the brick, at
+// `offset` in it: positions and noise are the whole grid's.
 LIC3D_CONST kAnalyticBindingVectors = 0;     // buffer of 3 floats per voxel of the slab
 LIC3D_CONST kAnalyticBindingTexels = 0;      // image3D: the field and noise texture
 LIC3D_CONST kAnalyticBindingStatistics = 1;  // AnalyticStatistics
@@ -203,6 +205,8 @@ struct AnalyticPushConstants {
   vec4 spacing;    // xyz: the grid's spacing; w: unused
   vec4 unitScale;  // xyz: voxelUnitScale of the grid; w: unused
   uvec4 seed;      // xy: the noise seed (low, high word); zw: unused
+  ivec4 offset;    // xyz: of the texels' first voxel in the grid (a brick's); w: unused
+  ivec4 whole;     // xyz: the whole grid's size (the noise's voxel index); w: unused
 };
 
 // Unsigned integers of non-negative floats order as the floats do: atomicMin and atomicMax on
@@ -214,7 +218,7 @@ LIC3D_CONST kAnalyticFirstBin = 4;      // then kAnalyticHistogramBins counts
 LIC3D_CONST kAnalyticStatisticsWords = kAnalyticFirstBin + kAnalyticHistogramBins;
 
 #ifdef __cplusplus
-static_assert(sizeof(AnalyticPushConstants) == 80);
+static_assert(sizeof(AnalyticPushConstants) == 112);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(LerpPushConstants) == 48);

@@ -385,8 +385,8 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "bench --repeats 2",
       "--device no-such-device render --grid 8",
       // --array, compute outputs, --slice
-      "render --grid 8 --array B",  // an analytic field has no arrays
-      "compute --grid 8 -o volume.raw",
+      "render --grid 8 --array B",                  // an analytic field has no arrays
+      "compute --grid 8 -o volume.png",             // a slice needs --slice
       "compute --grid 8 --slice z -o volume.nrrd",  // a slice is a PNG
       "compute --grid 8 --slice z:8 -o slice.png",  // 8 slices: 0..7
       "compute --grid 8 --slice w:1 -o slice.png",

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "gpu/device_choice.h"
+
 #if defined(__SANITIZE_ADDRESS__)
 #include <dlfcn.h>
 #include <link.h>
@@ -217,6 +219,8 @@ std::string lowercase(std::string s) {
   return s;
 }
 
+}  // namespace
+
 Result<int> chooseDevice(const std::vector<DeviceInfo>& devices, const std::string& selector) {
   if (devices.empty())
     return unsupportedError(std::string("no Vulkan device found: ") + kNoDeviceHelp);
@@ -256,6 +260,36 @@ Result<int> chooseDevice(const std::vector<DeviceInfo>& devices, const std::stri
   }
   return best;
 }
+
+Result<std::vector<int>> chooseDevices(const std::vector<DeviceInfo>& devices,
+                                       std::string_view selectors) {
+  std::vector<int> chosen;
+  if (selectors == "all") {
+    LIC3D_TRY_ASSIGN(const int best, chooseDevice(devices, ""));
+    for (const DeviceInfo& d : devices)
+      if (d.usable && typeRank(d.type) == typeRank(devices[best].type)) chosen.push_back(d.index);
+    return chosen;
+  }
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t comma = selectors.find(',', at);
+    const std::string selector(selectors.substr(at, comma - at));
+    if (selector.empty())
+      return parameterError("devices", std::string(selectors) +
+                                           ": an empty entry; give all, or indices or name "
+                                           "parts separated by commas");
+    LIC3D_TRY_ASSIGN(const int index, chooseDevice(devices, selector));
+    if (std::find(chosen.begin(), chosen.end(), index) != chosen.end())
+      return parameterError("devices", std::string(selectors) + ": device " +
+                                           std::to_string(index) + " (" + devices[index].name +
+                                           ") is named twice");
+    chosen.push_back(index);
+    if (comma == std::string_view::npos) return chosen;
+    at = comma + 1;
+  }
+}
+
+namespace {
 
 // Validation messages, appended from whatever thread the layer reports on.
 struct MessageLog {

@@ -2,8 +2,13 @@
 #include "inputs/bricks.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <future>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "core/memory_budget.h"
 #include "core/parallel.h"
@@ -30,6 +35,20 @@ std::vector<Brick> planBricks(Dims whole, Dims core, int ghost) {
   return bricks;
 }
 
+Dims splitCoreForDevices(Dims whole, Dims core, int count) {
+  const auto bricksOf = [&](Dims c) {
+    const Dims n = (whole + c - Dims(1)) / c;
+    return static_cast<std::int64_t>(n.x) * n.y * n.z;
+  };
+  while (bricksOf(core) < count && core != Dims(1)) {
+    int longest = 0;
+    for (int a = 1; a < 3; ++a)
+      if (core[a] > core[longest]) longest = a;
+    core[longest] = (core[longest] + 1) / 2;
+  }
+  return core;
+}
+
 std::optional<Dims> chooseBrickCore(Dims whole, int ghost,
                                     const std::function<bool(Dims brick)>& fits) {
   Dims core = whole;
@@ -45,117 +64,384 @@ std::optional<Dims> chooseBrickCore(Dims whole, int ghost,
   }
 }
 
-Result<ScalarVolume> computeBricked(const VectorField& whole, const NoiseSource& noise,
-                                    const std::vector<Brick>& bricks, const PieceLic& licOf,
-                                    const ProgressCallback& progress) {
+void copyOwnVoxels(const Brick& brick, const ScalarVolume& lic, ScalarVolume& result) {
+  if (!lic.drawn.empty() && result.drawn.empty()) result.drawn.assign(result.values.size(), 1);
+  const Dims from = brick.ownOffset - brick.offset;
+  // The brick's own rows into the result, the layers on the available threads.
+  parallelFor(static_cast<std::size_t>(brick.ownDims.z), 0, [&](std::size_t layer) {
+    const int k = static_cast<int>(layer);
+    for (int j = 0; j < brick.ownDims.y; ++j) {
+      const std::size_t at = voxelIndex(lic.dims, from.x, from.y + j, from.z + k);
+      const std::size_t to =
+          voxelIndex(result.dims, brick.ownOffset.x, brick.ownOffset.y + j, brick.ownOffset.z + k);
+      std::copy_n(&lic.values[at], brick.ownDims.x, &result.values[to]);
+      if (!lic.drawn.empty()) std::copy_n(&lic.drawn[at], brick.ownDims.x, &result.drawn[to]);
+    }
+  });
+}
+
+namespace {
+
+ScalarVolume emptyResult(Dims dims, const GridGeometry& geometry) {
+  ScalarVolume result;
+  result.dims = dims;
+  result.geometry = geometry;
+  result.values.resize(voxelCount(dims));
+  return result;
+}
+
+Result<void> checkWhiteNoise(const NoiseSource& noise) {
   if (!noise.file.empty() || noise.seedSpots > 0 || noise.seedFraction > 0.0f)
     return parameterError("noise.file",
                           "a LIC made in bricks takes the seeded white noise of the whole grid; "
                           "a noise file or seed noise must fit the device whole");
+  return {};
+}
+
+}  // namespace
+
+Result<ScalarVolume> computeBricked(const VectorField& whole, const NoiseSource& noise,
+                                    const std::vector<Brick>& bricks, const PieceLic& licOf,
+                                    const ProgressCallback& progress) {
+  LIC3D_TRY(checkWhiteNoise(noise));
   const double maxSpeed = maxVoxelSpeedOverVoxels(whole);
-  ScalarVolume result;
-  result.dims = whole.dims;
-  result.geometry = whole.geometry;
-  result.values.resize(voxelCount(whole.dims));
-  for (std::size_t b = 0; b < bricks.size(); ++b) {
-    const Brick& brick = bricks[b];
+  ScalarVolume result = emptyResult(whole.dims, whole.geometry);
+  BrickJobs jobs;
+  jobs.prepare = [&](const Brick& brick) -> Result<PieceInputs> {
     LIC3D_TRY_ASSIGN(VectorField piece, cutFieldPiece(whole, brick.offset, brick.dims, maxSpeed));
-    const NoiseVolume pieceNoise =
-        makeWhiteNoisePiece(whole.dims, brick.offset, brick.dims, noise.seed);
-    LIC3D_TRY_ASSIGN(const ScalarVolume lic, licOf(piece, pieceNoise));
-    if (!lic.drawn.empty() && result.drawn.empty()) result.drawn.assign(result.values.size(), 1);
-    const Dims from = brick.ownOffset - brick.offset;
-    // The brick's own rows into the result, the layers on the available threads.
-    parallelFor(static_cast<std::size_t>(brick.ownDims.z), 0, [&](std::size_t layer) {
-      const int k = static_cast<int>(layer);
-      for (int j = 0; j < brick.ownDims.y; ++j) {
-        const std::size_t at = voxelIndex(lic.dims, from.x, from.y + j, from.z + k);
-        const std::size_t to =
-            voxelIndex(whole.dims, brick.ownOffset.x, brick.ownOffset.y + j, brick.ownOffset.z + k);
-        std::copy_n(&lic.values[at], brick.ownDims.x, &result.values[to]);
-        if (!lic.drawn.empty()) std::copy_n(&lic.drawn[at], brick.ownDims.x, &result.drawn[to]);
-      }
-    });
-    if (progress) progress(static_cast<double>(b + 1) / static_cast<double>(bricks.size()));
-  }
+    return PieceInputs{std::move(piece),
+                       makeWhiteNoisePiece(whole.dims, brick.offset, brick.dims, noise.seed)};
+  };
+  jobs.lic = [&](int, const Brick&, std::optional<PieceInputs> in) {
+    return licOf(in->field, in->noise);
+  };
+  jobs.take = [&](const Brick& brick, const ScalarVolume& lic) -> Result<void> {
+    copyOwnVoxels(brick, lic, result);
+    return {};
+  };
+  LIC3D_TRY(runBricks(1, bricks, jobs, progress));
   return result;
+}
+
+Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks,
+                                   const BrickJobs& jobs, const ProgressCallback& progress) {
+  std::vector<int> workerOf(bricks.size(), -1);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;  // guards `take`, the progress and the first error
+  std::optional<Error> failure;
+  std::size_t done = 0;
+  const auto fail = [&](Error error) {
+    const std::lock_guard lock(mutex);
+    if (!failure) failure = std::move(error);
+    stop = true;
+  };
+  const auto claim = [&]() -> std::optional<std::size_t> {
+    if (stop) return std::nullopt;
+    const std::size_t b = next++;
+    return b < bricks.size() ? std::optional(b) : std::nullopt;
+  };
+  using Prepared = Result<std::optional<PieceInputs>>;
+  const auto prepare = [&](std::size_t b) {
+    return std::async(std::launch::async, [&jobs, &brick = bricks[b]]() -> Prepared {
+      if (!jobs.prepare) return std::optional<PieceInputs>();
+      LIC3D_TRY_ASSIGN(PieceInputs in, jobs.prepare(brick));
+      return std::optional<PieceInputs>(std::move(in));
+    });
+  };
+  const auto work = [&](int worker) {
+    std::optional<std::size_t> current = claim();
+    if (!current) return;
+    std::future<Prepared> prepared = prepare(*current);
+    while (current) {
+      Prepared inputs = prepared.get();
+      // The next brick's inputs are made while this one is on the device.
+      const std::optional<std::size_t> following = claim();
+      if (following) prepared = prepare(*following);
+      const Brick& brick = bricks[*current];
+      Result<ScalarVolume> lic = inputs ? jobs.lic(worker, brick, std::move(*inputs))
+                                        : Result<ScalarVolume>(inputs.error());
+      if (!lic) return fail(lic.error());
+      {
+        const std::lock_guard lock(mutex);
+        if (failure) return;
+        if (Result<void> taken = jobs.take(brick, *lic); !taken) {
+          failure = taken.error();
+          stop = true;
+          return;
+        }
+        workerOf[*current] = worker;
+        ++done;
+        if (progress) progress(static_cast<double>(done) / static_cast<double>(bricks.size()));
+      }
+      current = following;
+    }
+  };
+  if (workers <= 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> threads;
+    for (int w = 0; w < workers; ++w) threads.emplace_back(work, w);
+    for (std::thread& thread : threads) thread.join();
+  }
+  if (failure) return *failure;
+  return workerOf;
 }
 
 namespace {
 
 // The host holds, besides what is loaded, the field where it is made here (an analytic one), the
-// whole LIC volume (and its drawn mask with sparsity), and one brick at a time: its field copy,
+// whole LIC volume (and its drawn mask with sparsity) unless a sink takes the bricks, and per
+// device two bricks at a time (the one on the device and the next one's inputs): field copies,
 // noise, packed texels, staging and read-back, about kBrickHostBytes a voxel.
-constexpr std::uint64_t kBrickHostBytes = 40;
+constexpr std::uint64_t kBrickHostBytes = 56;
+
+struct BrickedHost {
+  bool fieldMadeHere = false;  // an analytic field sampled on the host, cut into bricks
+  bool fieldOnHost = false;    // a field on the host at all (not made on the device)
+  bool wholeResult = true;     // the LIC volume assembled on the host (no sink)
+  int devices = 1;
+};
 
 Result<void> checkBrickedHostMemory(const Session& session, Dims dims,
-                                    const std::vector<Brick>& bricks, bool fieldMadeHere) {
+                                    const std::vector<Brick>& bricks, const BrickedHost& host) {
   const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
-  const std::uint64_t perVoxel = (fieldMadeHere ? 12 : 0) + 4 + (sparse ? 1 : 0);
+  const std::uint64_t perVoxel =
+      (host.fieldMadeHere ? 12 : 0) + (host.wholeResult ? 4 + (sparse ? 1 : 0) : 0);
   std::uint64_t largest = 0;
   for (const Brick& brick : bricks)
     largest = std::max<std::uint64_t>(largest, voxelCount(brick.dims));
-  const std::uint64_t needed = voxelCount(dims) * perVoxel + largest * kBrickHostBytes;
+  const std::uint64_t perBrick = host.fieldOnHost ? kBrickHostBytes : 12;
+  const std::uint64_t needed =
+      voxelCount(dims) * perVoxel + largest * perBrick * static_cast<std::uint64_t>(host.devices);
   const std::uint64_t available = hostAvailableBytes();
   if (needed <= available) return {};
   // About the same share of bricks for a cube: the whole grid's bytes dominate.
-  const int cube = static_cast<int>(std::cbrt(static_cast<double>(available) /
-                                              static_cast<double>(perVoxel + kBrickHostBytes / 8)));
+  const int cube = static_cast<int>(
+      std::cbrt(static_cast<double>(available) / static_cast<double>(perVoxel + perBrick / 8)));
   return resourceLimitError(
       "the LIC of " + session.field.field + " (" + gridText(dims) + ") in " +
       std::to_string(bricks.size()) + " bricks needs " + std::to_string(needed >> 20) +
-      " MiB of host memory (the field, the LIC volume and one brick); " +
+      " MiB of host memory (the field, the LIC volume and the bricks in flight); " +
       std::to_string(available >> 20) + " MiB are available; the largest cubic grid that fits is " +
       std::to_string(cube) + "^3");
 }
 
+using Clock = std::chrono::steady_clock;
+
+// Layers per slab of a stream's scan: about 64 MiB of vectors each.
+int scanLayers(Dims dims) {
+  const std::uint64_t layer =
+      std::uint64_t{12} * static_cast<std::uint64_t>(dims.x) * static_cast<std::uint64_t>(dims.y);
+  return static_cast<int>(std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / layer, 1, 64));
+}
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A LIC dispatch (timed with GPU timestamps when asked), read back.
+Result<ScalarVolume> licOnDevice(LicRenderer& renderer, const LicParams& params, bool timed,
+                                 DeviceShare& share) {
+  if (timed) {
+    LIC3D_TRY_ASSIGN(const double milliseconds, renderer.timeLicDispatch(params));
+    share.licMilliseconds += milliseconds;
+  } else {
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(params));
+  }
+  return renderer.readLicVolume();
+}
+
 }  // namespace
 
-Result<LicVolumeRun> computeLicVolume(const Context& context, const Session& session,
-                                      SessionInputs& inputs, std::uint64_t deviceCap,
+Result<StreamScan> scanFieldStream(const FieldStream& stream, const ProgressCallback& progress) {
+  const Dims dims = stream.dims();
+  const int layers = scanLayers(dims);
+  const int slabs = (dims.z + layers - 1) / layers;
+  std::mutex mutex;
+  StreamScan scan;
+  std::optional<Error> failure;
+  int done = 0;
+  parallelFor(static_cast<std::size_t>(slabs), 0, [&](std::size_t s) {
+    const int z = static_cast<int>(s) * layers;
+    const Dims slabDims{dims.x, dims.y, std::min(layers, dims.z - z)};
+    std::uint64_t nonFinite = 0;
+    Result<VectorField> slab = stream.readPiece({0, 0, z}, slabDims, &nonFinite);
+    double speed = 0.0, magnitude = 0.0;
+    if (slab) {
+      speed = maxVoxelSpeedOverVoxels(*slab);
+      for (const glm::vec3& v : slab->vectors)
+        magnitude = std::max(magnitude, static_cast<double>(glm::length(v)));
+    }
+    const std::lock_guard lock(mutex);
+    if (!slab) {
+      if (!failure) failure = slab.error();
+      return;
+    }
+    scan.maxVoxelSpeed = std::max(scan.maxVoxelSpeed, speed);
+    scan.maxMagnitude = std::max(scan.maxMagnitude, magnitude);
+    scan.nonFinite += nonFinite;
+    if (progress) progress(static_cast<double>(++done) / static_cast<double>(slabs));
+  });
+  if (failure) return *failure;
+  if (scan.maxMagnitude == 0.0)
+    return inputError(stream.path().string() + ": every vector is zero; there is no flow to show");
+  return scan;
+}
+
+SessionInputs streamedInputs(const FieldStream& stream, const Session& session,
+                             const StreamScan& scan) {
+  SessionInputs inputs;
+  inputs.fromFile = true;
+  inputs.field.dims = stream.dims();
+  inputs.field.geometry = stream.geometry();
+  inputs.field.unit = stream.unit();
+  inputs.noise.dims = stream.dims();
+  inputs.info.nonFiniteVectors = static_cast<std::size_t>(scan.nonFinite);
+  inputs.info.arrayName = stream.arrayName();
+  inputs.time = session.time;
+  return inputs;
+}
+
+Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
+                                      const Session& session, SessionInputs& inputs,
+                                      const LicVolumeOptions& options,
                                       const ProgressCallback& progress) {
-  const RequestShape shape{
-      .volumeReadback = true, .timeSeries = inputs.series.has_value(), .deviceCap = deviceCap};
+  if (devices.empty()) return inputError("no device to compute the LIC on");
+  const RequestShape shape{.volumeReadback = true,
+                           .timeSeries = inputs.series.has_value(),
+                           .deviceCap = options.deviceCap};
   const Dims dims = inputs.field.dims;
-  const Result<void> whole = checkRequestMemory(context, session, dims, shape);
+  const auto fitsEvery = [&](Dims brick) -> Result<void> {
+    for (const Context* device : devices)
+      LIC3D_TRY(checkRequestMemory(*device, session, brick, shape));
+    return {};
+  };
+  const Result<void> whole = checkRequestMemory(*devices[0], session, dims, shape);
+  const bool brickable = !inputs.series && isWhiteNoise(session.noise);
   LicVolumeRun run;
-  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
-  if (whole || inputs.series || !isWhiteNoise(session.noise)) {
+  run.devices.resize(devices.size());
+  for (std::size_t d = 0; d < devices.size(); ++d)
+    run.devices[d].device = devices[d]->deviceInfo().name;
+  if (options.stream && !brickable)
+    return parameterError("noise.file",
+                          "a field read brick by brick takes the seeded white noise of the whole "
+                          "grid, at one time");
+  // A streamed field is never whole on the host: always in bricks.
+  if (!brickable || (whole && devices.size() == 1 && !options.stream)) {
     LIC3D_TRY(whole);
+    const Clock::time_point start = Clock::now();
+    const Context& context = *devices[0];
+    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
     LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
-    LIC3D_TRY_ASSIGN(run.volume, renderer.readLicVolume());
+    DeviceShare& share = run.devices[0];
+    if (options.timeLic) {
+      LIC3D_TRY_ASSIGN(run.volume, licOnDevice(renderer, session.lic, true, share));
+    } else {
+      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
+      LIC3D_TRY_ASSIGN(run.volume, renderer.readLicVolume());
+    }
+    share.bricks = 1;
+    share.voxels = voxelCount(dims);
+    share.seconds = secondsSince(start);
+    share.peakDeviceBytes = context.allocatedBytes();
     run.brickCore = dims;
+    run.devices.resize(1);
     return run;
   }
   const int ghost = licGhostLayers(session.lic);
-  const std::optional<Dims> core = chooseBrickCore(dims, ghost, [&](Dims brick) {
-    return checkRequestMemory(context, session, brick, shape).ok();
-  });
+  std::optional<Dims> core =
+      chooseBrickCore(dims, ghost, [&](Dims brick) { return fitsEvery(brick).ok(); });
   if (!core) {
-    Error error = whole.error();
+    Error error = whole ? fitsEvery(Dims(1) + Dims(2 * ghost)).error() : whole.error();
     error.message += "; nor does a brick of one voxel and its " + std::to_string(ghost) +
                      " ghost layers on each side, so it cannot be made in bricks either";
     return error;
   }
+  core = splitCoreForDevices(dims, *core, static_cast<int>(devices.size()));
   const std::vector<Brick> bricks = planBricks(dims, *core, ghost);
-  LIC3D_TRY(checkBrickedHostMemory(session, dims, bricks, inputs.device || inputs.sampled));
-  // The field on the host, where the bricks are cut from.
-  std::optional<VectorField> made;
-  if (inputs.device || inputs.sampled) {
-    LIC3D_TRY_ASSIGN(made, hostFieldAt(inputs, session, session.time));
+  const bool onDevice = inputs.device.has_value();
+  if (options.stream && inputs.field.dims != options.stream->dims())
+    return inputError("the streamed field's grid is not the inputs' grid");
+  LIC3D_TRY(checkBrickedHostMemory(
+      session, dims, bricks,
+      {.fieldMadeHere = !onDevice && !options.stream && inputs.sampled.has_value(),
+       .fieldOnHost = !onDevice,
+       .wholeResult = !options.sink,
+       .devices = static_cast<int>(devices.size())}));
+  std::vector<LicRenderer> renderers;
+  for (const Context* device : devices) {
+    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(*device, {session.precision}));
+    renderers.push_back(std::move(renderer));
   }
-  const VectorField& field = made ? *made : inputs.field;
-  const PieceLic licOf = [&](const VectorField& piece,
-                             const NoiseVolume& noise) -> Result<ScalarVolume> {
-    LIC3D_TRY(renderer.setInputs(piece, noise));
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic));
-    return renderer.readLicVolume();
+  BrickJobs jobs;
+  // The field on the host, where the bricks are cut from, unless the device makes each brick's.
+  std::optional<VectorField> made;
+  double maxSpeed = 0.0;
+  if (options.stream) {
+    StreamScan scan;
+    if (options.scan) {
+      scan = *options.scan;
+    } else {
+      LIC3D_TRY_ASSIGN(scan, scanFieldStream(*options.stream));
+    }
+    jobs.prepare = [&, maxSpeed = scan.maxVoxelSpeed](const Brick& brick) -> Result<PieceInputs> {
+      LIC3D_TRY_ASSIGN(VectorField piece, options.stream->readPiece(brick.offset, brick.dims));
+      piece.piece = FieldPiece{dims, brick.offset, maxSpeed};
+      return PieceInputs{std::move(piece),
+                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, session.noise.seed)};
+    };
+  } else if (!onDevice) {
+    if (inputs.sampled) {
+      LIC3D_TRY_ASSIGN(made, hostFieldAt(inputs, session, session.time));
+    }
+    const VectorField& field = made ? *made : inputs.field;
+    maxSpeed = maxVoxelSpeedOverVoxels(field);
+    jobs.prepare = [&](const Brick& brick) -> Result<PieceInputs> {
+      LIC3D_TRY_ASSIGN(VectorField piece, cutFieldPiece(field, brick.offset, brick.dims, maxSpeed));
+      return PieceInputs{std::move(piece),
+                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, session.noise.seed)};
+    };
+  }
+  jobs.lic = [&](int worker, const Brick& brick,
+                 std::optional<PieceInputs> in) -> Result<ScalarVolume> {
+    const Clock::time_point start = Clock::now();
+    LicRenderer& renderer = renderers[static_cast<std::size_t>(worker)];
+    DeviceShare& share = run.devices[static_cast<std::size_t>(worker)];
+    if (in) {
+      LIC3D_TRY(renderer.setInputs(in->field, in->noise));
+    } else {
+      AnalyticInputs analytic = *inputs.device;
+      if (inputs.sampled) analytic.time = session.time;
+      analytic.brickOffset = brick.offset;
+      analytic.brickDims = brick.dims;
+      LIC3D_TRY(renderer.setAnalyticInputs(analytic));
+    }
+    LIC3D_TRY_ASSIGN(ScalarVolume lic, licOnDevice(renderer, session.lic, options.timeLic, share));
+    share.peakDeviceBytes = std::max(share.peakDeviceBytes,
+                                     devices[static_cast<std::size_t>(worker)]->allocatedBytes());
+    share.bricks += 1;
+    share.voxels += voxelCount(brick.ownDims);
+    share.seconds += secondsSince(start);
+    return lic;
   };
-  LIC3D_TRY_ASSIGN(run.volume, computeBricked(field, session.noise, bricks, licOf, progress));
+  if (!options.sink) run.volume = emptyResult(dims, inputs.field.geometry);
+  jobs.take = [&](const Brick& brick, const ScalarVolume& lic) -> Result<void> {
+    if (options.sink) return options.sink(brick, lic);
+    copyOwnVoxels(brick, lic, run.volume);
+    return {};
+  };
+  LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs, progress));
   run.bricks = static_cast<int>(bricks.size());
   run.brickCore = *core;
   return run;
+}
+
+Result<LicVolumeRun> computeLicVolume(const Context& context, const Session& session,
+                                      SessionInputs& inputs, std::uint64_t deviceCap,
+                                      const ProgressCallback& progress) {
+  const Context* devices[] = {&context};
+  return computeLicVolume(devices, session, inputs, {.deviceCap = deviceCap}, progress);
 }
 
 }  // namespace lic3d

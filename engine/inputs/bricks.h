@@ -4,10 +4,15 @@
 // --memory-budget sets) is computed brick by brick. Each brick is a piece of the field widened by
 // the ghost layers of the streamline's reach (licGhostLayers), with the whole grid's largest |u|,
 // white noise and sparsity mask cut to it (FieldPiece), so its own voxels get the whole grid's
-// LIC; they are copied into the result.
+// LIC; they are copied into the result (or handed to a sink: a file written brick by brick).
+// Bricks are spread over one or more devices, each on a thread of its own taking the next brick
+// not yet taken; a brick's host inputs are made while its device works on the one before.
 
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -15,6 +20,7 @@
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
 #include "inputs/session_inputs.h"
+#include "io/field_stream.h"
 #include "lic/lic_reference.h"
 
 namespace lic3d {
@@ -25,6 +31,10 @@ struct Brick {
   Dims ownOffset{0};  // the voxels it writes into the result
   Dims ownDims{0};
 };
+
+// Splits `core` further (halving its longest axis) until `whole` has at least `count` bricks, so
+// that each of `count` devices gets one.
+Dims splitCoreForDevices(Dims whole, Dims core, int count);
 
 // Bricks whose own parts tile `whole` in blocks of at most `core` voxels per axis (the last of
 // each row shorter), each widened by `ghost` layers where the grid goes on.
@@ -46,16 +56,85 @@ Result<ScalarVolume> computeBricked(const VectorField& whole, const NoiseSource&
                                     const std::vector<Brick>& bricks, const PieceLic& licOf,
                                     const ProgressCallback& progress = {});
 
-struct LicVolumeRun {
-  ScalarVolume volume;
-  int bricks = 1;  // 1: the grid in one piece
-  Dims brickCore{0};
+// Copies the brick's own voxels of its LIC (and drawn mask) into `result`, on the whole grid.
+void copyOwnVoxels(const Brick& brick, const ScalarVolume& lic, ScalarVolume& result);
+
+// A brick's inputs made on the host: its field (VectorField::piece set) and noise.
+struct PieceInputs {
+  VectorField field;
+  NoiseVolume noise;
 };
 
-// The LIC volume of the session's inputs at session.time on `context`, read back: in one piece
-// when it fits the device (at most `deviceCap` bytes when > 0), else in bricks of the largest
-// core that fits. A time series, or noise other than the seeded white noise, must fit whole
-// (ResourceLimit otherwise, as without bricks).
+// The work of a bricked run. `prepare` (optional) makes a brick's host inputs; `lic` makes its
+// LIC on worker `worker` (a device); `take` gets each brick's LIC, one call at a time.
+struct BrickJobs {
+  std::function<Result<PieceInputs>(const Brick&)> prepare;
+  std::function<Result<ScalarVolume>(int worker, const Brick&, std::optional<PieceInputs>)> lic;
+  std::function<Result<void>(const Brick&, const ScalarVolume&)> take;
+};
+
+// Runs `bricks` on `workers` threads, each taking the next brick not yet taken and preparing the
+// one after it on a thread of its own while its `lic` runs. The first error stops every worker
+// and is returned. Returns the worker of each brick.
+Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks,
+                                   const BrickJobs& jobs, const ProgressCallback& progress = {});
+
+// One device's share of a LIC volume's work.
+struct DeviceShare {
+  std::string device;
+  int bricks = 0;
+  std::uint64_t voxels = 0;      // its bricks' own voxels
+  double seconds = 0.0;          // busy: its bricks' inputs, LIC and read-back
+  double licMilliseconds = 0.0;  // its LIC dispatches on the device (LicVolumeOptions::timeLic)
+  std::uint64_t peakDeviceBytes = 0;  // lic3d's own device allocations at their highest
+};
+
+struct LicVolumeRun {
+  ScalarVolume volume;  // empty when a sink took the bricks
+  int bricks = 1;       // 1: the grid in one piece
+  Dims brickCore{0};
+  std::vector<DeviceShare> devices;
+};
+
+// Where a bricked run's bricks go instead of one volume on the host (a file written brick by
+// brick, a reduced copy): each brick's LIC, one call at a time.
+using BrickSink = std::function<Result<void>(const Brick&, const ScalarVolume&)>;
+
+// What a field streamed from its file needs before its bricks: the whole field's max |u|
+// (maxVoxelSpeedOverVoxels), its largest |v| and its non-finite vectors, from one pass over the
+// file in slabs of a few layers.
+struct StreamScan {
+  double maxVoxelSpeed = 0.0;
+  double maxMagnitude = 0.0;
+  std::uint64_t nonFinite = 0;
+};
+struct LicVolumeOptions {
+  std::uint64_t deviceCap = 0;  // > 0: at most this many bytes of each device (--memory-budget)
+  BrickSink sink;        // the bricks go here when set (and LicVolumeRun::volume stays empty)
+  bool timeLic = false;  // time each LIC dispatch with GPU timestamps (lic3d bench)
+  // The field read brick by brick from this file (SessionInputs::field then holds only its grid
+  // and geometry: streamedInputs), never whole.
+  const FieldStream* stream = nullptr;
+  const StreamScan* scan = nullptr;  // the stream's scan, where made already (else made here)
+};
+
+Result<StreamScan> scanFieldStream(const FieldStream& stream,
+                                   const ProgressCallback& progress = {});
+
+// SessionInputs for a field read brick by brick from `stream`: its grid and geometry, no vectors,
+// and the seeded white noise's grid (the noise of each brick is made with it).
+SessionInputs streamedInputs(const FieldStream& stream, const Session& session,
+                             const StreamScan& scan);
+
+// The LIC volume of the session's inputs at session.time, read back: in one piece on the first
+// device when it fits it (at most `deviceCap` bytes when > 0) and one device is given, else in
+// bricks of the largest core that fits every device, at least one a device, spread over them. A
+// time series, or noise other than the seeded white noise, must fit whole (ResourceLimit
+// otherwise).
+Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
+                                      const Session& session, SessionInputs& inputs,
+                                      const LicVolumeOptions& options,
+                                      const ProgressCallback& progress = {});
 Result<LicVolumeRun> computeLicVolume(const Context& context, const Session& session,
                                       SessionInputs& inputs, std::uint64_t deviceCap,
                                       const ProgressCallback& progress = {});

@@ -143,34 +143,46 @@ Result<VkPipeline> AnalyticTexels::pipeline(Key key) {
   });
 }
 
+GridGeometry AnalyticInputs::texelGeometry() const {
+  GridGeometry geometry = analyticGeometry(field, dims);
+  geometry.origin += glm::dvec3(brickOffset) * geometry.spacing;
+  return geometry;
+}
+
 Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
                                                   FieldPrecision precision) const {
-  LIC3D_TRY(checkVolumeDims(*context_, inputs.dims, "field"));
+  const Dims dims = inputs.texelDims();
+  LIC3D_TRY(checkVolumeDims(*context_, dims, "field"));
   // The texture and the LIC volume must fit (a CPU driver would otherwise accept the allocation
   // and fail when the memory is first touched), as uploadLicInputs checks.
   MemoryRequest request;
-  request.dims = inputs.dims;
+  request.dims = dims;
   request.precision = resolvePrecision(*context_, precision);
   LIC3D_TRY(checkMemoryBudget(request, queryMemoryBudget(*context_), "the field"));
-  return createWritableFieldTexture(*context_, inputs.dims,
-                                    analyticGeometry(inputs.field, inputs.dims), precision,
+  return createWritableFieldTexture(*context_, dims, inputs.texelGeometry(), precision,
                                     "analytic field and noise texture");
 }
 
 Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& target) {
-  if (target.dims != inputs.dims || !target.image)
-    return inputError("the analytic field's texture must be made for its grid " +
-                      gridText(inputs.dims));
+  const Dims dims = inputs.texelDims();
+  if (target.dims != dims || !target.image)
+    return inputError("the analytic field's texture must be made for its grid " + gridText(dims));
+  if (inputs.isBrick() && (glm::any(glm::lessThan(inputs.brickOffset, Dims(0))) ||
+                           glm::any(glm::greaterThan(inputs.brickOffset + dims, inputs.dims))))
+    return inputError("the brick " + gridText(dims) + " at " + gridText(inputs.brickOffset) +
+                      " is not inside the grid " + gridText(inputs.dims));
   const StageTimer timer("field and noise (on the device)");
   const auto field = static_cast<std::uint32_t>(inputs.field);
   const int variant = fieldTexelVariant(target.precision);
   LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
   LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
 
-  const GridGeometry& geometry = target.geometry;
+  // Positions from the whole grid's origin, so that a brick's are the whole grid's there.
+  const GridGeometry geometry = analyticGeometry(inputs.field, inputs.dims);
   const glm::dvec3 unit = voxelUnitScale(geometry);
   gpu::AnalyticPushConstants push{};
   push.dims = glm::ivec4(inputs.dims, 0);
+  push.whole = glm::ivec4(inputs.dims, 0);
   push.origin = glm::vec4(glm::vec3(geometry.origin), static_cast<float>(inputs.time));
   push.spacing = glm::vec4(glm::vec3(geometry.spacing), 0.0f);
   push.unitScale = glm::vec4(glm::vec3(unit), 0.0f);
@@ -179,9 +191,17 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
   DescriptorWrites writes;
   writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
       .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
-  const std::uint32_t groupsX = groupCount(inputs.dims.x, gpu::kAnalyticLocalSizeX);
-  const std::uint32_t groupsY = groupCount(inputs.dims.y, gpu::kAnalyticLocalSizeY);
-  const std::uint32_t groupsZ = groupCount(inputs.dims.z, gpu::kAnalyticLayersPerGroup);
+  // Phase 0 measures the whole grid; phase 1 writes the texels' part of it.
+  gpu::AnalyticPushConstants texels = push;
+  texels.dims = glm::ivec4(dims, 0);
+  texels.offset = glm::ivec4(inputs.brickOffset, 0);
+  const auto groups = [](Dims d) {
+    return glm::uvec3(groupCount(d.x, gpu::kAnalyticLocalSizeX),
+                      groupCount(d.y, gpu::kAnalyticLocalSizeY),
+                      groupCount(d.z, gpu::kAnalyticLayersPerGroup));
+  };
+  const glm::uvec3 measureGroups = groups(inputs.dims);
+  const glm::uvec3 writeGroups = groups(dims);
   constexpr VkPipelineStageFlags2 kReaders =
       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
   LIC3D_TRY(submitAndWait(
@@ -203,13 +223,15 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
         writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
         vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
-        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        vkCmdDispatch(cmd, measureGroups.x, measureGroups.y, measureGroups.z);
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(texels),
+                           &texels);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
-        vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+        vkCmdDispatch(cmd, writeGroups.x, writeGroups.y, writeGroups.z);
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                       VK_ACCESS_2_TRANSFER_READ_BIT);

@@ -26,12 +26,21 @@ Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticFi
 
 // An analytic field at a time on a grid, and the seed of its white noise (lic/noise.h): what
 // AnalyticTexels makes the LIC inputs from.
+// With `brickDims` set, only the brick of the grid at `brickOffset` is made (bricked LIC,
+// inputs/bricks.h): its texels are the whole grid's there, normalised by the whole grid's max |u|.
 struct AnalyticInputs {
   AnalyticField field = AnalyticField::Tornado;
   Dims dims{0};
   double time = 0.0;
   std::uint64_t noiseSeed = 1;
+  Dims brickOffset{0};
+  Dims brickDims{0};  // 0: the whole grid
   bool operator==(const AnalyticInputs&) const = default;
+
+  bool isBrick() const { return brickDims != Dims(0); }
+  Dims texelDims() const { return isBrick() ? brickDims : dims; }
+  // analyticGeometry of the grid, moved to the brick's first voxel.
+  GridGeometry texelGeometry() const;
 };
 
 class AnalyticTexels {
@@ -39,7 +48,7 @@ class AnalyticTexels {
   // `context` must outlive the pass.
   static Result<AnalyticTexels> create(const Context& context);
 
-  // A texture write() can fill: the field's grid and geometry (analyticGeometry), `precision`
+  // A texture write() can fill: the texels' grid and geometry (texelGeometry), `precision`
   // resolved as uploadLicInputs does. Checks the device's limits and memory first.
   Result<FieldTexture> createTarget(const AnalyticInputs& inputs, FieldPrecision precision) const;
 

@@ -127,7 +127,9 @@ Result<void> LicRenderer::setLicVolume(const ScalarVolume& volume, const LicPara
         histogramPass_.record(cmd, frontVolume(), field_, emptySpeed(), 0);
       },
       "lic histogram"));
-  collectStatistics(0);
+  // No job finished here: the statistics are this volume's histogram, taken directly.
+  finished_.reset();
+  statistics_ = lic3d::intensityStatistics(histogramPass_.counts(0));
   shownParams_ = params;
   return {};
 }

@@ -39,9 +39,13 @@ Result<void> LicRenderer::setAnalyticInputs(const AnalyticInputs& inputs) {
     return unsupportedError(
         "the naive kernel reads the noise from a texture of its own: set the "
         "field and noise from the host");
-  const bool reuse = analyticTexture_ && field_.dims == inputs.dims &&
-                     field_.geometry == analyticGeometry(inputs.field, inputs.dims);
-  LIC3D_TRY(replaceField(inputs.dims, std::nullopt));
+  const Dims dims = inputs.texelDims();
+  // Bricks of one size share a texture: only its place in the grid changes.
+  const bool reuse = analyticTexture_ && field_.dims == dims &&
+                     (inputs.isBrick() || field_.geometry == inputs.texelGeometry());
+  std::optional<FieldPiece> piece;
+  if (inputs.isBrick()) piece = FieldPiece{.wholeDims = inputs.dims, .offset = inputs.brickOffset};
+  LIC3D_TRY(replaceField(dims, piece));
   if (!analytic_) {
     LIC3D_TRY_ASSIGN(analytic_, AnalyticTexels::create(*context_));
   }
@@ -51,6 +55,7 @@ Result<void> LicRenderer::setAnalyticInputs(const AnalyticInputs& inputs) {
     LIC3D_TRY_ASSIGN(field_, analytic_->createTarget(inputs, precision_));
     analyticTexture_ = true;
   }
+  field_.geometry = inputs.texelGeometry();
   return analytic_->write(inputs, field_);
 }
 

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "inputs/reduced_volume.h"
+
+namespace lic3d {
+
+Dims reducedDims(Dims dims, int factor) { return (dims + Dims(factor - 1)) / factor; }
+
+GridGeometry reducedGeometry(const GridGeometry& geometry, int factor) {
+  GridGeometry reduced = geometry;
+  reduced.spacing *= static_cast<double>(factor);
+  return reduced;
+}
+
+VectorField reduceField(const VectorField& field, int factor) {
+  VectorField reduced;
+  reduced.dims = reducedDims(field.dims, factor);
+  reduced.geometry = reducedGeometry(field.geometry, factor);
+  reduced.unit = field.unit;
+  reduced.vectors.reserve(voxelCount(reduced.dims));
+  for (int k = 0; k < reduced.dims.z; ++k)
+    for (int j = 0; j < reduced.dims.y; ++j)
+      for (int i = 0; i < reduced.dims.x; ++i)
+        reduced.vectors.push_back(field.at(i * factor, j * factor, k * factor));
+  return reduced;
+}
+
+std::optional<int> chooseReduction(Dims dims, int largest, const std::function<bool(Dims)>& fits) {
+  for (int factor = 2; factor <= largest; ++factor)
+    if (fits(reducedDims(dims, factor))) return factor;
+  return std::nullopt;
+}
+
+ReducedVolume::ReducedVolume(Dims whole, const GridGeometry& geometry, int factor)
+    : factor_(factor) {
+  volume_.dims = reducedDims(whole, factor);
+  volume_.geometry = reducedGeometry(geometry, factor);
+  volume_.values.assign(voxelCount(volume_.dims), 0.0f);
+}
+
+Result<void> ReducedVolume::take(const Brick& brick, const ScalarVolume& lic) {
+  if (lic.dims != brick.dims) return inputError("a brick's LIC is not on the brick's grid");
+  if (!lic.drawn.empty() && volume_.drawn.empty()) volume_.drawn.assign(volume_.values.size(), 1);
+  // The first multiple of the factor at or after the brick's own first voxel, on each axis.
+  const Dims first = (brick.ownOffset + Dims(factor_ - 1)) / factor_ * factor_;
+  const Dims end = brick.ownOffset + brick.ownDims;
+  for (int z = first.z; z < end.z; z += factor_)
+    for (int y = first.y; y < end.y; y += factor_)
+      for (int x = first.x; x < end.x; x += factor_) {
+        const std::size_t from =
+            voxelIndex(lic.dims, x - brick.offset.x, y - brick.offset.y, z - brick.offset.z);
+        const std::size_t to = voxelIndex(volume_.dims, x / factor_, y / factor_, z / factor_);
+        volume_.values[to] = lic.values[from];
+        if (!lic.drawn.empty()) volume_.drawn[to] = lic.drawn[from];
+      }
+  return {};
+}
+
+}  // namespace lic3d

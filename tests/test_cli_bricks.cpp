@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Fields larger than the device or the host, from the command line: --devices, a field file read
+// and its LIC written brick by brick, and render drawing a reduced copy of a LIC too large to
+// draw (docs/SCALE.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli_test_support.h"
+#include "io/nrrd.h"
+#include "lic/analytic_fields.h"
+
+namespace lic3d {
+namespace {
+
+using test::CliTest;
+using test::CommandRun;
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST_F(CliTest, DevicesAllOnOneDeviceIsTheDeviceAlone) {
+  const CommandRun alone = run("compute --grid 40,32,24 -o alone.nrrd");
+  const CommandRun all = run("compute --grid 40,32,24 --devices all -o all.nrrd");
+  ASSERT_EQ(alone.status, 0) << alone.output;
+  ASSERT_EQ(all.status, 0) << all.output;
+  EXPECT_EQ(test::readWhole(path("alone.nrrd")), test::readWhole(path("all.nrrd")));
+  // Each device's share: here the one device, all the voxels.
+  EXPECT_TRUE(has(all.output, "\"devices\":[{\"device\":")) << all.output;
+  EXPECT_TRUE(has(all.output, "\"voxels\":30720")) << all.output;
+  for (const char* refused :
+       {"compute --grid 8 --devices 0,0 -o x.nrrd", "compute --grid 8 --devices 9 -o x.nrrd",
+        "compute --grid 8 --devices 0, -o x.nrrd",
+        "--device 0 compute --grid 8 --devices all -o x.nrrd",
+        "compute --grid 8 --cpu --devices all -o x.nrrd", "render --grid 8 --cpu --devices all"}) {
+    const CommandRun r = run(refused);
+    EXPECT_EQ(r.status, 2) << refused << "\n" << r.output;
+    EXPECT_TRUE(has(r.output, "--device")) << refused << "\n" << r.output;
+  }
+  EXPECT_TRUE(has(run("compute --grid 8 --devices 0,0 -o x.nrrd").output, "named twice"));
+  EXPECT_FALSE(std::filesystem::exists(path("x.nrrd")));
+}
+
+// A raw field file (float32, interleaved) with its sidecar.
+void writeRawField(const std::filesystem::path& raw, const VectorField& field) {
+  std::ofstream(raw, std::ios::binary)
+      .write(reinterpret_cast<const char*>(field.vectors.data()),
+             static_cast<std::streamsize>(field.vectors.size() * sizeof(glm::vec3)));
+  std::ofstream(std::filesystem::path(raw).replace_extension(".json"))
+      << "{\"dims\": [" << field.dims.x << ", " << field.dims.y << ", " << field.dims.z
+      << "], \"spacing\": [0.5, 0.25, 0.5], \"origin\": [1, 2, 3]}";
+}
+
+double meanDifference(const ScalarVolume& a, const ScalarVolume& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.values.size(); ++i)
+    sum += std::abs(static_cast<double>(a.values[i]) - b.values[i]);
+  return sum / static_cast<double>(a.values.size());
+}
+
+TEST_F(CliTest, AFieldFileLargerThanTheBudgetIsReadAndWrittenByBricks) {
+  writeRawField(path("abc.raw"), makeAnalyticField(AnalyticField::Abc, {36, 30, 24}));
+  const std::string field = "compute --field abc.raw --length 10 ";
+  const CommandRun whole = run(field + "-o whole.nrrd");
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  EXPECT_FALSE(has(whole.output, "read_by_bricks")) << whole.output;
+  const CommandRun bricked = run(field + "--memory-budget 300kB -o bricked.nrrd");
+  ASSERT_EQ(bricked.status, 0) << bricked.output;
+  EXPECT_TRUE(has(bricked.output, "\"read_by_bricks\":true")) << bricked.output;
+  EXPECT_FALSE(has(bricked.output, "\"bricks\":1,")) << bricked.output;
+  const Result<ScalarVolume> a = readScalarNrrd(path("whole.nrrd"));
+  const Result<ScalarVolume> b = readScalarNrrd(path("bricked.nrrd"));
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->dims, b->dims);
+  EXPECT_EQ(a->geometry, b->geometry);
+  EXPECT_LE(meanDifference(*a, *b), 1e-3);
+  // The same bricks into a raw file: the NRRD's payload, with a sidecar.
+  const CommandRun raw = run(field + "--memory-budget 300kB -o bricked.raw");
+  ASSERT_EQ(raw.status, 0) << raw.output;
+  const std::string nrrd = test::readWhole(path("bricked.nrrd"));
+  const std::string bytes = test::readWhole(path("bricked.raw"));
+  ASSERT_EQ(bytes.size(), 36u * 30 * 24 * 4);
+  EXPECT_EQ(nrrd.substr(nrrd.size() - bytes.size()), bytes);
+  EXPECT_TRUE(has(test::readWhole(path("bricked.json")), "\"components\": 1"));
+}
+
+TEST_F(CliTest, ALicTooLargeToDrawIsDrawnFromAReducedCopy) {
+  const std::string field = "render --field tornado --grid 96 --width 256 --height 256 ";
+  const CommandRun full = run(field + "-o full.png");
+  ASSERT_EQ(full.status, 0) << full.output;
+  EXPECT_FALSE(has(full.output, "\"reduced\"")) << full.output;
+  const CommandRun reduced = run(field + "--memory-budget 16MB -o reduced.png");
+  ASSERT_EQ(reduced.status, 0) << reduced.output;
+  EXPECT_TRUE(has(reduced.output, "\"reduced\":{\"factor\":2,\"grid\":[48,48,48]}"))
+      << reduced.output;
+  EXPECT_TRUE(has(reduced.output, "every 2nd voxel")) << reduced.output;
+  const test::DecodedPng png = test::decodePng(path("reduced.png"));
+  ASSERT_TRUE(png.ok);
+  ASSERT_TRUE(png.text.count("lic3d-reduced"));
+  EXPECT_TRUE(has(png.text.at("lic3d-reduced"), "LIC 96x96x96 made in"))
+      << png.text.at("lic3d-reduced");
+  // The same look as the whole volume's picture: the mean colour within a few levels.
+  const test::DecodedPng whole = test::decodePng(path("full.png"));
+  ASSERT_TRUE(whole.ok);
+  ASSERT_EQ(whole.bytes.size(), png.bytes.size());
+  double sumWhole = 0.0, sumReduced = 0.0;
+  for (std::size_t i = 0; i < png.bytes.size(); ++i) {
+    sumWhole += whole.bytes[i];
+    sumReduced += png.bytes[i];
+  }
+  const double pixels = static_cast<double>(png.bytes.size());
+  EXPECT_NEAR(sumReduced / pixels, sumWhole / pixels, 4.0);
+  // Its session makes it again, reduced again.
+  const CommandRun again = run("render --session reduced.png --memory-budget 16MB -o again.png");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(test::decodePng(path("again.png")).bytes, png.bytes);
+  // What the LIC changes frame by frame cannot come from one reduced copy.
+  const CommandRun bias = run(field + "--memory-budget 16MB --animate-bias 2 -o 'b_%d.png'");
+  EXPECT_EQ(bias.status, 3) << bias.output;
+}
+
+}  // namespace
+}  // namespace lic3d
