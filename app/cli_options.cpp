@@ -231,11 +231,13 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
   options.output = defaultOutput;
   const bool picture = std::string_view(defaultOutput).ends_with(".png");
   options.outputOption =
-      app.add_option("-o,--output", options.output,
-                     picture ? "Output PNG; for --turntable or --animate-bias a pattern with one "
-                               "%d or %0Nd for the frame number (default then lic3d_%04d.png)"
-                             : "Output: the LIC volume as .nrrd or .vti (float32), or one slice "
-                               "as .png with --slice")
+      app.add_option(
+             "-o,--output", options.output,
+             picture ? "Output PNG; for --turntable or --animate-bias a pattern with one "
+                       "%d or %0Nd for the frame number (default then lic3d_%04d.png)"
+                     : "Output: the LIC volume as .nrrd, .vti or .raw (float32; .raw with a JSON "
+                       "sidecar), or one slice "
+                       "as .png with --slice")
           ->capture_default_str();
 }
 

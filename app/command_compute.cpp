@@ -2,6 +2,7 @@
 // `lic3d compute`: the LIC volume (or one slice of it) of a field, in one piece or in bricks over
 // one or more devices, read and written brick by brick where the files allow (docs/SCALE.md).
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <future>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 
 #include "command_support.h"
@@ -86,9 +88,13 @@ class StreamedOutput {
     return extension == ".nrrd" || extension == ".raw";
   }
 
+  // Bricks from several devices at once: their parts of the file are disjoint.
   Result<void> take(const Brick& brick, const ScalarVolume& lic) {
-    if (!stream_) {
-      LIC3D_TRY_ASSIGN(stream_, ScalarVolumeStream::create(path_, dims_, geometry_));
+    {
+      const std::lock_guard lock(mutex_);
+      if (!stream_) {
+        LIC3D_TRY_ASSIGN(stream_, ScalarVolumeStream::create(path_, dims_, geometry_));
+      }
     }
     std::vector<float> own(voxelCount(brick.ownDims));
     const Dims from = brick.ownOffset - brick.offset;
@@ -106,7 +112,7 @@ class StreamedOutput {
         }
     });
     for (const std::uint64_t count : drawn) drawn_ += count;
-    sparse_ = sparse_ || !lic.drawn.empty();
+    if (!lic.drawn.empty()) sparse_ = true;
     return stream_->write(brick.ownOffset, brick.ownDims, own.data());
   }
 
@@ -124,9 +130,10 @@ class StreamedOutput {
   std::string path_;
   Dims dims_;
   GridGeometry geometry_;
+  std::mutex mutex_;  // guards making the stream
   std::optional<ScalarVolumeStream> stream_;
-  std::uint64_t drawn_ = 0;
-  bool sparse_ = false;
+  std::atomic<std::uint64_t> drawn_{0};
+  std::atomic<bool> sparse_{false};
 };
 
 }  // namespace
@@ -227,6 +234,7 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (!*slice && StreamedOutput::streams(options.output))
       streamed.emplace(options.output, inputs->field.dims, inputs->field.geometry);
     LicVolumeOptions how{.deviceCap = options.memoryBudget,
+                         .sinkAtOnce = true,
                          .stream = stream ? &*stream : nullptr,
                          .scan = scan ? &*scan : nullptr};
     if (streamed)

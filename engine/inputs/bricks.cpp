@@ -162,14 +162,17 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
       Result<ScalarVolume> lic = inputs ? jobs.lic(worker, brick, std::move(*inputs))
                                         : Result<ScalarVolume>(inputs.error());
       if (!lic) return fail(lic.error());
+      if (jobs.takeAtOnce)
+        if (Result<void> taken = jobs.take(brick, *lic); !taken) return fail(taken.error());
       {
         const std::lock_guard lock(mutex);
         if (failure) return;
-        if (Result<void> taken = jobs.take(brick, *lic); !taken) {
-          failure = taken.error();
-          stop = true;
-          return;
-        }
+        if (!jobs.takeAtOnce)
+          if (Result<void> taken = jobs.take(brick, *lic); !taken) {
+            failure = taken.error();
+            stop = true;
+            return;
+          }
         workerOf[*current] = worker;
         ++done;
         if (progress) progress(static_cast<double>(done) / static_cast<double>(bricks.size()));
@@ -203,17 +206,31 @@ struct BrickedHost {
   int devices = 1;
 };
 
+// Host bytes a voxel of the whole grid and of a brick in flight take.
+struct HostShare {
+  std::uint64_t perVoxel = 0;
+  std::uint64_t perBrickVoxel = 0;
+};
+
+HostShare hostShare(const Session& session, const BrickedHost& host) {
+  const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
+  return {(host.fieldMadeHere ? 12u : 0u) + (host.wholeResult ? 4u + (sparse ? 1u : 0u) : 0u),
+          (host.fieldOnHost ? kBrickHostBytes : 12u) * static_cast<std::uint64_t>(host.devices)};
+}
+
+std::uint64_t hostBytes(const HostShare& share, Dims dims, Dims brick) {
+  return voxelCount(dims) * share.perVoxel + voxelCount(brick) * share.perBrickVoxel;
+}
+
 Result<void> checkBrickedHostMemory(const Session& session, Dims dims,
                                     const std::vector<Brick>& bricks, const BrickedHost& host) {
-  const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
-  const std::uint64_t perVoxel =
-      (host.fieldMadeHere ? 12 : 0) + (host.wholeResult ? 4 + (sparse ? 1 : 0) : 0);
-  std::uint64_t largest = 0;
+  const HostShare share = hostShare(session, host);
+  const std::uint64_t perVoxel = share.perVoxel;
+  const std::uint64_t perBrick = share.perBrickVoxel;
+  Dims largest{0};
   for (const Brick& brick : bricks)
-    largest = std::max<std::uint64_t>(largest, voxelCount(brick.dims));
-  const std::uint64_t perBrick = host.fieldOnHost ? kBrickHostBytes : 12;
-  const std::uint64_t needed =
-      voxelCount(dims) * perVoxel + largest * perBrick * static_cast<std::uint64_t>(host.devices);
+    if (voxelCount(brick.dims) > voxelCount(largest)) largest = brick.dims;
+  const std::uint64_t needed = hostBytes(share, dims, largest);
   const std::uint64_t available = hostAvailableBytes();
   if (needed <= available) return {};
   // About the same share of bricks for a cube: the whole grid's bytes dominate.
@@ -350,25 +367,38 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     return run;
   }
   const int ghost = licGhostLayers(session.lic);
-  std::optional<Dims> core =
-      chooseBrickCore(dims, ghost, [&](Dims brick) { return fitsEvery(brick).ok(); });
+  const bool onDevice = inputs.device.has_value();
+  const BrickedHost host{
+      .fieldMadeHere = !onDevice && !options.stream && inputs.sampled.has_value(),
+      .fieldOnHost = !onDevice,
+      .wholeResult = !options.sink,
+      .devices = static_cast<int>(devices.size())};
+  // A brick fits every device, and the bricks in flight fit the host beside the whole grid's.
+  const HostShare perVoxel = hostShare(session, host);
+  const std::uint64_t hostAvailable = hostAvailableBytes();
+  std::optional<Dims> core = chooseBrickCore(dims, ghost, [&](Dims brick) {
+    return fitsEvery(brick).ok() && hostBytes(perVoxel, dims, brick) <= hostAvailable;
+  });
   if (!core) {
-    Error error = whole ? fitsEvery(Dims(1) + Dims(2 * ghost)).error() : whole.error();
+    const Dims smallest = glm::min(Dims(1 + 2 * ghost), dims);
+    const Result<void> device = fitsEvery(smallest);
+    if (device) {  // the host is what cannot hold even the smallest brick beside the grid's
+      Brick brick;
+      brick.dims = smallest;
+      LIC3D_TRY(checkBrickedHostMemory(session, dims, {brick}, host));
+      return resourceLimitError("no brick of " + gridText(dims) + " fits both the host and " +
+                                "the device");
+    }
+    Error error = whole ? device.error() : whole.error();
     error.message += "; nor does a brick of one voxel and its " + std::to_string(ghost) +
                      " ghost layers on each side, so it cannot be made in bricks either";
     return error;
   }
   core = splitCoreForDevices(dims, *core, static_cast<int>(devices.size()));
   const std::vector<Brick> bricks = planBricks(dims, *core, ghost);
-  const bool onDevice = inputs.device.has_value();
   if (options.stream && inputs.field.dims != options.stream->dims())
     return inputError("the streamed field's grid is not the inputs' grid");
-  LIC3D_TRY(checkBrickedHostMemory(
-      session, dims, bricks,
-      {.fieldMadeHere = !onDevice && !options.stream && inputs.sampled.has_value(),
-       .fieldOnHost = !onDevice,
-       .wholeResult = !options.sink,
-       .devices = static_cast<int>(devices.size())}));
+  LIC3D_TRY(checkBrickedHostMemory(session, dims, bricks, host));
   std::vector<LicRenderer> renderers;
   for (const Context* device : devices) {
     LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(*device, {session.precision}));
@@ -426,6 +456,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     return lic;
   };
   if (!options.sink) run.volume = emptyResult(dims, inputs.field.geometry);
+  jobs.takeAtOnce = options.sink && options.sinkAtOnce;
   jobs.take = [&](const Brick& brick, const ScalarVolume& lic) -> Result<void> {
     if (options.sink) return options.sink(brick, lic);
     copyOwnVoxels(brick, lic, run.volume);

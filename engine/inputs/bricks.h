@@ -71,11 +71,13 @@ struct BrickJobs {
   std::function<Result<PieceInputs>(const Brick&)> prepare;
   std::function<Result<ScalarVolume>(int worker, const Brick&, std::optional<PieceInputs>)> lic;
   std::function<Result<void>(const Brick&, const ScalarVolume&)> take;
+  bool takeAtOnce = false;  // `take` may run on several workers at once (disjoint parts of a file)
 };
 
 // Runs `bricks` on `workers` threads, each taking the next brick not yet taken and preparing the
 // one after it on a thread of its own while its `lic` runs. The first error stops every worker
-// and is returned. Returns the worker of each brick.
+// and is returned. Returns the worker of each brick. `take` runs one call at a time unless
+// jobs.takeAtOnce.
 Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks,
                                    const BrickJobs& jobs, const ProgressCallback& progress = {});
 
@@ -110,8 +112,9 @@ struct StreamScan {
 };
 struct LicVolumeOptions {
   std::uint64_t deviceCap = 0;  // > 0: at most this many bytes of each device (--memory-budget)
-  BrickSink sink;        // the bricks go here when set (and LicVolumeRun::volume stays empty)
-  bool timeLic = false;  // time each LIC dispatch with GPU timestamps (lic3d bench)
+  BrickSink sink;           // the bricks go here when set (and LicVolumeRun::volume stays empty)
+  bool sinkAtOnce = false;  // the sink may take bricks from several devices at once
+  bool timeLic = false;     // time each LIC dispatch with GPU timestamps (lic3d bench)
   // The field read brick by brick from this file (SessionInputs::field then holds only its grid
   // and geometry: streamedInputs), never whole.
   const FieldStream* stream = nullptr;

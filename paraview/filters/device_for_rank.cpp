@@ -1,36 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "device_for_rank.h"
 
+#include "gpu/device_choice.h"
+
 namespace lic3d::paraview {
-namespace {
-
-// lic3d's ranking of device kinds (ContextOptions::device: discrete, integrated, virtual, CPU).
-int kindRank(VkPhysicalDeviceType type) {
-  switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
-  }
-}
-
-}  // namespace
 
 std::vector<int> devicesToShare(const std::vector<DeviceInfo>& devices) {
-  int best = -1;
-  for (const DeviceInfo& d : devices) {
-    if (d.usable && kindRank(d.type) > best) {
-      best = kindRank(d.type);
-    }
-  }
-  std::vector<int> shared;
-  for (const DeviceInfo& d : devices) {
-    if (d.usable && kindRank(d.type) == best) {
-      shared.push_back(d.index);
-    }
-  }
-  return shared;
+  // lic3d's own "all" (gpu/device_choice.h); none when no device is usable.
+  Result<std::vector<int>> shared = chooseDevices(devices, "all");
+  return shared ? std::move(*shared) : std::vector<int>();
 }
 
 int deviceForLocalRank(int localRank, int deviceCount) {
