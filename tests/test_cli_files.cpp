@@ -541,9 +541,12 @@ TEST_F(CliTest, RealDataSetsRenderAsPictures) {
 // A request the device cannot hold is refused with exit status 3 before anything is allocated:
 // under a 4 GB address-space limit, making the 700^3 field (4 GB of vectors) would fail with
 // status 1 instead. The message names the request, the bytes and the largest grid that fits.
+// These requests must fit whole (seed noise and time steps belong to the whole grid); one that
+// can go in bricks is made so (SCALE.md, test_cli_bricks.cpp).
 TEST_F(CliTest, RequestsThatCannotFitAreRefusedBeforeAllocating) {
-  for (const char* command : {"render --grid 700 -o big.png", "compute --grid 700 -o big.nrrd",
-                              "render --grid 2048 -o big.png"}) {
+  for (const char* command : {"render --grid 700 --seed-noise 40 -o big.png",
+                              "compute --grid 700 --time-steps 4 -o big.nrrd",
+                              "render --grid 2048 --seed-noise 40 -o big.png"}) {
     const CommandRun r = run(command, "ulimit -v 4000000;");
     EXPECT_EQ(r.status, 3) << command << "\n" << r.output;
     EXPECT_NE(r.output.find("MiB"), std::string::npos) << r.output;

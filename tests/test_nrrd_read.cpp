@@ -96,7 +96,10 @@ TEST_F(NrrdTest, GzipPromisingMoreThanItHoldsCostsOnlyWhatInflates) {
       ::_exit(1);
   });
   ASSERT_GE(grewMiB, 0.0) << "the read succeeded or failed for another reason";
-  EXPECT_LT(grewMiB, 100.0);
+  // Under AddressSanitizer the child's growth also holds the allocator's shadow and quarantine
+  // and the pages of the forked test process it touches: 100.9 MiB with the streamed-I/O tests
+  // in the binary, about 1 MiB more than before. The fault this guards against peaked at 770.
+  EXPECT_LT(grewMiB, 150.0);
 }
 
 TEST_F(NrrdTest, GzipThatDoesNotMatchTheHeaderIsAnError) {
