@@ -221,13 +221,14 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
                "precision) instead of the GPU");
   app.add_option("--memory-budget", options.memoryBudget,
                  "At most this much device memory: BYTES, or with kB, MB, GB (1000s) or KiB, "
-                 "MiB, GiB (1024s); compute makes a LIC that does not fit in bricks with ghost "
-                 "layers (docs/SCALE.md), render refuses it (default: what the device has)")
+                 "MiB, GiB (1024s); a LIC that does not fit is made in bricks with ghost layers, "
+                 "and render draws a reduced copy of one too large to draw (docs/SCALE.md) "
+                 "(default: what the device has)")
       ->transform(CLI::AsSizeValue(true));
   app.add_option("--devices", options.devices,
                  "Spread the LIC over several devices: all (every GPU of the best kind) or "
                  "indices or name parts of `lic3d devices`, separated by commas; the grid goes "
-                 "out in bricks, at least one a device (docs/SCALE.md). Replaces --device");
+                 "out in bricks, at least one a device (docs/SCALE.md); not with --device");
   options.output = defaultOutput;
   const bool picture = std::string_view(defaultOutput).ends_with(".png");
   options.outputOption =
