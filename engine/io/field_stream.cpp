@@ -26,13 +26,6 @@ constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are read as packed floats");
 
-template <class T>
-double load(const unsigned char* data) {
-  T value;
-  std::memcpy(&value, data, sizeof(T));
-  return static_cast<double>(value);
-}
-
 std::string lowerCaseExtension(const std::filesystem::path& path) {
   return asciiLowerCase(path.extension().string());
 }
@@ -71,7 +64,8 @@ Result<FieldStream> FieldStream::openRaw(const std::filesystem::path& path) {
   FieldStream stream(std::move(file), path);
   stream.dims_ = layout.dims;
   stream.geometry_ = layout.geometry;
-  stream.vectors_.type = layout.valueBytes == 8 ? ValueType::Float64 : ValueType::Float32;
+  stream.vectors_.type =
+      layout.valueBytes == 8 ? vti::NumberType::Float64 : vti::NumberType::Float32;
   stream.vectors_.valueBytes = layout.valueBytes;
   stream.vectors_.order = layout.order;
   stream.vectors_.planar = layout.planar;
@@ -99,7 +93,7 @@ Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
   stream.unit_ = layout.sampleUnits;
   const bool isDouble = layout.type == nrrd::ValueType::Double;
   stream.vectors_.offset = offset;
-  stream.vectors_.type = isDouble ? ValueType::Float64 : ValueType::Float32;
+  stream.vectors_.type = isDouble ? vti::NumberType::Float64 : vti::NumberType::Float32;
   stream.vectors_.valueBytes = isDouble ? 8 : 4;
   stream.vectors_.order = layout.order;
   stream.vectors_.components = layout.components;  // 2 on a 2D grid
@@ -158,12 +152,17 @@ Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std:
                                   what + " (its byte count)"));
     if (file->order != std::endian::native)
       std::reverse(header.begin(), header.begin() + static_cast<std::ptrdiff_t>(headerBytes));
-    const std::uint64_t size = headerBytes == 8
-                                   ? static_cast<std::uint64_t>(load<std::uint64_t>(header.data()))
-                                   : static_cast<std::uint64_t>(load<std::uint32_t>(header.data()));
+    std::uint64_t size = 0;
+    if (headerBytes == 8) {
+      std::memcpy(&size, header.data(), 8);
+    } else {
+      std::uint32_t size32 = 0;
+      std::memcpy(&size32, header.data(), 4);
+      size = size32;
+    }
     ArrayLayout layout;
     layout.offset = file->appendedAt + offset + headerBytes;
-    layout.type = static_cast<ValueType>(each.type->type);
+    layout.type = each.type->type;
     layout.valueBytes = each.type->bytes;
     layout.order = file->order;
     layout.components = static_cast<std::size_t>(each.components);
@@ -176,8 +175,6 @@ Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std:
     LIC3D_TRY(stream.checkFileHolds(layout, false));
     return layout;
   };
-  static_assert(static_cast<int>(vti::NumberType::Float64) == static_cast<int>(ValueType::Float64),
-                "the VTI number types map onto ValueType one to one");
   LIC3D_TRY_ASSIGN(stream.vectors_, appended(array));
   // VTK's mask of valid points: the vectors it marks invalid are zero, as readVectorField has them.
   const auto mask = std::find_if(arrays.begin(), arrays.end(), [](const vti::ArrayRef& each) {
@@ -230,19 +227,7 @@ Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t fir
         std::memcpy(native.data(), buffer.data() + i * bytes, bytes);
         if (array.order != std::endian::native)
           std::reverse(native.begin(), native.begin() + static_cast<std::ptrdiff_t>(bytes));
-        double decoded = 0.0;
-        switch (array.type) {
-          case ValueType::Int8: decoded = load<std::int8_t>(native.data()); break;
-          case ValueType::UInt8: decoded = load<std::uint8_t>(native.data()); break;
-          case ValueType::Int16: decoded = load<std::int16_t>(native.data()); break;
-          case ValueType::UInt16: decoded = load<std::uint16_t>(native.data()); break;
-          case ValueType::Int32: decoded = load<std::int32_t>(native.data()); break;
-          case ValueType::UInt32: decoded = load<std::uint32_t>(native.data()); break;
-          case ValueType::Int64: decoded = load<std::int64_t>(native.data()); break;
-          case ValueType::UInt64: decoded = load<std::uint64_t>(native.data()); break;
-          case ValueType::Float32: decoded = load<float>(native.data()); break;
-          case ValueType::Float64: decoded = load<double>(native.data()); break;
-        }
+        const double decoded = vti::valueOf(native.data(), array.type);
         const std::size_t voxel = array.planar ? done + i : done + i / array.components;
         const std::size_t component = array.planar ? span : i % array.components;
         store(voxel, component, decoded);
@@ -278,7 +263,7 @@ Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t
   const int rows = wholeRows ? 1 : dims.y;
   const int layers = wholeLayers ? 1 : dims.z;
   // Float32 vectors in the host's order are read straight into the field.
-  const bool direct = vectors_.type == ValueType::Float32 && vectors_.components == 3 &&
+  const bool direct = vectors_.type == vti::NumberType::Float32 && vectors_.components == 3 &&
                       !vectors_.planar && vectors_.order == std::endian::native;
   std::vector<unsigned char> buffer;
   for (int k = 0; k < layers; ++k) {

@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
+#include "io/vti_file.h"
 
 namespace lic3d {
 
@@ -48,24 +49,11 @@ class FieldStream {
   Result<VectorField> readPiece(Dims offset, Dims dims, std::uint64_t* nonFinite = nullptr) const;
 
  private:
-  // The values as stored.
-  enum class ValueType : std::uint8_t {
-    Int8,
-    UInt8,
-    Int16,
-    UInt16,
-    Int32,
-    UInt32,
-    Int64,
-    UInt64,
-    Float32,
-    Float64
-  };
   // One array in a file: `components` values per voxel of `valueBytes`, from byte `offset` on;
   // interleaved (xyzxyz...) or planar (every x, then every y, then every z).
   struct ArrayLayout {
     std::uint64_t offset = 0;
-    ValueType type = ValueType::Float32;
+    vti::NumberType type = vti::NumberType::Float32;
     std::size_t valueBytes = 4;
     std::endian order = std::endian::little;
     std::size_t components = 3;

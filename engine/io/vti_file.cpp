@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <string>
 
@@ -145,7 +146,30 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
   return list.empty() ? "none" : list;
 }
 
+template <class T>
+double load(const unsigned char* data) {
+  T value;
+  std::memcpy(&value, data, sizeof(T));
+  return static_cast<double>(value);
+}
+
 }  // namespace
+
+double valueOf(const unsigned char* data, NumberType type) {
+  switch (type) {
+    case NumberType::Int8: return load<std::int8_t>(data);
+    case NumberType::UInt8: return load<std::uint8_t>(data);
+    case NumberType::Int16: return load<std::int16_t>(data);
+    case NumberType::UInt16: return load<std::uint16_t>(data);
+    case NumberType::Int32: return load<std::int32_t>(data);
+    case NumberType::UInt32: return load<std::uint32_t>(data);
+    case NumberType::Int64: return load<std::int64_t>(data);
+    case NumberType::UInt64: return load<std::uint64_t>(data);
+    case NumberType::Float32: return load<float>(data);
+    case NumberType::Float64: return load<double>(data);
+  }
+  return 0.0;
+}
 
 Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
   auto file = std::make_unique<VtiFile>();

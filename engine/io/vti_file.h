@@ -38,6 +38,9 @@ struct TypeInfo {
   std::size_t bytes;
 };
 
+// One value of `type` in native byte order, as a double.
+double valueOf(const unsigned char* data, NumberType type);
+
 // The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
 // (held by unique_ptr).
 struct VtiFile {

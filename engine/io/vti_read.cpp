@@ -34,6 +34,7 @@ using vti::listArrays;
 using vti::NumberType;
 using vti::openVti;
 using vti::TypeInfo;
+using vti::valueOf;
 using vti::VtiFile;
 
 // Values are converted in chunks of this many.
@@ -41,30 +42,6 @@ constexpr std::size_t kChunkValues = std::size_t{1} << 16;
 // Uncompressed data not in memory (a large file's appended data, base64) is read in chunks of at
 // most this many bytes.
 constexpr std::size_t kStreamChunkBytes = std::size_t{32} << 20;
-
-template <class T>
-double load(const unsigned char* data) {
-  T value;
-  std::memcpy(&value, data, sizeof(T));
-  return static_cast<double>(value);
-}
-
-// One value in native byte order, as a double.
-double valueOf(const unsigned char* data, NumberType type) {
-  switch (type) {
-    case NumberType::Int8: return load<std::int8_t>(data);
-    case NumberType::UInt8: return load<std::uint8_t>(data);
-    case NumberType::Int16: return load<std::int16_t>(data);
-    case NumberType::UInt16: return load<std::uint16_t>(data);
-    case NumberType::Int32: return load<std::int32_t>(data);
-    case NumberType::UInt32: return load<std::uint32_t>(data);
-    case NumberType::Int64: return load<std::int64_t>(data);
-    case NumberType::UInt64: return load<std::uint64_t>(data);
-    case NumberType::Float32: return load<float>(data);
-    case NumberType::Float64: return load<double>(data);
-  }
-  return 0.0;
-}
 
 // Receives an array's values in chunks: `count` values from value number `first` on. Called
 // from several threads at once for disjoint ranges (sinks write into storage sized by the reader's
