@@ -12,10 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
-#include "commands.h"
+#include "bench/bench.h"
+#include "cli/commands.h"
 #include "core/parallel.h"
 #include "io/file_util.h"
+#include "options/command_line.h"
 
 using namespace lic3d::cli;
 

@@ -6,7 +6,9 @@
 # engine includes only files of its own layer and of layers below it, always by their layer path
 # ("core/volume.h"); the shaders' shared headers (plain data, compiled by both GLSL and C++) and
 # the generated SPIR-V headers are the only bare includes. The layers below gpu/ include no
-# Vulkan header. Every engine file lies in a layer folder.
+# Vulkan header. Every engine file lies in a layer folder. The front ends (app/) lie in one
+# folder per program; cli/, bench/ and viewer/ never include each other, and the command-line
+# library options/ and the Python module include none of them.
 # file_size: no source file (engine, app, shaders, paraview, tests) is longer than 700 lines.
 # licence: every source, build and script file names its licence (LICENSE, BSD-3-Clause) by its
 # SPDX identifier in its first lines.
@@ -57,6 +59,47 @@ if(CHECK STREQUAL "layers")
         endif()
       elseif(line MATCHES "#[ \t]*include[ \t]*<(vulkan/[^>]+)>" AND own LESS first_vulkan_layer)
         string(APPEND problems "engine/${file}: includes <${CMAKE_MATCH_1}> below gpu/\n")
+      endif()
+    endforeach()
+  endforeach()
+  # The front ends: one folder per program over the command-line library (app/CMakeLists.txt).
+  # Each may include the engine, the library options/ and its own folder; app/main.cpp (the lic3d
+  # program) also hands commands to cli/ and bench/; python/ uses only options/ and the engine.
+  set(programs options cli bench viewer)
+  set(allowed_options options)
+  set(allowed_cli options cli)
+  set(allowed_bench options bench)
+  set(allowed_viewer options viewer)
+  set(allowed_main options cli bench)
+  set(allowed_python options)
+  file(GLOB_RECURSE app_files RELATIVE "${SOURCE_DIR}"
+       "${SOURCE_DIR}/app/*.h" "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/python/*.h"
+       "${SOURCE_DIR}/python/*.cpp")
+  foreach(file ${app_files})
+    if(file STREQUAL "app/main.cpp")
+      set(own main)
+    elseif(file MATCHES "^python/")
+      set(own python)
+    elseif(file MATCHES "^app/([a-z]+)/[^/]+$" AND CMAKE_MATCH_1 IN_LIST programs)
+      set(own ${CMAKE_MATCH_1})
+    else()
+      string(APPEND problems "${file}: not in a program folder of app/ (${programs})\n")
+      continue()
+    endif()
+    file(STRINGS "${SOURCE_DIR}/${file}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+    foreach(line ${lines})
+      if(NOT line MATCHES "#[ \t]*include[ \t]*\"(([a-z0-9_]+)/)?[^\"]+\"")
+        continue()
+      endif()
+      set(folder "${CMAKE_MATCH_2}")
+      if(folder STREQUAL "")
+        string(APPEND problems "${file}: ${line}: include front-end and engine files by their "
+                               "folder (options/, cli/, core/, ...)\n")
+      elseif(folder IN_LIST programs AND NOT folder IN_LIST allowed_${own})
+        string(APPEND problems "${file}: ${line}: ${own} may include only ${allowed_${own}} "
+                               "among the front ends' folders\n")
+      elseif(NOT folder IN_LIST programs AND NOT folder IN_LIST layers)
+        string(APPEND problems "${file}: ${line}: no such engine layer or front-end folder\n")
       endif()
     endforeach()
   endforeach()

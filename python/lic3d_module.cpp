@@ -15,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
 #include "core/parameter_ranges.h"
 #include "core/text.h"
 #include "gpu/vulkan_context.h"
@@ -23,6 +22,7 @@
 #include "inputs/scalars.h"
 #include "inputs/session_inputs.h"
 #include "lic/lic_reference.h"
+#include "options/command_line.h"
 #include "passes/lic_renderer.h"
 
 namespace py = pybind11;

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
 #include "core/session.h"
 #include "fuzz_support.h"
+#include "options/command_line.h"
 
 namespace {
 

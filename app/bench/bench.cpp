@@ -1,0 +1,485 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `lic3d bench`: GPU timestamps of the LIC pass and of frames, median of repeats after warm-up.
+#include "bench/bench.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/volume_compare.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/shader_library.h"
+#include "inputs/bricks.h"
+#include "inputs/session_inputs.h"
+#include "io/file_util.h"
+#include "lic/analytic_fields.h"
+#include "lic/noise.h"
+#include "lic/sparsity.h"
+#include "passes/lic_renderer.h"
+
+namespace lic3d::cli {
+
+Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
+                       const std::function<Result<double>()>& once) {
+  Timing timing;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  // At least the requested warm-up runs, and at least a quarter of a second of them: a GPU that
+  // idled while the host prepared the inputs needs that long to raise its clocks again.
+  for (int i = 0; i < std::max(1, options.warmup) || elapsed() < 0.25; ++i) {
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, once());
+    if (elapsed() / (i + 1) * options.repeats > budgetLeft) {
+      timing.skipped = "over the time budget";
+      budgetLeft -= elapsed();
+      return timing;
+    }
+  }
+  std::vector<double> samples;
+  for (int i = 0; i < options.repeats; ++i) {
+    LIC3D_TRY_ASSIGN(const double ms, once());
+    samples.push_back(ms);
+  }
+  budgetLeft -= elapsed();
+  timing.measured = true;
+  timing.medianMs = median(samples);
+  timing.minMs = *std::min_element(samples.begin(), samples.end());
+  timing.repeats = options.repeats;
+  return timing;
+}
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d", std::gmtime(&now));
+  return text;
+}
+
+nlohmann::json newReport(const Context& context) {
+  nlohmann::json report;
+  report["device"] = context.deviceInfo().name;
+  report["driver"] = context.deviceInfo().driver;
+  report["date"] = today();
+  return report;
+}
+
+namespace {
+
+// Field and noise texture, LIC volume (R16) and the texture's upload staging.
+double residentBytes(int n, FieldPrecision precision) {
+  const double texel = fieldTexelBytes(precision);
+  return static_cast<double>(n) * n * n * (2.0 * texel + 2.0);
+}
+
+Result<void> setVolume(LicRenderer& renderer, AnalyticField field, int n, std::uint64_t seed) {
+  const Dims dims(n);
+  return renderer.setInputs(makeAnalyticField(field, dims), makeWhiteNoise(dims, seed));
+}
+
+// Peak resident memory of this process (getrusage), in bytes.
+std::uint64_t hostPeakBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;
+}
+
+// A LIC larger than the device, made in bricks (inputs/bricks.h) as `lic3d compute` makes it, the
+// field made on the device brick by brick and the bricks dropped once made: the sum of the
+// bricks' LIC dispatches (GPU timestamps) and the whole run's wall time, once.
+Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& options, int n,
+                                    int length) {
+  Session session;
+  session.field.field = options.field;
+  session.field.grid = Dims(n);
+  session.noise.seed = options.seed;
+  session.lic.length = length;
+  session.precision = options.precision;
+  LIC3D_TRY_ASSIGN(SessionInputs inputs, loadSessionInputs(session, {.fieldOnDevice = true}));
+  const Context* devices[] = {&context};
+  LicVolumeOptions how;
+  how.timeLic = true;
+  how.sink = [](const Brick&, const ScalarVolume&) -> Result<void> { return {}; };
+  const auto start = std::chrono::steady_clock::now();
+  LIC3D_TRY_ASSIGN(const LicVolumeRun run, computeLicVolume(devices, session, inputs, how));
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const DeviceShare& share = run.devices.front();
+  const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
+  std::printf(
+      "%6d^3 %6d %12.3f %12s %14.2f  in %d bricks of %s; whole run %.1f s (%.2f "
+      "Gsamples/s); device peak %.1f GiB, host peak %.1f GiB\n",
+      n, length, share.licMilliseconds, "-", samples / (share.licMilliseconds * 1e6), run.bricks,
+      gridText(run.brickCore).c_str(), wall, samples / (wall * 1e9),
+      static_cast<double>(share.peakDeviceBytes) / (1 << 30),
+      static_cast<double>(hostPeakBytes()) / (1 << 30));
+  std::fflush(stdout);
+  return nlohmann::json{{"n", n},
+                        {"length", length},
+                        {"bricks", run.bricks},
+                        {"brick_core", {run.brickCore.x, run.brickCore.y, run.brickCore.z}},
+                        {"lic_ms", share.licMilliseconds},
+                        {"wall_s", wall},
+                        {"device_peak_bytes", share.peakDeviceBytes},
+                        {"host_peak_bytes", hostPeakBytes()}};
+}
+
+Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions& options) {
+  LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 4096));
+  LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
+                   parseIntList(options.lengths, "--lengths", 0, kMaxLicLength));
+  LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
+                   parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+
+  const DeviceInfo& device = context.deviceInfo();
+  const double memory = static_cast<double>(device.deviceLocalBytes);
+  double budgetLeft = options.budgetSeconds;
+  nlohmann::json report = newReport(context);
+  report["field"] = options.field;
+  report["repeats"] = options.repeats;
+  report["warmup"] = options.warmup;
+
+  std::printf("lic3d bench on %s (%s, %s), %s\n", device.name.c_str(), deviceTypeName(device.type),
+              device.driver.c_str(), report["date"].get<std::string>().c_str());
+  const LicParams defaults;
+  std::printf(
+      "LIC compute: %s field, rk2 (%s scheme), box kernel, h = 0.5, trilinear noise, %s "
+      "field texture; median of %d after %d warm-up (GPU timestamps)\n",
+      options.field.c_str(), std::string(enumName(defaults.scheme)).c_str(),
+      std::string(fieldTextureFormatName(resolvePrecision(context, options.precision))).c_str(),
+      options.repeats, options.warmup);
+  std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
+
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
+  const FieldPrecision precision = renderer.fieldPrecision();
+  report["field_precision"] = fieldTextureFormatName(precision);
+  report["scheme"] = enumName(defaults.scheme);
+  report["lic"] = nlohmann::json::array();
+  for (const int n : sizes) {
+    if (residentBytes(n, precision) > 0.8 * memory) {
+      // Larger than the device: in bricks, once (a run takes seconds).
+      for (const int length : lengths) {
+        LIC3D_TRY_ASSIGN(nlohmann::json row, benchBricked(context, options, n, length));
+        report["lic"].push_back(std::move(row));
+      }
+      continue;
+    }
+    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
+    for (const int length : lengths) {
+      LicParams params;
+      params.length = length;
+      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
+                                               [&] { return renderer.timeLicDispatch(params); }));
+      nlohmann::json row{{"n", n}, {"length", length}};
+      if (t.measured) {
+        const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
+        std::printf("%6d^3 %6d %12.3f %12.3f %14.2f\n", n, length, t.medianMs, t.minMs,
+                    samples / (t.medianMs * 1e6));
+        row["median_ms"] = t.medianMs;
+        row["min_ms"] = t.minMs;
+      } else {
+        std::printf("%6d^3 %6d %12s (skipped: %s)\n", n, length, "-", t.skipped.c_str());
+        row["skipped"] = t.skipped;
+      }
+      std::fflush(stdout);
+      report["lic"].push_back(row);
+    }
+  }
+
+  const int n = options.frameVolume;
+  std::printf("\nFrame: %d^3 volume, view-aligned slices (%d = one per voxel), default camera\n", n,
+              n);
+  std::printf("%12s %10s %7s %12s %12s\n", "image", "buffer", "slices", "median ms", "min ms");
+  report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
+  if (residentBytes(n, precision) > 0.8 * memory) {
+    report["frame"]["skipped"] = "device memory";
+  } else {
+    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
+    // Each buffer format at each size with one slice per voxel, then with a quarter of them:
+    // how the time splits between what each slice costs and what each frame costs.
+    for (const int slices : {n, std::max(1, n / 4)}) {
+      for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
+                                         FramePrecision::Unorm10, FramePrecision::Unorm8}) {
+        LIC3D_TRY(renderer.setFramePrecision(frame));
+        const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
+                                 : frame == FramePrecision::Unorm16 ? "rgba16"
+                                 : frame == FramePrecision::Unorm10 ? "rgb10a2"
+                                                                    : "rgba8";
+        for (const int size : frameSizes) {
+          ViewParams view;
+          view.width = view.height = size;
+          view.slices = slices;
+          LIC3D_TRY_ASSIGN(const Timing t,
+                           measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
+          nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
+          if (t.measured) {
+            std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
+                        t.minMs);
+            row["median_ms"] = t.medianMs;
+            row["min_ms"] = t.minMs;
+          } else {
+            std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
+                        t.skipped.c_str());
+            row["skipped"] = t.skipped;
+          }
+          std::fflush(stdout);
+          report["frame"]["rows"].push_back(row);
+        }
+      }
+    }
+  }
+  return report;
+}
+
+struct Variant {
+  const char* name;
+  LicParams lic;
+  ViewParams view;
+};
+
+// The thesis' Table 6.1 today: frame time of specialized pipelines against one shader deciding
+// the same modes at run time.
+Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& options) {
+  if (!hasRuntimeModeShaders())
+    return unsupportedError(
+        "bench --variants needs a build configured with "
+        "-DLIC3D_BENCH_RUNTIME_MODES=ON (cmake --preset bench)");
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+  LIC3D_TRY_ASSIGN(const std::vector<int> frameSizes,
+                   parseIntList(options.frameSizes, "--frame-sizes", 16, 16384));
+  const int n = options.frameVolume;
+  const int size = frameSizes.front();
+
+  ViewParams base;
+  base.width = base.height = size;
+  base.slices = n;
+  LicParams plain;
+  LicParams sparse;
+  sparse.sparsity.distribution = SparsityDistribution::Halton;
+  std::vector<Variant> variants;
+  variants.push_back({"grey", plain, base});
+  Variant colour{"colour + magnitude opacity", plain, base};
+  colour.view.color = ColorMode::Magnitude;
+  colour.view.magnitudeOpacity = 1.0f;
+  variants.push_back(colour);
+  Variant sparseFog{"sparsity + fog", sparse, base};
+  sparseFog.view.fog = true;
+  variants.push_back(sparseFog);
+  Variant region{"sphere ROI + clip + nearest", plain, base};
+  region.view.roi = RoiShape::Sphere;
+  region.view.roiSize = 0.8f;
+  region.view.clipMax = glm::vec3(1.0f, 0.8f, 1.0f);
+  region.view.filter = VolumeFilter::Nearest;
+  variants.push_back(region);
+  Variant lit{"Phong lighting + colour", plain, base};
+  lit.view.lighting = Lighting::Phong;
+  lit.view.color = ColorMode::Magnitude;
+  variants.push_back(lit);
+  Variant all{"all of the above", sparse, base};
+  all.view.color = ColorMode::Magnitude;
+  all.view.magnitudeOpacity = 1.0f;
+  all.view.fog = true;
+  all.view.roi = RoiShape::Sphere;
+  all.view.roiSize = 0.8f;
+  all.view.lighting = Lighting::Phong;
+  variants.push_back(all);
+
+  const DeviceInfo& device = context.deviceInfo();
+  std::printf("lic3d bench --variants on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),
+              today().c_str());
+  std::printf(
+      "Frame %d^2, %d^3 volume, %d slices; median of %d after %d warm-up (GPU timestamps)\n", size,
+      n, n, options.repeats, options.warmup);
+  std::printf("%-30s %15s %15s %8s\n", "modes", "specialized ms", "runtime ms", "ratio");
+
+  nlohmann::json report = newReport(context);
+  report["image"] = size;
+  report["volume"] = n;
+  report["rows"] = nlohmann::json::array();
+  RendererOptions runtimeOptions;
+  runtimeOptions.fieldPrecision = options.precision;
+  runtimeOptions.runtimeModes = true;
+  LIC3D_TRY_ASSIGN(LicRenderer specialized, LicRenderer::create(context, {options.precision}));
+  LIC3D_TRY_ASSIGN(LicRenderer runtime, LicRenderer::create(context, runtimeOptions));
+  LIC3D_TRY(setVolume(specialized, *fieldKind, n, options.seed));
+  LIC3D_TRY(setVolume(runtime, *fieldKind, n, options.seed));
+  double budgetLeft = options.budgetSeconds;
+  for (const Variant& v : variants) {
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool a, specialized.updateLic(v.lic));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool b, runtime.updateLic(v.lic));
+    LIC3D_TRY_ASSIGN(const Timing fast,
+                     measure(options, budgetLeft, [&] { return specialized.timeFrame(v.view); }));
+    LIC3D_TRY_ASSIGN(const Timing slow,
+                     measure(options, budgetLeft, [&] { return runtime.timeFrame(v.view); }));
+    nlohmann::json row{{"modes", v.name}};
+    if (fast.measured && slow.measured) {
+      std::printf("%-30s %15.3f %15.3f %8.2f\n", v.name, fast.medianMs, slow.medianMs,
+                  slow.medianMs / fast.medianMs);
+      row["specialized_ms"] = fast.medianMs;
+      row["runtime_ms"] = slow.medianMs;
+    } else {
+      std::printf("%-30s %15s (skipped: over the time budget)\n", v.name, "-");
+      row["skipped"] = "over the time budget";
+    }
+    std::fflush(stdout);
+    report["rows"].push_back(row);
+  }
+  return report;
+}
+
+// Thesis Figure 6.4 today: how long each distribution takes to make its points (and mask), and
+// how long a sparsity change takes end to end (mask on the CPU, upload, LIC pass).
+Result<nlohmann::json> runDistributions(const Context& context, const BenchOptions& options) {
+  const int n = options.distributionVolume;
+  const Dims dims(n);
+  const double voxels = static_cast<double>(voxelCount(dims));
+  const DeviceInfo& device = context.deviceInfo();
+  nlohmann::json report = newReport(context);
+  report["volume"] = n;
+  report["generation"] = nlohmann::json::array();
+  std::printf("lic3d bench --distributions, %d^3 volume, %s\n", n, today().c_str());
+  std::printf("Mask generation on the CPU (wall clock, one run each):\n");
+  std::printf("%-16s %12s %14s %12s\n", "distribution", "requested", "black voxels", "ms");
+  double budgetLeft = options.budgetSeconds;
+  // Per distribution, the largest row measured (points, ms): a row whose time, scaled from it by
+  // the points, would not fit in what is left of the budget is skipped rather than started.
+  std::map<SparsityDistribution, std::pair<double, double>> measured;
+  const auto predictedSeconds = [&](SparsityDistribution d, double count) {
+    const auto known = measured.find(d);
+    if (known == measured.end() || known->second.first <= 0.0) return 0.0;
+    return known->second.second / 1000.0 * std::max(1.0, count / known->second.first);
+  };
+  for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
+    if (d == SparsityDistribution::None) continue;
+    for (const double count : {1e3, 1e4, 1e5, 1e6}) {
+      SparsityParams p;
+      p.distribution = d;
+      switch (d) {
+        case SparsityDistribution::Checkerboard:
+          p.ratio = static_cast<float>(count / voxels);
+          break;
+        case SparsityDistribution::Jitter:
+          p.radius = static_cast<float>(std::cbrt(kJitterDensity * voxels / count));
+          break;
+        default: p.points = static_cast<int>(count); break;
+      }
+      nlohmann::json row{{"distribution", name}, {"requested", count}};
+      if (!validate(p, dims)) {
+        std::printf("%-16s %12.0f %14s %12s (outside its limits)\n", std::string(name).c_str(),
+                    count, "-", "-");
+        row["skipped"] = "outside its limits";
+        report["generation"].push_back(row);
+        continue;
+      }
+      if (budgetLeft <= 0.0 || predictedSeconds(d, count) > budgetLeft) {
+        std::printf("%-16s %12.0f %14s %12s (skipped: over the time budget)\n",
+                    std::string(name).c_str(), count, "-", "-");
+        row["skipped"] = "over the time budget";
+        report["generation"].push_back(row);
+        continue;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      LIC3D_TRY_ASSIGN(const SparsityMask mask, makeSparsityMask(p, dims));
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+      budgetLeft -= ms / 1000.0;
+      measured[d] = {count, ms};
+      std::printf("%-16s %12.0f %14zu %12.1f\n", std::string(name).c_str(), count, mask.blackCount,
+                  ms);
+      std::fflush(stdout);
+      row["black"] = mask.blackCount;
+      row["ms"] = ms;
+      report["generation"].push_back(row);
+    }
+  }
+
+  std::printf(
+      "\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
+      "parameters, L = 20, median of %d; the LIC pass alone with that mask, after warm-up\n",
+      device.name.c_str(), options.repeats);
+  std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
+  const auto fieldKind = parseEnum<AnalyticField>(options.field);
+  if (!fieldKind) return inputError("bench: --field must be an analytic field");
+  LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
+  report["recompute"] = nlohmann::json::array();
+  for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
+    if (d == SparsityDistribution::None) continue;
+    std::vector<double> wall;
+    // The automatic parameters blacken about kDefaultBlackFraction of the voxels: the first
+    // change is predicted from the generation table, later ones from the changes measured.
+    double predicted = predictedSeconds(d, kDefaultBlackFraction * voxels);
+    LicParams lic;
+    lic.sparsity.distribution = d;
+    for (int i = 0; i < options.repeats && budgetLeft > 0.0 && predicted <= budgetLeft; ++i) {
+      lic.sparsity.seed = static_cast<std::uint64_t>(i + 2);  // a new mask every time
+      const auto start = std::chrono::steady_clock::now();
+      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
+      wall.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
+      budgetLeft -= wall.back() / 1000.0;
+      predicted = wall.back() / 1000.0;
+    }
+    nlohmann::json row{{"distribution", name}};
+    if (wall.empty()) {
+      std::printf("%-16s %14s %14s (skipped: over the time budget)\n", std::string(name).c_str(),
+                  "-", "-");
+      row["skipped"] = "over the time budget";
+    } else {
+      // The pass on its own, warmed up like every other GPU time here: a single dispatch right
+      // after the host made a mask meets a GPU whose clocks dropped while it idled (on the H100
+      // that read 14-19 ms for a 3.4 ms pass).
+      LIC3D_TRY_ASSIGN(const Timing pass,
+                       measure(options, budgetLeft, [&] { return renderer.timeLicDispatch(lic); }));
+      const double passMs = pass.measured ? pass.medianMs : 0.0;
+      std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), passMs);
+      row["wall_ms"] = median(wall);
+      if (pass.measured) row["lic_ms"] = passMs;
+    }
+    std::fflush(stdout);
+    report["recompute"].push_back(row);
+  }
+  return report;
+}
+
+}  // namespace
+
+int runBench(const GlobalOptions& global, const BenchOptions& options) {
+  if (!options.json.empty()) {
+    if (auto r = checkOutputPath(options.json, ".json"); !r) return reportError(r.error());
+  }
+  ContextOptions contextOptions;
+  contextOptions.validation = global.validation;
+  contextOptions.device = global.device;
+  contextOptions.pipelineStatistics = options.kernels;
+  Result<Context> context = Context::create(contextOptions);
+  if (!context) return reportError(context.error());
+  const Result<nlohmann::json> report =
+      options.variants        ? runVariants(*context, options)
+      : options.distributions ? runDistributions(*context, options)
+      : options.kernels       ? runKernelBenchmarks(*context, options)
+      : options.fidelity      ? runFidelityBenchmarks(*context, options)
+                              : runBenchmarks(*context, options);
+  if (!report) return reportError(report.error());
+  if (!options.json.empty()) {
+    if (auto r = writeFileAtomically(options.json, report->dump(2) + "\n"); !r)
+      return reportError(r.error());
+    if (!global.quiet) std::fprintf(stderr, "lic3d: wrote %s\n", options.json.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace lic3d::cli

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// What the `lic3d bench` modes share (bench.cpp, kernels.cpp, fidelity.cpp).
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "gpu/vulkan_context.h"
+#include "options/command_line.h"
+
+namespace lic3d::cli {
+
+// `lic3d bench`: GPU timings (timestamp queries) of the passes, kernels and schemes.
+int runBench(const GlobalOptions& global, const BenchOptions& options);
+
+struct Timing {
+  bool measured = false;
+  std::string skipped;  // why not, when !measured
+  double medianMs = 0.0;
+  double minMs = 0.0;
+  int repeats = 0;
+};
+
+// Runs `once` (which returns GPU milliseconds) for warm-up, then options.repeats times; gives up
+// early when the warm-up shows the repeats would not fit in the remaining budget.
+Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
+                       const std::function<Result<double>()>& once);
+
+// Today's date, UTC, as YYYY-MM-DD.
+std::string today();
+
+// What every report starts with: the device, its driver and the date (UTC).
+nlohmann::json newReport(const Context& context);
+
+// `bench --kernels`: the naive kernel and every shipped one, the masked pass, the launch shapes.
+Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOptions& options);
+
+// `bench --fidelity`: each RK2 scheme's error against a converged LIC, on the CPU and the device.
+Result<nlohmann::json> runFidelityBenchmarks(const Context& context, const BenchOptions& options);
+
+}  // namespace lic3d::cli

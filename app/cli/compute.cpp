@@ -1,0 +1,281 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `lic3d compute`: the LIC volume (or one slice of it) of a field, in one piece or in bricks over
+// one or more devices, read and written brick by brick where the files allow (docs/SCALE.md).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <future>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
+
+#include "cli/command_support.h"
+#include "cli/commands.h"
+#include "core/memory_budget.h"
+#include "core/parallel.h"
+#include "core/stage_times.h"
+#include "gpu/device_choice.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/vulkan_context.h"
+#include "inputs/bricks.h"
+#include "inputs/plane_inputs.h"
+#include "inputs/scalars.h"
+#include "io/field_stream.h"
+#include "io/file_util.h"
+#include "io/png_writer.h"
+#include "io/volume_stream.h"
+#include "lic/analytic_fields.h"
+#include "lic/colouring.h"
+#include "lic/derived_fields.h"
+#include "lic/field_plane.h"
+#include "lic/lic2d_reference.h"
+#include "lic/lic_reference.h"
+#include "lic/time_series.h"
+#include "options/progress.h"
+#include "passes/field_interpolation.h"
+#include "passes/lic2d_pass.h"
+#include "passes/lic_renderer.h"
+
+namespace lic3d::cli {
+namespace {
+
+// compute's output: the volume (.nrrd, .vti) or one slice (.png with --slice).
+Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<LicSlice> slice,
+                                const ScalarVolume& volume) {
+  if (!slice) {
+    const StageTimer timer("volume write");
+    return writeLicVolumeFile(options.output, volume);
+  }
+  return writeLicSlicePng(options.output, volume, *slice, options.inputs.session);
+}
+
+// A field file read brick by brick (io/field_stream.h) rather than whole: one in a format read by
+// sub-extent (raw, raw NRRD, appended-raw VTI), at one time, with white noise and no
+// --resolution, when it does not fit the device in one piece or the host could not hold it and
+// its LIC. Nothing otherwise: the file is read whole, as its reader says.
+std::optional<FieldStream> openFieldStream(const ComputeOptions& options,
+                                           const std::vector<Context>& contexts) {
+  const Session& session = options.inputs.session;
+  if (parseEnum<AnalyticField>(session.field.field) || session.timeSteps > 0 ||
+      !session.field.resolution.empty() || !isWhiteNoise(session.noise))
+    return std::nullopt;
+  Result<FieldStream> stream = FieldStream::open(session.field.field, session.field.array);
+  if (!stream) return std::nullopt;
+  const Dims dims = stream->dims();
+  const bool fitsDevice =
+      checkRequestMemory(contexts.front(), session, dims,
+                         {.volumeReadback = true, .deviceCap = options.memoryBudget})
+          .ok();
+  // The field, its packed texels and the LIC volume, about 40 bytes a voxel.
+  const bool fitsHost = voxelCount(dims) * 40 <= hostAvailableBytes();
+  if (fitsDevice && fitsHost) return std::nullopt;
+  return std::optional<FieldStream>(std::move(*stream));
+}
+
+// The LIC volume written brick by brick as the bricks come (.nrrd or .raw): hidden voxels NaN, as
+// writeLicVolumeFile writes them; `drawn` counts the voxels sparsity kept.
+class StreamedOutput {
+ public:
+  StreamedOutput(std::string path, Dims dims, GridGeometry geometry)
+      : path_(std::move(path)), dims_(dims), geometry_(geometry) {}
+
+  static bool streams(const std::string& path) {
+    const std::string extension = std::filesystem::path(path).extension().string();
+    return extension == ".nrrd" || extension == ".raw";
+  }
+
+  // Bricks from several devices at once: their parts of the file are disjoint.
+  Result<void> take(const Brick& brick, const ScalarVolume& lic) {
+    {
+      const std::lock_guard lock(mutex_);
+      if (!stream_) {
+        LIC3D_TRY_ASSIGN(stream_, ScalarVolumeStream::create(path_, dims_, geometry_));
+      }
+    }
+    std::vector<float> own(voxelCount(brick.ownDims));
+    const Dims from = brick.ownOffset - brick.offset;
+    std::vector<std::uint64_t> drawn(static_cast<std::size_t>(brick.ownDims.z), 0);
+    // The brick's own voxels, a layer a thread.
+    parallelFor(static_cast<std::size_t>(brick.ownDims.z), 0, [&](std::size_t layer) {
+      const int k = static_cast<int>(layer);
+      std::size_t at = layer * static_cast<std::size_t>(brick.ownDims.x) * brick.ownDims.y;
+      for (int j = 0; j < brick.ownDims.y; ++j)
+        for (int i = 0; i < brick.ownDims.x; ++i, ++at) {
+          const std::size_t v = voxelIndex(lic.dims, from.x + i, from.y + j, from.z + k);
+          const bool hidden = !lic.drawn.empty() && lic.drawn[v] == 0;
+          own[at] = hidden ? std::numeric_limits<float>::quiet_NaN() : lic.values[v];
+          drawn[layer] += hidden ? 0 : 1;
+        }
+    });
+    for (const std::uint64_t count : drawn) drawn_ += count;
+    if (!lic.drawn.empty()) sparse_ = true;
+    return stream_->write(brick.ownOffset, brick.ownDims, own.data());
+  }
+
+  Result<void> finish() {
+    if (!stream_) return runtimeError(path_ + ": no brick was written");
+    return stream_->finish();
+  }
+
+  std::optional<double> hiddenFraction() const {
+    if (!sparse_) return std::nullopt;
+    return 1.0 - static_cast<double>(drawn_) / static_cast<double>(voxelCount(dims_));
+  }
+
+ private:
+  std::string path_;
+  Dims dims_;
+  GridGeometry geometry_;
+  std::mutex mutex_;  // guards making the stream
+  std::optional<ScalarVolumeStream> stream_;
+  std::atomic<std::uint64_t> drawn_{0};
+  std::atomic<bool> sparse_{false};
+};
+
+}  // namespace
+
+int runCompute(const GlobalOptions& global, const ComputeOptions& options,
+               const BatchOptions& batch) {
+  const Clock::time_point start = Clock::now();
+  const Session& session = options.inputs.session;
+  const Result<std::optional<LicSlice>> slice =
+      checkComputeOutput(options.output, batch, options.inputs);
+  if (!slice) return reportError(slice.error());
+  if (*slice)
+    if (auto r = pngText(session, options.output); !r) return reportError(r.error());
+  // On the GPU, the device comes first, so that an analytic field too large for it is refused
+  // before it is made (unless it can be made in bricks: white noise, one time).
+  std::vector<Context> contexts;
+  if (!options.cpu) {
+    Result<std::vector<Context>> opened = openContexts(global, options.devices);
+    if (!opened) return reportError(opened.error());
+    contexts = std::move(*opened);
+    const bool bricked = session.timeSteps == 0 && isWhiteNoise(session.noise);
+    if (parseEnum<AnalyticField>(session.field.field) && !bricked)
+      if (auto r = checkRequestMemory(contexts.front(), session, session.field.grid,
+                                      {.volumeReadback = true,
+                                       .timeSeries = session.timeSteps > 0,
+                                       .deviceCap = options.memoryBudget});
+          !r)
+        return finish(contexts, reportError(r.error()));
+  } else if (!options.devices.empty()) {
+    return reportError(
+        inputError("--devices " + options.devices + ": --cpu computes on the CPU, not on devices"));
+  }
+  auto fail = [&](const Error& error) { return finish(contexts, reportError(error)); };
+  // A file too large for the device or the host in one piece is read brick by brick.
+  std::optional<FieldStream> stream;
+  std::optional<StreamScan> scan;
+  if (!options.cpu) stream = openFieldStream(options, contexts);
+  Result<SessionInputs> inputs = inputError("no inputs");
+  if (stream) {
+    {
+      Progress progress("reading " + stream->path().string() + " (" + gridText(stream->dims()) +
+                            ") for its largest speed",
+                        global.quiet);
+      Result<StreamScan> scanned = scanFieldStream(*stream, [&](double f) { progress.update(f); });
+      if (!scanned) return fail(scanned.error());
+      progress.finish();
+      scan = *scanned;
+    }
+    inputs = streamedInputs(*stream, session, *scan);
+  } else {
+    inputs = loadInputs(options, !options.cpu);
+  }
+  if (!inputs) return fail(inputs.error());
+  if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
+  reportFieldFile(global, session.field, *inputs);
+  if (const std::optional<LicSlice> chosen = *slice) {
+    // The index against the grid, before any work.
+    const std::string text =
+        std::string(1, static_cast<char>('x' + chosen->axis)) + ":" + std::to_string(chosen->index);
+    if (chosen->index >= inputs->field.dims[chosen->axis])
+      return fail(inputError("--slice " + text + ": the grid " + gridText(inputs->field.dims) +
+                             " has " + std::to_string(inputs->field.dims[chosen->axis]) +
+                             " slices along " +
+                             std::string(1, static_cast<char>('x' + chosen->axis)) + " (0.." +
+                             std::to_string(inputs->field.dims[chosen->axis] - 1) + ")"));
+  }
+  RunSummary summary = makeSummary("compute", session.field, *inputs);
+  summary.readByBricks = stream.has_value();
+  summary.outputs = {options.output};
+
+  if (options.cpu) {
+    if (inputs->series) {
+      Result<VectorField> field = hostFieldAt(*inputs, session, session.time);
+      if (!field) return reportError(field.error());
+      inputs->field = std::move(*field);
+      inputs->fieldStep.reset();
+    }
+    const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
+    if (!volume) return reportError(volume.error());
+    if (auto r = writeComputeOutput(options, *slice, *volume); !r) return reportError(r.error());
+    if (!global.quiet)
+      std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
+                   fieldText(session.field, *inputs).c_str());
+    noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
+    summary.device = "CPU reference";
+    printSummary(global, summary, start);
+    return kExitOk;
+  }
+
+  const Context& device = contexts.front();
+  const std::string deviceNames = devicesText(contexts);
+  int status = kExitOk;
+  {
+    // In one piece when it fits the device (or --memory-budget), else in bricks.
+    Progress progress("LIC " + gridText(inputs->field.dims) + " on " + deviceNames, global.quiet);
+    // Bricks go straight into a .nrrd or .raw output, so that the host never holds the volume.
+    std::optional<StreamedOutput> streamed;
+    if (!*slice && StreamedOutput::streams(options.output))
+      streamed.emplace(options.output, inputs->field.dims, inputs->field.geometry);
+    LicVolumeOptions how{.deviceCap = options.memoryBudget,
+                         .sinkAtOnce = true,
+                         .stream = stream ? &*stream : nullptr,
+                         .scan = scan ? &*scan : nullptr};
+    if (streamed)
+      how.sink = [&](const Brick& brick, const ScalarVolume& lic) {
+        return streamed->take(brick, lic);
+      };
+    Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, *inputs, how,
+                                                [&](double f) { progress.update(f); });
+    if (run) {
+      progress.finish();
+    } else {
+      progress.cancel();
+    }
+    // In one piece the volume comes back whole; in bricks a streamed output has it already.
+    const bool wroteBricks = run && streamed && run->volume.values.empty();
+    Result<void> done = !run          ? Result<void>(run.error())
+                        : wroteBricks ? streamed->finish()
+                                      : writeComputeOutput(options, *slice, run->volume);
+    if (done) {
+      noteHiddenFraction(global, session.lic,
+                         wroteBricks ? streamed->hiddenFraction() : hiddenFractionOf(run->volume),
+                         summary);
+      summary.bricks = run->bricks;
+      summary.shares = run->devices;
+    }
+    if (!done)
+      status = reportError(done.error());
+    else if (!global.quiet)
+      std::fprintf(stderr, "lic3d: wrote %s (%s, on %s%s)\n", options.output.c_str(),
+                   fieldText(session.field, *inputs).c_str(), deviceNames.c_str(),
+                   run->bricks > 1 ? (", in " + std::to_string(run->bricks) + " bricks of " +
+                                      gridText(run->brickCore) + " and ghost layers")
+                                         .c_str()
+                                   : "");
+  }
+  status = finish(contexts, status);
+  if (status == kExitOk) {
+    summary.device = device.deviceInfo().name;
+    printSummary(global, summary, start);
+  }
+  return status;
+}
+
+}  // namespace lic3d::cli

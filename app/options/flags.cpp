@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "options/flags.h"
+
+namespace lic3d::cli {
+namespace {
+
+// "--length" of "-L,--length".
+std::string longName(const std::string& flags) {
+  const std::size_t comma = flags.rfind(',');
+  return comma == std::string::npos ? flags : flags.substr(comma + 1);
+}
+
+}  // namespace
+
+std::vector<std::string_view> splitCommas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    parts.push_back(text.substr(start, comma - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return parts;
+}
+
+std::map<std::string, std::string, std::less<>>& flagNames() {
+  static std::map<std::string, std::string, std::less<>> names;
+  return names;
+}
+
+void nameFlag(std::string_view key, const std::string& flags) {
+  flagNames().emplace(std::string(key), longName(flags));
+}
+
+TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
+                    const std::string& help, const std::string& shownDefault,
+                    std::string_view key) {
+  option.option = app.add_option(flag, option.text, help);
+  if (!shownDefault.empty()) option.option->default_str(shownDefault);
+  if (!key.empty()) nameFlag(key, flag);
+  return option;
+}
+
+CLI::Validator rangeCheck(const ParameterRange& range) {
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        // CLI11 reads an empty value as the type's zero: refused here, or `--length ''` is 0.
+        if (text.empty()) return "needs a number, got ''";
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size()) return {};  // CLI11 says
+        return range.contains(value) ? std::string() : "must be in " + range.text();
+      },
+      "in " + range.text(), "RANGE");
+}
+
+}  // namespace lic3d::cli

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Internal to the command-line options (options/session_options.cpp, options/view_options.cpp): how
+// a flag is added with its range and its session key, and the small parsers the text flags share.
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parameter_ranges.h"
+#include "options/session_options.h"
+
+namespace lic3d::cli {
+
+template <class T>
+Result<T> parseNumber(std::string_view text, const char* flag) {
+  T value{};
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end)
+    return inputError(std::string(flag) + ": '" + std::string(text) + "' is not a number");
+  return value;
+}
+
+std::vector<std::string_view> splitCommas(std::string_view text);
+
+// The session keys the engine names parameters by (Error::parameter), and the flags that set
+// them: reportError shows the flag where the message has the key. Filled as the options are
+// added.
+std::map<std::string, std::string, std::less<>>& flagNames();
+// Records that `flags` ("-L,--length") sets the session key `key`.
+void nameFlag(std::string_view key, const std::string& flags);
+
+TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
+                    const std::string& help, const std::string& shownDefault = "",
+                    std::string_view key = {});
+
+// CLI11's check of a value against its range of core/parameter_ranges.h.
+CLI::Validator rangeCheck(const ParameterRange& range);
+
+// A numeric option with its range, whose key error messages name.
+template <class T>
+CLI::Option* addRanged(CLI::App& app, const std::string& flags, T& value,
+                       const ParameterRange& range, const std::string& help) {
+  nameFlag(range.key, flags);
+  return app.add_option(flags, value, help)->check(rangeCheck(range))->capture_default_str();
+}
+
+// The view flags whose text needs parsing, into the session (checked with it afterwards).
+Result<void> applyViewOptions(SessionOptions& options);
+
+}  // namespace lic3d::cli

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "options/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace lic3d::cli {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Progress::Progress(std::string what, bool quiet)
+    : what_(std::move(what)),
+      quiet_(quiet),
+      terminal_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() { finish(); }
+
+void Progress::update(double fraction) {
+  if (quiet_ || finished_) return;
+  const int percent = static_cast<int>(fraction * 100.0);
+  // A terminal gets every percent in place; a log gets one line per quarter.
+  const int step = terminal_ ? 1 : 25;
+  if (percent / step == lastReported_ / step || percent >= 100) return;
+  lastReported_ = percent;
+  if (terminal_)
+    std::fprintf(stderr, "\rlic3d: %s %3d%%", what_.c_str(), percent);
+  else
+    std::fprintf(stderr, "lic3d: %s %d%%\n", what_.c_str(), percent);
+}
+
+void Progress::cancel() {
+  if (finished_) return;
+  finished_ = true;
+  if (!quiet_ && terminal_ && lastReported_ >= 0) std::fputc('\n', stderr);
+}
+
+void Progress::finish() {
+  if (quiet_ || finished_) return;
+  finished_ = true;
+  std::fprintf(stderr, "%slic3d: %s done in %.2f s\n", terminal_ ? "\r" : "", what_.c_str(),
+               secondsSince(start_));
+}
+
+FrameProgress::FrameProgress(int total, bool quiet)
+    : total_(total),
+      quiet_(quiet),
+      terminal_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+FrameProgress::~FrameProgress() { finish(); }
+
+void FrameProgress::frameDone(int frame) {
+  ++done_;
+  if (quiet_) return;
+  const double elapsed = secondsSince(start_);
+  const double left = elapsed / done_ * (total_ - done_);
+  // "\033[K" clears what a longer earlier line left on the terminal.
+  std::fprintf(stderr, "%slic3d: frame %d: %d/%d done, %.1f s elapsed, ETA %.1f s%s",
+               terminal_ ? "\r" : "", frame, done_, total_, elapsed, left,
+               terminal_ ? "\033[K" : "\n");
+  std::fflush(stderr);
+}
+
+void FrameProgress::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (quiet_ || !terminal_ || done_ == 0) return;
+  std::fputc('\n', stderr);  // keep the live line
+}
+
+}  // namespace lic3d::cli

@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "viewer/app.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+
+#include <glm/trigonometric.hpp>
+
+#include "core/slice_geometry.h"
+#include "gpu/gpu_submit.h"
+#include "gpu/vk_check.h"
+#include "io/png_writer.h"
+#include "io/session_file.h"
+#include "lic/legend.h"
+
+namespace lic3d::viewer {
+
+void App::updateCamera(const Input& in) {
+  CameraParams& camera = session_.view.camera;
+  const VkExtent2D extent = presenter_->extent();
+  const float aspect =
+      static_cast<float>(extent.width) / static_cast<float>(std::max(extent.height, 1u));
+  const glm::vec3 half = boxHalfExtent(renderer_->dims(), renderer_->geometry());
+  const CameraMatrices m = computeCamera(camera, half, aspect);
+  if (in.orbiting) {
+    camera.azimuth -= static_cast<float>(in.dx) * 0.3f;
+    camera.elevation =
+        std::clamp(camera.elevation + static_cast<float>(in.dy) * 0.3f, -89.0f, 89.0f);
+  }
+  if (in.panning) {
+    // One pixel moves the target by the world size of a pixel at the target's depth.
+    const float pixel = 2.0f * m.distance * std::tan(glm::radians(camera.fovY) * 0.5f) /
+                        static_cast<float>(std::max(extent.height, 1u));
+    camera.target +=
+        (-static_cast<float>(in.dx) * m.right + static_cast<float>(in.dy) * m.up) * pixel;
+  }
+  if (in.scroll != 0.0)
+    camera.distance = m.distance * std::pow(0.9f, static_cast<float>(in.scroll));
+}
+
+std::optional<LegendSpec> App::legendSpec() const {
+  const ViewParams& v = session_.view;
+  if (!session_.twoD) return renderer_->hasVolume() ? renderer_->legendFor(v) : std::nullopt;
+  if (!v.legend || v.color != ColorMode::Magnitude) return std::nullopt;
+  const float low = v.autoColorRange ? stats_.minMagnitude : v.colorLow;
+  const float high = v.autoColorRange ? stats_.maxMagnitude : v.colorHigh;
+  return LegendSpec{[v](float t) { return viewColor(v, t); }, low, high, legendTitle("speed", "")};
+}
+
+PictureLayout App::viewLayout() const {
+  const VkExtent2D extent = presenter_->extent();
+  const int width = static_cast<int>(extent.width) -
+                    static_cast<int>(panelWidth(ui_, static_cast<float>(extent.width)));
+  const std::optional<LegendSpec> legend = stopped_ ? std::nullopt : legendSpec();
+  return pictureLayout(std::max(width, 1), static_cast<int>(extent.height),
+                       legend ? &*legend : nullptr, session_.view.title);
+}
+
+// The box's edges and axis ticks (--axes) around the volume, in ImGui's background layer.
+void App::drawAxes(const PictureLayout& layout) const {
+  if (!session_.view.axes || !renderer_->hasVolume() ||
+      session_.view.stereo == StereoMode::SideBySide)
+    return;
+  const glm::ivec4 area = layout.picture;
+  const VolumeFacts facts = renderer_->volumeFacts();
+  const SliceFrame frame = makeSliceFrame(session_.view, facts, Eye::Mono,
+                                          static_cast<float>(area.z) / static_cast<float>(area.w));
+  const BoxAxes axes = projectBoxAxes(frame.camera, session_.view.camera.orthographic,
+                                      frame.halfExtent, facts.dims, facts.geometry, area);
+  const ImU32 line = imguiInk(session_.view.background, 160);
+  const ImU32 ink = imguiInk(session_.view.background);
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float font = ImGui::GetFontSize();
+  for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
+  for (const AxisTick& tick : axes.ticks) {
+    const glm::vec2 end = tick.at + 5.0f * tick.outward;
+    const ImVec2 size = ImGui::CalcTextSize(tick.text.c_str());
+    // The label's centre beyond the tick, far enough along the outward direction to clear it;
+    // a label that would leave the view (a close camera) is left out with its tick.
+    const glm::vec2 centre = end + (0.5f * std::abs(tick.outward.x) * size.x +
+                                    0.5f * std::abs(tick.outward.y) * size.y + 3.0f) *
+                                       tick.outward;
+    const glm::vec2 low = centre - 0.5f * glm::vec2(size.x, size.y);
+    if (low.x < static_cast<float>(area.x) || low.y < static_cast<float>(area.y) ||
+        low.x + size.x > static_cast<float>(area.x + area.z) ||
+        low.y + size.y > static_cast<float>(area.y + area.w))
+      continue;
+    draw->AddLine(ImVec2(tick.at.x, tick.at.y), ImVec2(end.x, end.y), ink);
+    draw->AddText(ImVec2(low.x, low.y), ink, tick.text.c_str());
+  }
+  for (const AxisLabel& label : axes.labels) {
+    const float width = ImGui::CalcTextSize(label.text.c_str()).x;
+    const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f,
+                               static_cast<float>(area.x) + 2.0f,
+                               std::max(2.0f, static_cast<float>(area.x + area.z) - width - 2.0f));
+    draw->AddText(ImVec2(x, label.at.y - 0.5f * font), ink, label.text.c_str());
+  }
+}
+
+void App::drawAnnotations(const PictureLayout& layout) const {
+  if (stopped_) return;
+  if (const std::optional<LegendSpec> legend = legendSpec())
+    drawLegend(*legend, layout.legend, session_.view.background);
+  drawTitle(session_.view.title, layout.title, session_.view.background);
+  if (!session_.twoD) drawAxes(layout);
+}
+
+void App::animate(double seconds) {
+  if (ui_.playingTime && stats_.timeDependent && stats_.timeEnd > 0.0) {
+    // Time runs through its range in ui_.timeSeconds and starts again: a loop for a periodic
+    // field, and for a series of files from the last step back to the first.
+    const double range = stats_.timeEnd;
+    timePhase_ = std::fmod(session_.time + seconds * range / std::max(ui_.timeSeconds, 0.1f),
+                           stats_.timePeriodic ? range : range + 1e-9);
+    session_.time = timePhase_;
+  }
+  if (!ui_.playing) return;
+  LicParams& lic = session_.lic;
+  if (lic.length == 0) return;
+  // The CLI's bias cycle, -L..L..-L (4L steps), at ui_.animationSpeed steps per second.
+  biasPhase_ = std::fmod(biasPhase_ + seconds * ui_.animationSpeed / (4.0 * lic.length), 1.0);
+  lic.bias = biasInCycle(lic.length, biasPhase_);
+}
+
+Result<void> App::handleActions(const Actions& actions) {
+  if (actions.reloadField) {
+    session_.timeSteps = ui_.pendingTimeSteps;
+    if (session_.twoD) {  // the 2D picture reads its plane itself
+      session_.field = ui_.pendingField;
+      session_.noise = ui_.pendingNoise;
+    } else {
+      LIC3D_TRY(startLoading(ui_.pendingField, ui_.pendingNoise));
+    }
+  }
+  if (actions.resetView) {
+    const ViewParams defaults;
+    session_.view.camera = defaults.camera;
+  }
+  if (actions.dismissAlert) stats_.alert.clear();
+  if (actions.saveSession) {
+    const Result<void> r = writeSession(ui_.sessionPath, session_);
+    stats_.message = r ? "saved " + ui_.sessionPath : r.error().message;
+  }
+  if (actions.loadSession) {
+    Result<Session> loaded = readSession(ui_.sessionPath);
+    if (!loaded) {
+      stats_.message = loaded.error().message;
+    } else {
+      const bool newInputs = !(loaded->field == session_.field && loaded->noise == session_.noise);
+      session_ = std::move(loaded).value();
+      ui_.pendingField = session_.field;
+      ui_.pendingNoise = session_.noise;
+      ui_.pendingTimeSteps = session_.timeSteps;
+      if (newInputs && !session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
+      stats_.message = "loaded " + ui_.sessionPath;
+    }
+  }
+  if (actions.renderImage && session_.twoD && planeView_ && planeView_->hasPicture()) {
+    const Result<void> written = writePng(ui_.imagePath, planeView_->image(session_.view));
+    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
+  } else if (actions.renderImage && renderer_->hasVolume()) {
+    // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
+    vkDeviceWaitIdle(context_->device());
+    ViewParams view = session_.view;
+    view.width = ui_.imageWidth;
+    view.height = ui_.imageHeight;
+    Result<RgbaImage> image = renderer_->render(*renderer_->shownParams(), view);
+    const Result<void> written =
+        image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
+    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
+  }
+  return {};
+}
+
+Result<void> App::saveScreenshot(const FramePresenter::Frame& f) {
+  const std::string path = f.scriptedShot
+                               ? options_.screenshot
+                               : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
+  LIC3D_TRY(writePng(path, presenter_->screenshot(f)));
+  stats_.message = "wrote " + path;
+  if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", path.c_str());
+  return {};
+}
+
+// Draws one frame; false when the app should quit.
+Result<bool> App::frame() {
+  glfwPollEvents();
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - lastTime_).count();
+  lastTime_ = now;
+  stats_.fps = static_cast<float>(0.9 * stats_.fps + 0.1 * (seconds > 0.0 ? 1.0 / seconds : 0.0));
+
+  const Input in = input_.take();
+  if (in.quit || glfwWindowShouldClose(window_)) return false;
+  const VkExtent2D window = windowExtent();
+  if (window.width == 0 || window.height == 0) {  // minimised: nothing to draw into
+    glfwWaitEvents();
+    return true;
+  }
+  const VkExtent2D shown = presenter_->extent();
+  if (in.resized || shown.width != window.width || shown.height != window.height) {
+    input_.resized = false;
+    LIC3D_TRY(presenter_->recreateSwapchain(window));
+    ImGui_ImplVulkan_SetMinImageCount(presenter_->swapchain().minImageCount());
+  }
+
+  if (!stopped_) LIC3D_TRY(finishLoading());
+  FramePresenter::Frame& f = presenter_->frame(frameNumber_);
+  const auto slot = static_cast<std::uint32_t>(frameNumber_ % FramePresenter::kFramesInFlight);
+  LIC3D_TRY(presenter_->wait(f));
+  // What the frame's last submission finished and measured.
+  if (f.finishedLic) {
+    renderer_->collectStatistics(slot);
+    ++soak_.counts.volumes;
+  }
+  if (f.timed) {
+    LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
+    LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
+    if (f.licSlices > 0) {
+      licSumMs_ += slabMs;
+      // Aim the next slabs at the LIC time budget, from this device's measured speed.
+      const double msPerSlice = std::max(slabMs / f.licSlices, 1e-3);
+      slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
+                                   std::max(1, renderer_->dims().z));
+    }
+    if (f.finishedLic) {
+      stats_.licMs = licSumMs_;  // the whole volume, summed over its slabs
+      licSumMs_ = 0.0;
+    }
+  }
+  f.finishedLic = false;
+  if (f.screenshot) {
+    LIC3D_TRY(saveScreenshot(f));
+    f.screenshot = f.scriptedShot = false;
+  }
+
+  LIC3D_TRY_ASSIGN(const std::optional<std::uint32_t> imageIndex, presenter_->acquire(f, window));
+  if (!imageIndex) {  // out of date: made again, drawn next frame
+    ImGui_ImplVulkan_SetMinImageCount(presenter_->swapchain().minImageCount());
+    return true;
+  }
+
+  // UI and input.
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  if (in.toggleUi) ui_.visible = !ui_.visible;
+  if (in.toggleHelp) ui_.help = !ui_.help;
+  if (in.togglePlay) ui_.playing = !ui_.playing;
+  const LicStatus status = renderer_->licStatus();
+  stats_.computing = status.pending;
+  stats_.computeFraction = status.fraction;
+  stats_.waitingForMask = status.waitingForMask;
+  stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
+  const VolumeFacts facts = renderer_->volumeFacts();
+  stats_.colorValues = facts.colorValues;
+  stats_.opacityValues = facts.opacityValues;
+  stats_.hiddenFraction = renderer_->hiddenFraction().value_or(-1.0);
+  // Laid out once per frame: the annotations and the picture's viewport share it.
+  const PictureLayout layout = viewLayout();
+  drawAnnotations(layout);
+  Actions actions = drawUi(session_, ui_, stats_);
+  if (stopped_ && actions.dismissAlert) return false;  // the dialog's OK quits
+  ImGui::Render();
+  actions.resetView = actions.resetView || in.resetView;
+  actions.screenshot = actions.screenshot || in.screenshot;
+  if (!session_.twoD && renderer_->hasVolume() && !ImGui::GetIO().WantCaptureMouse)
+    updateCamera(in);
+  if (!stopped_) {
+    animate(seconds);
+    LIC3D_TRY(handleActions(actions));
+  }
+  if (options_.soak && !stopped_) {
+    const std::optional<TimeSeries>& series = loader_.series();
+    const Soak::AppState state{
+        .atRest = !stats_.loading && !renderer_->licStatus().pending &&
+                  !loader_.timePending(session_.time),
+        .seriesStep = series && !stats_.loading ? series->stepTime(1) - series->stepTime(0) : 0.0,
+        .deviceBytes = context_->allocatedBytes()};
+    soak_.step(frameNumber_, options_.frames, session_, state, [&](bool larger) {
+      glfwSetWindowSize(window_, options_.windowWidth + (larger ? 64 : 0),
+                        options_.windowHeight + (larger ? 48 : 0));
+    });
+  }
+  if (auto r = validate(session_.view); !r) {
+    stats_.message = uiMessage(r.error());
+    session_.view = drawnSession_.view;
+  }
+  if (stopped_) {
+    // Nothing is read or computed any more: the session stays as it was saved.
+  } else if (session_.twoD) {
+    updatePlane();
+  } else {
+    // Back from the 2D mode with another field: the volume's field is read again.
+    if (!stats_.loading &&
+        (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
+      LIC3D_TRY(startLoading(session_.field, session_.noise));
+    LIC3D_TRY(updateTime());
+    LIC3D_TRY(updateScalars());
+    if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
+      if (auto r = renderer_->requestLic(session_.lic); !r) {
+        stats_.message = uiMessage(r.error());
+        session_.lic = drawnSession_.lic;
+      }
+    }
+  }
+  drawnSession_ = session_;
+
+  // A scripted run takes its screenshot once the volume for the current parameters is shown
+  // (stopped: at once, showing the error).
+  const bool ready = stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
+                                                : !stats_.loading && renderer_->hasVolume() &&
+                                                      !renderer_->licStatus().pending &&
+                                                      !loader_.timePending(session_.time));
+  const bool scriptedShot = options_.frames > 0 &&
+                            frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
+                            ready;
+  // It quits after this frame; run() saves the screenshot once the frame has finished.
+  const bool quitAfterThis = scriptedShot;
+  f.scriptedShot = scriptedShot && !options_.screenshot.empty();
+  f.screenshot = actions.screenshot || f.scriptedShot;
+
+  LIC3D_TRY(recordPicture(f, slot, layout));
+  LIC3D_TRY_ASSIGN(const bool outOfDate,
+                   presenter_->finish(f, *imageIndex, [](VkCommandBuffer cmd) {
+                     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+                   }));
+  if (outOfDate) input_.resized = true;
+  ++frameNumber_;
+  if (options_.frames > 0 && frameNumber_ > static_cast<std::uint64_t>(options_.frames) + 100000)
+    return runtimeError("the LIC volume was not ready after 100000 frames");
+  return !quitAfterThis;
+}
+
+// Records the frame's LIC slab and the picture into the offscreen image, which it leaves ready
+// for the blit to the window.
+Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
+                                const PictureLayout& layout) {
+  LIC3D_TRY_ASSIGN(const VkCommandBuffer cmd, presenter_->begin(f));
+  f.timed = f.timer.valid();
+  if (f.timed) {
+    f.timer.reset(cmd, 0);
+    f.timer.reset(cmd, 1);
+    f.timer.begin(cmd, 0);
+  }
+  LIC3D_TRY_ASSIGN(const LicWork work, renderer_->recordLicWork(cmd, slicesPerFrame_, slot));
+  if (f.timed) f.timer.end(cmd, 0);
+  f.finishedLic = work.finished;
+  f.licSlices = work.slicesRecorded;
+
+  const VkExtent2D extent = presenter_->extent();
+  const Image& offscreen = presenter_->offscreen();
+  imageBarrier(cmd, offscreen.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+  if (f.timed) f.timer.begin(cmd, 1);
+  beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
+  const glm::ivec4 picture = layout.picture;
+  const VkRect2D area{
+      {picture.x, picture.y},
+      {static_cast<std::uint32_t>(picture.z), static_cast<std::uint32_t>(picture.w)}};
+  const Result<void> drawn = session_.twoD || stopped_
+                                 ? Result<void>()
+                                 : renderer_->recordDraw(cmd, FramePresenter::kOffscreenFormat,
+                                                         area, session_.view, 2 * slot);
+  vkCmdEndRendering(cmd);
+  if (f.timed) f.timer.end(cmd, 1);
+  LIC3D_TRY(drawn);
+
+  if (session_.twoD && planeView_ && !stopped_) {
+    planeView_->record(cmd, offscreen.handle(), area);  // leaves it ready for the blit
+  } else {
+    imageBarrier(cmd, offscreen.handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  return {};
+}
+
+int App::run() {
+  if (auto r = init(); !r) {
+    if (r.error().kind == ErrorKind::Runtime) saveRecovery();
+    return cli::reportError(r.error());
+  }
+  drawnSession_ = session_;
+  while (true) {
+    Result<bool> more = frame();
+    if (!more && more.error().deviceLost) {
+      Result<void> recovered = recoverDevice(more.error());
+      if (recovered) continue;
+      more = std::move(recovered).error();
+    }
+    if (!more) {
+      exitStatus_ = cli::reportError(more.error());
+      saveRecovery();
+      if (showStopped(more.error())) continue;
+      break;
+    }
+    if (!*more) break;
+  }
+  if (!context_) return exitStatus_;  // the device was lost and could not be made again
+  // Let the last screenshot's frame finish (a scripted run quits right after recording it).
+  vkDeviceWaitIdle(context_->device());
+  for (std::uint64_t i = 0; i < FramePresenter::kFramesInFlight; ++i) {
+    FramePresenter::Frame& f = presenter_->frame(i);
+    if (f.screenshot) {
+      if (auto r = saveScreenshot(f); !r) exitStatus_ = cli::reportError(r.error());
+      f.screenshot = f.scriptedShot = false;
+    }
+  }
+  if (options_.soak && exitStatus_ == cli::kExitOk)
+    exitStatus_ =
+        soak_.verdict(frameNumber_, presenter_->swapchainsCreated(), renderer_->maskBuildCount());
+  if (!options_.saveSession.empty()) {
+    if (auto r = writeSession(options_.saveSession, session_); !r)
+      exitStatus_ = cli::reportError(r.error());
+    else
+      std::fprintf(stderr, "lic3d-view: wrote %s\n", options_.saveSession.c_str());
+  }
+  const std::size_t validationMessages =
+      lostValidationMessages_ + context_->validationMessageCount();
+  if (context_->validationEnabled() && validationMessages > 0) {
+    std::fprintf(stderr, "lic3d-view: error: %zu validation message(s)\n", validationMessages);
+    if (exitStatus_ == cli::kExitOk) exitStatus_ = cli::kExitFailure;
+  }
+  return exitStatus_;
+}
+
+int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
+              const ViewerOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  App app(global, inputs, options);
+  const int status = app.run();
+  // The stages of the whole session: field loads, uploads, LIC volumes, screenshots.
+  if (global.timings)
+    cli::printTimings(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return status;
+}
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "viewer/plane.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "gpu/gpu_submit.h"
+#include "lic/colouring.h"
+#include "lic/lic2d_reference.h"
+#include "lic/noise.h"
+#include "options/session_options.h"
+
+namespace lic3d::viewer {
+namespace {
+
+// What each stage of the picture depends on.
+bool sameField(const Session& a, const Session& b) {
+  return a.field == b.field && a.plane.axis == b.plane.axis && a.plane.index == b.plane.index &&
+         a.time == b.time;
+}
+bool sameInputs(const Session& a, const Session& b) {
+  return sameField(a, b) && a.noise == b.noise && a.plane == b.plane && a.precision == b.precision;
+}
+bool samePicture(const Session& a, const Session& b) {
+  return sameInputs(a, b) && a.lic == b.lic && a.view == b.view;
+}
+
+}  // namespace
+
+Result<PlaneView> PlaneView::create(const Context& context) {
+  PlaneView view;
+  view.context_ = &context;
+  LIC3D_TRY_ASSIGN(Lic2DPass pass, Lic2DPass::create(context));
+  view.pass_.emplace(std::move(pass));
+  return view;
+}
+
+Result<void> PlaneView::update(const Session& session) {
+  if (made_ && samePicture(*made_, session)) return {};
+  // A picture that could not be made is tried again only once the session changes, not every
+  // frame (a field file that cannot be read would be read at each).
+  if (failed_ && samePicture(*failed_, session)) return {};
+  Result<void> made = make(session);
+  if (made)
+    failed_.reset();
+  else
+    failed_ = session;
+  return made;
+}
+
+Result<void> PlaneView::make(const Session& session) {
+  LIC3D_TRY(checkLic2DParams(session.lic));
+  const bool newField = !made_ || !sameField(*made_, session);
+  const bool newInputs = !made_ || !sameInputs(*made_, session);
+  if (newField) {
+    if (!made_ || !(made_->field == session.field)) source_ = PlaneSource{};
+    LIC3D_TRY_ASSIGN(field_, planeField(session, false, session.time, source_));
+    minMagnitude_ = static_cast<float>(lic3d::minMagnitude(field_));
+    maxMagnitude_ = static_cast<float>(lic3d::maxMagnitude(field_));
+  }
+  if (newInputs) {
+    const Dims size = imageSize(field_.dims, session.plane);
+    // The noise depends on the image's size and the noise source only.
+    if (!made_ || noise_.dims != size || !(made_->noise == session.noise)) {
+      LIC3D_TRY_ASSIGN(noise_, loadNoise(session.noise, size));
+    }
+    inputs_.reset();
+    LIC3D_TRY_ASSIGN(inputs_, uploadLic2DInputs(*context_, field_, noise_, session.precision));
+  }
+  if (newInputs || !(made_->lic == session.lic)) {
+    const auto start = std::chrono::steady_clock::now();
+    LIC3D_TRY_ASSIGN(lic_, pass_->compute(*inputs_, session.lic));
+    licMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    lic_.geometry = imageGeometry(field_, noise_.dims);
+  }
+  // The app draws its own legend over the window.
+  ViewParams view = session.view;
+  view.legend = false;
+  const RgbaImage rgba = colourLic2D(lic_, field_, view, source_.outside);
+
+  vkQueueWaitIdle(context_->queue());  // frames in flight read the old picture
+  picture_ = Image();
+  ImageDesc desc;
+  desc.type = VK_IMAGE_TYPE_2D;
+  desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+  desc.extent = {static_cast<std::uint32_t>(rgba.width), static_cast<std::uint32_t>(rgba.height),
+                 1};
+  desc.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+               VK_IMAGE_USAGE_SAMPLED_BIT;
+  desc.name = "2d lic picture";
+  LIC3D_TRY_ASSIGN(picture_, Image::create(*context_, desc));
+  LIC3D_TRY(uploadImage(*context_, picture_, rgba.pixels.data(), rgba.pixels.size()));
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, picture_.handle(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+      },
+      "2d lic picture layout"));
+  made_ = session;
+  return {};
+}
+
+void PlaneView::record(VkCommandBuffer cmd, VkImage target, VkRect2D area) const {
+  imageBarrier(
+      cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  if (picture_) {
+    const VkExtent3D size = picture_.extent();
+    const VkExtent2D extent = area.extent;
+    const double scale = std::min(static_cast<double>(extent.width) / size.width,
+                                  static_cast<double>(extent.height) / size.height);
+    const int width = std::max(1, static_cast<int>(size.width * scale));
+    const int height = std::max(1, static_cast<int>(size.height * scale));
+    const int x0 = area.offset.x + (static_cast<int>(extent.width) - width) / 2;
+    const int y0 = area.offset.y + (static_cast<int>(extent.height) - height) / 2;
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {static_cast<std::int32_t>(size.width),
+                          static_cast<std::int32_t>(size.height), 1};
+    blit.dstSubresource = blit.srcSubresource;
+    blit.dstOffsets[0] = {x0, y0, 0};
+    blit.dstOffsets[1] = {x0 + width, y0 + height, 1};
+    vkCmdBlitImage(cmd, picture_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  }
+  imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+               VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The desktop app's Dear ImGui panels: every parameter of a Session, with tooltips, plus the
+// stats overlay, the colour legend and the help panel. Panels edit the session in place; the
+// caller compares sessions to decide between reloading, recomputing and redrawing.
+
+#include <imgui.h>
+
+#include <cstdint>
+#include <glm/vec4.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/session.h"
+#include "core/value_histogram.h"
+#include "lic/legend.h"
+
+namespace lic3d::viewer {
+
+// What the panels show besides the session.
+struct Stats {
+  float fps = 0.0f;
+  double licMs = 0.0;    // GPU time of the last LIC volume, summed over its slabs (timestamps)
+  double frameMs = 0.0;  // GPU time of the last frame's volume draw
+  std::string device;
+  Dims dims{0};
+  double volumeMiB = 0.0;
+  bool computing = false;
+  double computeFraction = 1.0;
+  bool waitingForMask = false;
+  bool loading = false;
+  std::string message;  // the last error or notice, shown until replaced
+  std::string alert;    // a refused request or a lost device, shown in a dialog until dismissed
+  std::string alertTitle;
+  float minMagnitude = 0.0f, maxMagnitude = 1.0f;
+  // What colour and opacity can follow (inputs/scalars.h), and the values of the ones they
+  // follow (the transfer function editor's histograms).
+  std::vector<std::string> scalarChoices;
+  std::shared_ptr<const ValueHistogram> colorValues;
+  std::shared_ptr<const ValueHistogram> opacityValues;
+  double hiddenFraction = -1.0;  // of the voxels, by the sparsity mask (< 0: no mask)
+  // The field's time (docs/TIME.md): the slider runs over [0, timeEnd].
+  bool timeDependent = false;
+  bool timePeriodic = false;  // an analytic field: timeEnd is its period
+  double timeEnd = 0.0;
+};
+
+// Requests from the panels that are actions, not parameters.
+struct Actions {
+  bool saveSession = false;
+  bool loadSession = false;
+  bool screenshot = false;   // at window size, with the UI
+  bool renderImage = false;  // offscreen at the chosen size, without the UI
+  bool resetView = false;
+  bool reloadField = false;  // the field or noise source changed
+  bool dismissAlert = false;
+};
+
+struct UiState {
+  bool visible = true;
+  bool help = false;
+  bool playing = false;          // bias animation
+  float animationSpeed = 10.0f;  // bias steps per second
+  std::string sessionPath = "lic3d-session.json";
+  std::string imagePath = "lic3d-render.png";
+  int imageWidth = 1920;
+  int imageHeight = 1080;
+  FieldSource pendingField;  // edited until "Load" is pressed
+  NoiseSource pendingNoise;
+  int pendingTimeSteps = 0;   // steps of a time-dependent analytic field (0: the default)
+  bool playingTime = false;   // time animation
+  float timeSeconds = 20.0f;  // seconds for the whole time range
+  std::string transferPath = "lic3d-transfer.json";  // a ParaView colour-map preset
+  int selectedColorPoint = -1;                       // of the transfer function editor
+  std::string transferMessage;                       // the preset last loaded or saved
+};
+
+// The panels are docked at the right, the full height of the window; the picture takes the
+// rest. Their width in pixels for a window `displayWidth` wide (0 while hidden).
+float panelWidth(const UiState& ui, float displayWidth);
+
+// The legend (its colour bar, ticks and title) and the title drawn by ImGui into the rectangles
+// of a PictureLayout (x, y, width, height in pixels), in the ink that stands out from
+// `background`.
+void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background);
+// lic/legend.h's inkFor as an ImGui colour.
+ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha = 255);
+void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background);
+
+// The transfer function editor (viewer/transfer_editor.cpp): colour and opacity control points over
+// a histogram of their scalar, a preset file to load or save.
+void transferFunctionPanel(ViewParams& view, UiState& ui, const Stats& stats);
+
+// An error for the panels: the widget's label in place of the parameter's session key
+// (Error::parameter), e.g. "'step h' must be in [0.001, 8], got 9".
+std::string uiMessage(const Error& error);
+
+// Draws every panel for this frame (between ImGui::NewFrame and ImGui::Render).
+Actions drawUi(Session& session, UiState& ui, const Stats& stats);
+
+}  // namespace lic3d::viewer

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The desktop app: a GLFW window with a Vulkan swapchain, the engine's passes drawing the LIC
+// volume, and Dear ImGui panels on top.
+
+#include <string>
+
+#include "options/session_options.h"
+
+namespace lic3d::viewer {
+
+struct ViewerOptions {
+  int windowWidth = 1280;
+  int windowHeight = 800;
+  bool vsync = true;
+  bool hideUi = false;
+  // Scripted runs: after `frames` frames (and once the LIC volume for the current parameters is
+  // shown) save a screenshot of the window to `screenshot`, if given, and quit. 0 runs until
+  // the window closes.
+  int frames = 0;
+  std::string screenshot;
+  // On quit, save the session (every parameter as shown) to this JSON file, if given.
+  std::string saveSession;
+  // With `frames`: change a LIC or a view parameter every 10 frames and resize the window every
+  // 250 (for 10 frames), sample RSS and device memory, and fail if they grow after the warm-up.
+  bool soak = false;
+};
+
+// Runs the app until the window closes; returns the process exit status.
+int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
+              const ViewerOptions& options);
+
+}  // namespace lic3d::viewer
