@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/nrrd_header.h"
 #include "io/raw_volume.h"
 #include "io/volume_io.h"
@@ -25,10 +26,6 @@ namespace {
 constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are read as packed floats");
-
-std::string lowerCaseExtension(const std::filesystem::path& path) {
-  return asciiLowerCase(path.extension().string());
-}
 
 Error readWhole(const std::filesystem::path& path, const std::string& why) {
   return unsupportedError(path.string() + ": " + why +

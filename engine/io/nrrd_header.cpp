@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 
 namespace lic3d::nrrd {

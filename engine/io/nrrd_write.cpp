@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/nrrd_header.h"
@@ -23,11 +24,7 @@ static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are written as pa
 // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
 std::string formatVector(const glm::dvec3& v) {
   std::string text = "(";
-  text += formatDouble(v.x);
-  text += ',';
-  text += formatDouble(v.y);
-  text += ',';
-  text += formatDouble(v.z);
+  text += tripleText(v, ",");
   text += ')';
   return text;
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/file_util.h"
 
 namespace lic3d {

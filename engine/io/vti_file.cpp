@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 

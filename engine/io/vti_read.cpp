@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 #include "io/vti.h"

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 #include "io/vti.h"
@@ -35,10 +36,6 @@ Result<std::string> escapeXml(const std::filesystem::path& path, std::string_vie
   return escaped;
 }
 
-std::string tripleText(const glm::dvec3& v) {
-  return formatDouble(v.x) + " " + formatDouble(v.y) + " " + formatDouble(v.z);
-}
-
 // One point-data array, appended raw after a UInt64 byte count, in the host's byte order.
 Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGeometry& geometry,
                       std::string_view typeName, int components, std::string_view arrayName,
@@ -51,7 +48,7 @@ Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGe
       std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
       "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
       "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
-      tripleText(geometry.origin) + "\" Spacing=\"" + tripleText(geometry.spacing) +
+      tripleText(geometry.origin, " ") + "\" Spacing=\"" + tripleText(geometry.spacing, " ") +
       "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
       "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
       std::string(typeName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
