@@ -61,8 +61,7 @@ Result<FieldStream> FieldStream::openRaw(const std::filesystem::path& path) {
   FieldStream stream(std::move(file), path);
   stream.dims_ = layout.dims;
   stream.geometry_ = layout.geometry;
-  stream.vectors_.type =
-      layout.valueBytes == 8 ? vti::NumberType::Float64 : vti::NumberType::Float32;
+  stream.vectors_.type = layout.valueBytes == 8 ? NumberType::Float64 : NumberType::Float32;
   stream.vectors_.valueBytes = layout.valueBytes;
   stream.vectors_.order = layout.order;
   stream.vectors_.planar = layout.planar;
@@ -75,7 +74,7 @@ Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
                                    3,
                                    "3 vector components on a 3D grid",
                                    "vector components",
-                                   {nrrd::ValueType::Float, nrrd::ValueType::Double},
+                                   {NumberType::Float32, NumberType::Float64},
                                    "float or double",
                                    true,
                                    kMaxStreamedVoxels};
@@ -88,10 +87,9 @@ Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
   stream.dims_ = layout.dims;
   stream.geometry_ = layout.geometry;
   stream.unit_ = layout.sampleUnits;
-  const bool isDouble = layout.type == nrrd::ValueType::Double;
   stream.vectors_.offset = offset;
-  stream.vectors_.type = isDouble ? vti::NumberType::Float64 : vti::NumberType::Float32;
-  stream.vectors_.valueBytes = isDouble ? 8 : 4;
+  stream.vectors_.type = layout.type;
+  stream.vectors_.valueBytes = numberType(layout.type).bytes;
   stream.vectors_.order = layout.order;
   stream.vectors_.components = layout.components;  // 2 on a 2D grid
   LIC3D_TRY(stream.checkFileHolds(stream.vectors_, false));
@@ -168,7 +166,7 @@ Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std:
       return file->fail(what + ": the data block holds " + std::to_string(size) +
                         " bytes, expected " + std::to_string(expected) + " (" +
                         std::to_string(tuples) + " tuples of " + std::to_string(layout.components) +
-                        " " + std::string(each.type->name) + ")");
+                        " " + std::string(each.type->vtkXmlName) + ")");
     LIC3D_TRY(stream.checkFileHolds(layout, false));
     return layout;
   };
@@ -224,7 +222,7 @@ Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t fir
         std::memcpy(native.data(), buffer.data() + i * bytes, bytes);
         if (array.order != std::endian::native)
           std::reverse(native.begin(), native.begin() + static_cast<std::ptrdiff_t>(bytes));
-        const double decoded = vti::valueOf(native.data(), array.type);
+        const double decoded = valueOf(native.data(), array.type);
         const std::size_t voxel = array.planar ? done + i : done + i / array.components;
         const std::size_t component = array.planar ? span : i % array.components;
         store(voxel, component, decoded);
@@ -260,7 +258,7 @@ Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t
   const int rows = wholeRows ? 1 : dims.y;
   const int layers = wholeLayers ? 1 : dims.z;
   // Float32 vectors in the host's order are read straight into the field.
-  const bool direct = vectors_.type == vti::NumberType::Float32 && vectors_.components == 3 &&
+  const bool direct = vectors_.type == NumberType::Float32 && vectors_.components == 3 &&
                       !vectors_.planar && vectors_.order == std::endian::native;
   std::vector<unsigned char> buffer;
   for (int k = 0; k < layers; ++k) {

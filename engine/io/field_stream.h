@@ -53,7 +53,7 @@ class FieldStream {
   // interleaved (xyzxyz...) or planar (every x, then every y, then every z).
   struct ArrayLayout {
     std::uint64_t offset = 0;
-    vti::NumberType type = vti::NumberType::Float32;
+    NumberType type = NumberType::Float32;
     std::size_t valueBytes = 4;
     std::endian order = std::endian::little;
     std::size_t components = 3;

@@ -190,12 +190,6 @@ std::string lowerCaseExtension(const std::filesystem::path& path) {
   return asciiLowerCase(path.extension().string());
 }
 
-void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order) {
-  if (order == std::endian::native || valueBytes < 2) return;
-  for (std::size_t i = 0; i < count; ++i)
-    std::reverse(data + i * valueBytes, data + (i + 1) * valueBytes);
-}
-
 Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes, bool data) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path, data));
   if (reader.size() > maxBytes)

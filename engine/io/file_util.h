@@ -34,10 +34,6 @@ Error fileError(const std::filesystem::path& path, std::string_view problem);
 // a format.
 std::string lowerCaseExtension(const std::filesystem::path& path);
 
-// Reverses the bytes of each of the `count` values of `valueBytes` bytes at `data` when `order`
-// is not the host's byte order.
-void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order);
-
 // The whole file, or an error naming it: missing, unreadable, not a regular file, or larger than
 // maxBytes (refused from its size before anything is read).
 // `data`: the file is an input of the run that no output may replace (checkNotAnInput); false

@@ -14,6 +14,7 @@
 #include "core/parallel.h"
 #include "core/text.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 namespace {

@@ -19,6 +19,7 @@
 #include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd_header.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 namespace {

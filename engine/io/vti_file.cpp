@@ -24,20 +24,6 @@ constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
 // Files larger than this whose XML fits in it are read as a head and streamed (openHead).
 constexpr std::size_t kHeadBytes = std::size_t{64} << 10;
 
-constexpr TypeInfo kTypes[] = {
-    {"Int8", NumberType::Int8, 1},       {"UInt8", NumberType::UInt8, 1},
-    {"Int16", NumberType::Int16, 2},     {"UInt16", NumberType::UInt16, 2},
-    {"Int32", NumberType::Int32, 4},     {"UInt32", NumberType::UInt32, 4},
-    {"Int64", NumberType::Int64, 8},     {"UInt64", NumberType::UInt64, 8},
-    {"Float32", NumberType::Float32, 4}, {"Float64", NumberType::Float64, 8},
-};
-
-const TypeInfo* findType(std::string_view name) {
-  for (const TypeInfo& type : kTypes)
-    if (type.name == name) return &type;
-  return nullptr;
-}
-
 Result<std::int64_t> parseExtentNumber(std::string_view word) {
   const bool negative = !word.empty() && word.front() == '-';
   if (negative) word.remove_prefix(1);
@@ -147,30 +133,7 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
   return list.empty() ? "none" : list;
 }
 
-template <class T>
-double load(const unsigned char* data) {
-  T value;
-  std::memcpy(&value, data, sizeof(T));
-  return static_cast<double>(value);
-}
-
 }  // namespace
-
-double valueOf(const unsigned char* data, NumberType type) {
-  switch (type) {
-    case NumberType::Int8: return load<std::int8_t>(data);
-    case NumberType::UInt8: return load<std::uint8_t>(data);
-    case NumberType::Int16: return load<std::int16_t>(data);
-    case NumberType::UInt16: return load<std::uint16_t>(data);
-    case NumberType::Int32: return load<std::int32_t>(data);
-    case NumberType::UInt32: return load<std::uint32_t>(data);
-    case NumberType::Int64: return load<std::int64_t>(data);
-    case NumberType::UInt64: return load<std::uint64_t>(data);
-    case NumberType::Float32: return load<float>(data);
-    case NumberType::Float64: return load<double>(data);
-  }
-  return 0.0;
-}
 
 Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
   auto file = std::make_unique<VtiFile>();
@@ -310,7 +273,7 @@ Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {
       array.node = node;
       array.name = node.attribute("Name").value();
       array.cellData = cellData;
-      array.type = findType(node.attribute("type").value());
+      array.type = findVtkXmlType(node.attribute("type").value());
       if (const pugi::xml_attribute components = node.attribute("NumberOfComponents")) {
         if (!parseUnsigned(components.value(), array.components) || array.components < 1 ||
             array.components > 64)

@@ -16,30 +16,9 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d::vti {
-
-enum class NumberType {
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Int64,
-  UInt64,
-  Float32,
-  Float64
-};
-
-struct TypeInfo {
-  std::string_view name;
-  NumberType type;
-  std::size_t bytes;
-};
-
-// One value of `type` in native byte order, as a double.
-double valueOf(const unsigned char* data, NumberType type);
 
 // The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
 // (held by unique_ptr).
@@ -72,7 +51,7 @@ struct ArrayRef {
   std::string name;
   bool cellData = false;
   std::uint64_t components = 1;
-  const TypeInfo* type = nullptr;  // null for a type lic3d does not read
+  const NumberTypeInfo* type = nullptr;  // null for a type lic3d does not read
 };
 
 // The whole file read and parsed, with its grid (WholeExtent, Origin, Spacing) and its one Piece

@@ -32,10 +32,7 @@ using vti::ByteSource;
 using vti::chooseArray;
 using vti::describe;
 using vti::listArrays;
-using vti::NumberType;
 using vti::openVti;
-using vti::TypeInfo;
-using vti::valueOf;
 using vti::VtiFile;
 
 // Values are converted in chunks of this many.
@@ -49,38 +46,9 @@ constexpr std::size_t kStreamChunkBytes = std::size_t{32} << 20;
 // grow call).
 using ValueSink = std::function<void(std::uint64_t first, const double* values, std::size_t count)>;
 
-// Converts `count` whole values of `type` in byte order `order` at `data` into `out`.
-template <class T>
-void convertValues(const unsigned char* data, std::size_t count, std::endian order, double* out) {
-  for (std::size_t i = 0; i < count; ++i) {
-    std::array<unsigned char, sizeof(T)> bytes;
-    std::memcpy(bytes.data(), data + i * sizeof(T), sizeof(T));
-    if (order != std::endian::native) std::reverse(bytes.begin(), bytes.end());
-    T value;
-    std::memcpy(&value, bytes.data(), sizeof(T));
-    out[i] = static_cast<double>(value);
-  }
-}
-
-void convertValues(const TypeInfo& type, const unsigned char* data, std::size_t count,
-                   std::endian order, double* out) {
-  switch (type.type) {
-    case NumberType::Int8: return convertValues<std::int8_t>(data, count, order, out);
-    case NumberType::UInt8: return convertValues<std::uint8_t>(data, count, order, out);
-    case NumberType::Int16: return convertValues<std::int16_t>(data, count, order, out);
-    case NumberType::UInt16: return convertValues<std::uint16_t>(data, count, order, out);
-    case NumberType::Int32: return convertValues<std::int32_t>(data, count, order, out);
-    case NumberType::UInt32: return convertValues<std::uint32_t>(data, count, order, out);
-    case NumberType::Int64: return convertValues<std::int64_t>(data, count, order, out);
-    case NumberType::UInt64: return convertValues<std::uint64_t>(data, count, order, out);
-    case NumberType::Float32: return convertValues<float>(data, count, order, out);
-    case NumberType::Float64: return convertValues<double>(data, count, order, out);
-  }
-}
-
 // Whole values in memory, from value number `first` on, converted and delivered on the available
 // threads in chunks of kChunkValues.
-void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned char* data,
+void decodeInParallel(const NumberTypeInfo& type, std::endian order, const unsigned char* data,
                       std::uint64_t count, std::uint64_t first, const ValueSink& sink) {
   const std::size_t chunks = static_cast<std::size_t>((count + kChunkValues - 1) / kChunkValues);
   parallelChunks(chunks, [&](std::size_t begin, std::size_t end) {
@@ -88,7 +56,7 @@ void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned ch
     for (std::size_t c = begin; c < end; ++c) {
       const std::uint64_t at = std::uint64_t{c} * kChunkValues;
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(kChunkValues, count - at));
-      convertValues(type, data + at * type.bytes, n, order, values.data());
+      convertValues(type.type, data + at * type.bytes, n, order, values.data());
       sink(first + at, values.data(), n);
     }
   });
@@ -98,7 +66,7 @@ void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned ch
 // the next one.
 class ValueDecoder {
  public:
-  ValueDecoder(const TypeInfo& type, std::endian order, const ValueSink& sink)
+  ValueDecoder(const NumberTypeInfo& type, std::endian order, const ValueSink& sink)
       : type_(type), order_(order), sink_(sink) {
     values_.reserve(kChunkValues);
   }
@@ -135,7 +103,7 @@ class ValueDecoder {
     values_.clear();
   }
 
-  const TypeInfo& type_;
+  const NumberTypeInfo& type_;
   std::endian order_;
   const ValueSink& sink_;
   std::array<unsigned char, 8> carry_{};
@@ -215,7 +183,7 @@ class ArrayReader {
 
   std::string layoutText() const {
     return std::to_string(tuples_) + " tuples of " + std::to_string(array_.components) + " " +
-           std::string(array_.type->name);
+           std::string(array_.type->vtkXmlName);
   }
 
   Result<void> readAscii(const GrowSink& grow, const ValueSink& sink) {
