@@ -23,7 +23,7 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
-#include "io/vti_file.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 
@@ -64,8 +64,9 @@ class FieldStream {
   static Result<FieldStream> openRaw(const std::filesystem::path& path);
   static Result<FieldStream> openNrrd(const std::filesystem::path& path);
   static Result<FieldStream> openVti(const std::filesystem::path& path, std::string_view name);
-  // The file holds the array (exactly: nothing after it).
-  Result<void> checkFileHolds(const ArrayLayout& array, bool exact) const;
+  // `file` holds the array on a grid of `dims` (exactly: nothing after it); `path` as given.
+  static Result<void> checkFileHolds(const FileReader& file, const std::filesystem::path& path,
+                                     Dims dims, const ArrayLayout& array, bool exact);
   // The values of `count` voxels of `array` from voxel `first` on, handed to
   // store(voxel in the run, component, value), through `buffer`.
   template <class Store>

@@ -33,11 +33,6 @@ Result<std::int64_t> parseExtentNumber(std::string_view word) {
   return negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
 }
 
-struct Extent {
-  std::array<std::int64_t, 6> bounds{};
-  bool operator==(const Extent&) const = default;
-};
-
 // Where AppendedData's data starts in `bytes`: the end of its opening tag and the byte after its
 // '_'. Empty when there is no AppendedData or it is empty (<AppendedData/>).
 struct AppendedSplit {
@@ -102,25 +97,16 @@ Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, 
   return value;
 }
 
-Result<Extent> parseExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
+Result<Extent> readExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
   const pugi::xml_attribute attribute = node.attribute(name);
   if (!attribute) return file.fail(std::string(node.name()) + ": missing " + name);
-  const std::vector<std::string_view> words = splitWords(attribute.value());
-  Extent extent;
-  bool good = words.size() == 6;
-  for (std::size_t i = 0; good && i < 6; ++i) {
-    Result<std::int64_t> number = parseExtentNumber(words[i]);
-    good = number.ok();
-    if (good) extent.bounds[i] = *number;
-  }
-  for (std::size_t axis = 0; good && axis < 3; ++axis)
-    good = extent.bounds[2 * axis] <= extent.bounds[2 * axis + 1];
-  if (!good)
+  const std::optional<Extent> extent = parseExtent(attribute.value());
+  if (!extent)
     return file.fail(
         std::string(node.name()) + " " + name +
         ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
         quoteForMessage(attribute.value()));
-  return extent;
+  return *extent;
 }
 
 std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t components) {
@@ -134,6 +120,20 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
 }
 
 }  // namespace
+
+std::optional<Extent> parseExtent(std::string_view text) {
+  const std::vector<std::string_view> words = splitWords(text);
+  if (words.size() != 6) return std::nullopt;
+  Extent extent;
+  for (std::size_t i = 0; i < 6; ++i) {
+    Result<std::int64_t> number = parseExtentNumber(words[i]);
+    if (!number) return std::nullopt;
+    extent.bounds[i] = *number;
+  }
+  for (std::size_t axis = 0; axis < 3; ++axis)
+    if (extent.bounds[2 * axis] > extent.bounds[2 * axis + 1]) return std::nullopt;
+  return extent;
+}
 
 Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
   auto file = std::make_unique<VtiFile>();
@@ -217,7 +217,7 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool
 
   const pugi::xml_node image = root.child("ImageData");
   if (!image) return file->fail("VTKFile holds no ImageData element");
-  LIC3D_TRY_ASSIGN(const Extent whole, parseExtent(*file, image, "WholeExtent"));
+  LIC3D_TRY_ASSIGN(const Extent whole, readExtent(*file, image, "WholeExtent"));
   std::array<std::uint64_t, 3> sizes{};
   for (std::size_t axis = 0; axis < 3; ++axis)
     sizes[axis] =
@@ -250,7 +250,7 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool
                       " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
                       "write them by default)");
   if (file->piece.attribute("Extent")) {
-    LIC3D_TRY_ASSIGN(const Extent extent, parseExtent(*file, file->piece, "Extent"));
+    LIC3D_TRY_ASSIGN(const Extent extent, readExtent(*file, file->piece, "Extent"));
     if (!(extent == whole))
       return file->fail(
           "the Piece's Extent " + quoteForMessage(file->piece.attribute("Extent").value()) +
@@ -262,6 +262,33 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool
 
 std::string describe(const ArrayRef& array) {
   return "DataArray " + quoteForMessage(array.name) + (array.cellData ? " (cell data)" : "");
+}
+
+Result<void> checkArray(const VtiFile& file, const ArrayRef& array, std::uint64_t tuples) {
+  const std::string what = describe(array);
+  if (!array.type)
+    return file.fail(what + ": type " + quoteForMessage(array.node.attribute("type").value()) +
+                     " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+  if (const pugi::xml_attribute count = array.node.attribute("NumberOfTuples")) {
+    std::uint64_t declared = 0;
+    if (!parseUnsigned(count.value(), declared) || declared != tuples)
+      return file.fail(what + ": NumberOfTuples " + quoteForMessage(count.value()) +
+                       " does not match the " + std::to_string(tuples) +
+                       (array.cellData ? " cells" : " points") + " of the grid");
+  }
+  return {};
+}
+
+Result<std::uint64_t> appendedOffset(const VtiFile& file, const ArrayRef& array) {
+  std::uint64_t offset = 0;
+  const pugi::xml_attribute attribute = array.node.attribute("offset");
+  if (!attribute || !parseUnsigned(attribute.value(), offset))
+    return file.fail(describe(array) + ": an appended array needs a whole-number offset, found " +
+                     quoteForMessage(attribute.value()));
+  if (offset > file.appendedSize)
+    return file.fail(describe(array) + ": offset " + std::to_string(offset) + " is beyond the " +
+                     std::to_string(file.appendedSize) + " bytes of AppendedData");
+  return offset;
 }
 
 Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {

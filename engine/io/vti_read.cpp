@@ -27,8 +27,10 @@ namespace lic3d {
 constexpr std::size_t kInflateBatchBytes = std::size_t{32} << 20;
 namespace {
 
+using vti::appendedOffset;
 using vti::ArrayRef;
 using vti::ByteSource;
+using vti::checkArray;
 using vti::chooseArray;
 using vti::describe;
 using vti::listArrays;
@@ -136,18 +138,9 @@ class ArrayReader {
       : file_(file), array_(array), what_(describe(array)), tuples_(tuples) {}
 
   Result<void> read(const GrowSink& grow, const ValueSink& sink) {
-    if (!array_.type)
-      return fail("type " + quoteForMessage(array_.node.attribute("type").value()) +
-                  " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+    LIC3D_TRY(checkArray(file_, array_, tuples_));
     values_ = tuples_ * array_.components;
     bytes_ = values_ * array_.type->bytes;
-    if (const pugi::xml_attribute count = array_.node.attribute("NumberOfTuples")) {
-      std::uint64_t declared = 0;
-      if (!parseUnsigned(count.value(), declared) || declared != tuples_)
-        return fail("NumberOfTuples " + quoteForMessage(count.value()) + " does not match the " +
-                    std::to_string(tuples_) + (array_.cellData ? " cells" : " points") +
-                    " of the grid");
-    }
     const std::string format = array_.node.attribute("format").value();
     if (format == "ascii") return readAscii(grow, sink);
     if (format == "binary") {
@@ -156,14 +149,7 @@ class ArrayReader {
     }
     if (format == "appended") {
       if (!file_.hasAppended) return fail("format is appended, but the file has no AppendedData");
-      std::uint64_t offset = 0;
-      const pugi::xml_attribute offsetAttribute = array_.node.attribute("offset");
-      if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
-        return fail("an appended array needs a whole-number offset, found " +
-                    quoteForMessage(offsetAttribute.value()));
-      if (offset > file_.appendedSize)
-        return fail("offset " + std::to_string(offset) + " is beyond the " +
-                    std::to_string(file_.appendedSize) + " bytes of AppendedData");
+      LIC3D_TRY_ASSIGN(const std::uint64_t offset, appendedOffset(file_, array_));
       if (file_.appendedInFile) {
         LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(file_.path));
         if (reader.skip(file_.appendedAt + offset) != file_.appendedAt + offset)
