@@ -14,6 +14,7 @@
 #include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
+#include "io/vti_stream.h"
 
 namespace lic3d::vti {
 namespace {
@@ -119,6 +120,137 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
   return list.empty() ? "none" : list;
 }
 
+// The file's bytes (or, for a large file, its head: openHead) read and its XML parsed.
+Result<void> readXml(VtiFile& file, bool stream) {
+  const std::filesystem::path& path = file.path;
+  const bool head = openHead(file, stream);
+  if (!head && stream) {
+    LIC3D_TRY_ASSIGN(const FileReader reader, FileReader::open(path));
+    if (reader.size() > kHeadBytes)
+      return readWholeError(path,
+                            "its data is not all appended raw after an XML header of at "
+                            "most 64 KiB (inline ascii or base64 arrays)");
+  }
+  if (!head) {
+    LIC3D_TRY_ASSIGN(file.bytes, readFile(path, kMaxFileBytes));
+  }
+  const std::size_t first = file.bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || file.bytes[first] != '<')
+    return file.fail(first == std::string::npos
+                         ? "empty file (expected a VTK XML ImageData file)"
+                         : "not an XML file: it starts with " +
+                               quoteForMessage(std::string_view(file.bytes).substr(first, 16)) +
+                               ", expected '<?xml' or '<VTKFile'");
+  if (!head) {
+    LIC3D_TRY_ASSIGN(const std::optional<AppendedSplit> split, findAppended(file, file.bytes));
+    if (split) {
+      useAppended(file, file.bytes, *split);
+      file.appended = std::string_view(file.bytes).substr(split->data);
+      file.appendedAt = split->data;
+      file.appendedSize = file.appended.size();
+    }
+  }
+  std::string& xml = file.hasAppended ? file.xml : file.bytes;
+  const pugi::xml_parse_result parsed = file.document.load_buffer_inplace(
+      xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed)
+    return file.fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
+                     parsed.description());
+  return {};
+}
+
+// VTKFile's attributes: the type, the byte order, the header type, the compressor, and the
+// appended data's encoding.
+Result<void> readRoot(VtiFile& file, const pugi::xml_node& root, bool stream) {
+  const std::filesystem::path& path = file.path;
+  if (!root) return file.fail("not a VTK XML file: the root element is not VTKFile");
+  const std::string type = root.attribute("type").value();
+  if (type != "ImageData")
+    return file.fail("VTKFile type " + quoteForMessage(type) +
+                     " is not supported (expected ImageData)");
+  const std::string order = root.attribute("byte_order").value();
+  if (order == "BigEndian") {
+    file.order = std::endian::big;
+  } else if (!order.empty() && order != "LittleEndian") {
+    return file.fail("byte_order: expected LittleEndian or BigEndian, found " +
+                     quoteForMessage(order));
+  }
+  const std::string headerType = root.attribute("header_type").value();
+  if (headerType == "UInt64") {
+    file.header64 = true;
+  } else if (!headerType.empty() && headerType != "UInt32") {
+    return file.fail("header_type: expected UInt32 or UInt64, found " +
+                     quoteForMessage(headerType));
+  }
+  const std::string compressor = root.attribute("compressor").value();
+  if (compressor == "vtkZLibDataCompressor") {
+    file.zlib = true;
+  } else if (!compressor.empty()) {
+    return file.fail("compressor " + quoteForMessage(compressor) +
+                     " is not supported (expected vtkZLibDataCompressor or none)");
+  }
+  if (file.hasAppended) {
+    const std::string encoding = root.child("AppendedData").attribute("encoding").value();
+    if (encoding != "raw" && encoding != "base64")
+      return file.fail("AppendedData encoding: expected raw or base64, found " +
+                       quoteForMessage(encoding));
+    file.appendedBase64 = encoding == "base64";
+    if (file.appendedInFile && file.appendedBase64 && !stream) {
+      // Base64 is decoded from memory: the rest of the file is read after all.
+      LIC3D_TRY_ASSIGN(file.bytes, readFile(path, kMaxFileBytes));
+      file.appended = std::string_view(file.bytes).substr(file.appendedAt);
+      file.appendedSize = file.appended.size();
+      file.appendedInFile = false;
+    }
+  }
+  return {};
+}
+
+// ImageData's grid (WholeExtent, Origin, Spacing) and its one Piece.
+Result<void> readGrid(VtiFile& file, const pugi::xml_node& image, bool stream) {
+  LIC3D_TRY_ASSIGN(const Extent whole, readExtent(file, image, "WholeExtent"));
+  std::array<std::uint64_t, 3> sizes{};
+  for (std::size_t axis = 0; axis < 3; ++axis)
+    sizes[axis] =
+        static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
+  if (const std::string problem =
+          gridLimitProblem(sizes[0], sizes[1], sizes[2], stream ? kMaxStreamedVoxels : kMaxVoxels);
+      !problem.empty())
+    return file.fail("WholeExtent: " + problem);
+  file.dims =
+      Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(file, image, "Origin", 0.0, false));
+  LIC3D_TRY_ASSIGN(file.geometry.spacing, parseTriple(file, image, "Spacing", 1.0, true));
+  // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
+  // start at 0 moves the first voxel.
+  for (glm::length_t axis = 0; axis < 3; ++axis)
+    file.geometry.origin[axis] =
+        origin[axis] + static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
+                           file.geometry.spacing[axis];
+  for (glm::length_t axis = 0; axis < 3; ++axis)
+    if (!std::isfinite(file.geometry.origin[axis]))
+      return file.fail("ImageData: Origin + WholeExtent * Spacing is not finite");
+
+  std::size_t pieces = 0;
+  for (const pugi::xml_node piece : image.children("Piece")) {
+    ++pieces;
+    file.piece = piece;
+  }
+  if (pieces != 1)
+    return file.fail("ImageData holds " + std::to_string(pieces) +
+                     " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
+                     "write them by default)");
+  if (file.piece.attribute("Extent")) {
+    LIC3D_TRY_ASSIGN(const Extent extent, readExtent(file, file.piece, "Extent"));
+    if (!(extent == whole))
+      return file.fail(
+          "the Piece's Extent " + quoteForMessage(file.piece.attribute("Extent").value()) +
+          " differs from WholeExtent " + quoteForMessage(image.attribute("WholeExtent").value()) +
+          " (lic3d reads one piece covering the whole grid)");
+  }
+  return {};
+}
+
 }  // namespace
 
 std::optional<Extent> parseExtent(std::string_view text) {
@@ -138,125 +270,12 @@ std::optional<Extent> parseExtent(std::string_view text) {
 Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
   auto file = std::make_unique<VtiFile>();
   file->path = path;
-  const bool head = openHead(*file, stream);
-  if (!head && stream) {
-    LIC3D_TRY_ASSIGN(const FileReader reader, FileReader::open(path));
-    if (reader.size() > kHeadBytes)
-      return unsupportedError(
-          path.string() +
-          ": its data is not all appended raw after an XML header of at most 64 KiB (inline "
-          "ascii or base64 arrays), so it cannot be read piece by piece and is read whole");
-  }
-  if (!head) {
-    LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
-  }
-  const std::size_t first = file->bytes.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos || file->bytes[first] != '<')
-    return file->fail(first == std::string::npos
-                          ? "empty file (expected a VTK XML ImageData file)"
-                          : "not an XML file: it starts with " +
-                                quoteForMessage(std::string_view(file->bytes).substr(first, 16)) +
-                                ", expected '<?xml' or '<VTKFile'");
-  if (!head) {
-    LIC3D_TRY_ASSIGN(const std::optional<AppendedSplit> split, findAppended(*file, file->bytes));
-    if (split) {
-      useAppended(*file, file->bytes, *split);
-      file->appended = std::string_view(file->bytes).substr(split->data);
-      file->appendedAt = split->data;
-      file->appendedSize = file->appended.size();
-    }
-  }
-  std::string& xml = file->hasAppended ? file->xml : file->bytes;
-  const pugi::xml_parse_result parsed = file->document.load_buffer_inplace(
-      xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
-  if (!parsed)
-    return file->fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
-                      parsed.description());
-
+  LIC3D_TRY(readXml(*file, stream));
   const pugi::xml_node root = file->document.child("VTKFile");
-  if (!root) return file->fail("not a VTK XML file: the root element is not VTKFile");
-  const std::string type = root.attribute("type").value();
-  if (type != "ImageData")
-    return file->fail("VTKFile type " + quoteForMessage(type) +
-                      " is not supported (expected ImageData)");
-  const std::string order = root.attribute("byte_order").value();
-  if (order == "BigEndian") {
-    file->order = std::endian::big;
-  } else if (!order.empty() && order != "LittleEndian") {
-    return file->fail("byte_order: expected LittleEndian or BigEndian, found " +
-                      quoteForMessage(order));
-  }
-  const std::string headerType = root.attribute("header_type").value();
-  if (headerType == "UInt64") {
-    file->header64 = true;
-  } else if (!headerType.empty() && headerType != "UInt32") {
-    return file->fail("header_type: expected UInt32 or UInt64, found " +
-                      quoteForMessage(headerType));
-  }
-  const std::string compressor = root.attribute("compressor").value();
-  if (compressor == "vtkZLibDataCompressor") {
-    file->zlib = true;
-  } else if (!compressor.empty()) {
-    return file->fail("compressor " + quoteForMessage(compressor) +
-                      " is not supported (expected vtkZLibDataCompressor or none)");
-  }
-  if (file->hasAppended) {
-    const std::string encoding = root.child("AppendedData").attribute("encoding").value();
-    if (encoding != "raw" && encoding != "base64")
-      return file->fail("AppendedData encoding: expected raw or base64, found " +
-                        quoteForMessage(encoding));
-    file->appendedBase64 = encoding == "base64";
-    if (file->appendedInFile && file->appendedBase64 && !stream) {
-      // Base64 is decoded from memory: the rest of the file is read after all.
-      LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
-      file->appended = std::string_view(file->bytes).substr(file->appendedAt);
-      file->appendedSize = file->appended.size();
-      file->appendedInFile = false;
-    }
-  }
-
+  LIC3D_TRY(readRoot(*file, root, stream));
   const pugi::xml_node image = root.child("ImageData");
   if (!image) return file->fail("VTKFile holds no ImageData element");
-  LIC3D_TRY_ASSIGN(const Extent whole, readExtent(*file, image, "WholeExtent"));
-  std::array<std::uint64_t, 3> sizes{};
-  for (std::size_t axis = 0; axis < 3; ++axis)
-    sizes[axis] =
-        static_cast<std::uint64_t>(whole.bounds[2 * axis + 1] - whole.bounds[2 * axis]) + 1;
-  if (const std::string problem =
-          gridLimitProblem(sizes[0], sizes[1], sizes[2], stream ? kMaxStreamedVoxels : kMaxVoxels);
-      !problem.empty())
-    return file->fail("WholeExtent: " + problem);
-  file->dims =
-      Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(*file, image, "Origin", 0.0, false));
-  LIC3D_TRY_ASSIGN(file->geometry.spacing, parseTriple(*file, image, "Spacing", 1.0, true));
-  // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
-  // start at 0 moves the first voxel.
-  for (glm::length_t axis = 0; axis < 3; ++axis)
-    file->geometry.origin[axis] =
-        origin[axis] + static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
-                           file->geometry.spacing[axis];
-  for (glm::length_t axis = 0; axis < 3; ++axis)
-    if (!std::isfinite(file->geometry.origin[axis]))
-      return file->fail("ImageData: Origin + WholeExtent * Spacing is not finite");
-
-  std::size_t pieces = 0;
-  for (const pugi::xml_node piece : image.children("Piece")) {
-    ++pieces;
-    file->piece = piece;
-  }
-  if (pieces != 1)
-    return file->fail("ImageData holds " + std::to_string(pieces) +
-                      " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
-                      "write them by default)");
-  if (file->piece.attribute("Extent")) {
-    LIC3D_TRY_ASSIGN(const Extent extent, readExtent(*file, file->piece, "Extent"));
-    if (!(extent == whole))
-      return file->fail(
-          "the Piece's Extent " + quoteForMessage(file->piece.attribute("Extent").value()) +
-          " differs from WholeExtent " + quoteForMessage(image.attribute("WholeExtent").value()) +
-          " (lic3d reads one piece covering the whole grid)");
-  }
+  LIC3D_TRY(readGrid(*file, image, stream));
   return file;
 }
 
