@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -38,11 +37,11 @@ Result<FieldStream> FieldStream::open(const std::filesystem::path& path,
   if (extension == ".vti") return openVti(path, arrayName);
   const bool single = extension == ".nrrd" || extension == ".nhdr" || extension == ".raw";
   if (!single)
-    return vti::readWholeError(path,
-                               extension == ".vtk"    ? "a VTK legacy file is parsed front to back"
-                               : extension == ".pvti" ? "a .pvti is read as its pieces' files"
-                                                      : "its format is not one that streams (.raw, "
-                                                        ".nrrd, .nhdr, .vti)");
+    return readWholeError(path, extension == ".vtk" ? "a VTK legacy file is parsed front to back"
+                                : extension == ".pvti"
+                                    ? "a .pvti is read as its pieces' files"
+                                    : "its format is not one that streams (.raw, "
+                                      ".nrrd, .nhdr, .vti)");
   if (!arrayName.empty())
     return fileError(path, "an array name (" + quoteForMessage(arrayName) +
                                ") applies only to .vtk and .vti files; a " +
@@ -77,8 +76,8 @@ Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
   LIC3D_TRY_ASSIGN(nrrd::Opened opened, nrrd::openPayload(path, expected));
   const nrrd::Layout& layout = opened.layout;
   if (layout.encoding != nrrd::Encoding::Raw)
-    return vti::readWholeError(
-        path, "its data is gzip compressed, which decompresses only from its start");
+    return readWholeError(path,
+                          "its data is gzip compressed, which decompresses only from its start");
   const std::uint64_t offset = opened.reader.position();
   FieldStream stream(std::move(opened.reader), path);
   stream.dims_ = layout.dims;

@@ -186,6 +186,11 @@ Error fileError(const std::filesystem::path& path, std::string_view problem) {
   return inputError(std::move(message));
 }
 
+Error readWholeError(const std::filesystem::path& path, const std::string& why) {
+  return unsupportedError(path.string() + ": " + why +
+                          ", so it cannot be read piece by piece and is read whole");
+}
+
 std::string lowerCaseExtension(const std::filesystem::path& path) {
   return asciiLowerCase(path.extension().string());
 }

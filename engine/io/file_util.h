@@ -30,6 +30,10 @@ inline constexpr std::uint64_t kMaxStreamedVoxels = std::uint64_t{1} << 40;
 // An InvalidInput error about a file, worded "<path>: <problem>".
 Error fileError(const std::filesystem::path& path, std::string_view problem);
 
+// Unsupported, naming the file and why it cannot be read piece by piece (FieldStream): the caller
+// reads it whole instead.
+Error readWholeError(const std::filesystem::path& path, const std::string& why);
+
 // The extension in lower case, dot included (".nrrd"), or empty: how readers and writers choose
 // a format.
 std::string lowerCaseExtension(const std::filesystem::path& path);

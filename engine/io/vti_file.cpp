@@ -14,7 +14,6 @@
 #include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
-#include "io/vti_stream.h"
 
 namespace lic3d::vti {
 namespace {

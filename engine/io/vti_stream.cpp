@@ -94,9 +94,4 @@ Result<StreamedVti> openStreamedVti(const std::filesystem::path& path, std::stri
   return streamed;
 }
 
-Error readWholeError(const std::filesystem::path& path, const std::string& why) {
-  return unsupportedError(path.string() + ": " + why +
-                          ", so it cannot be read piece by piece and is read whole");
-}
-
 }  // namespace lic3d::vti

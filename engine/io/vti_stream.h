@@ -48,7 +48,4 @@ using CheckStored =
 Result<StreamedVti> openStreamedVti(const std::filesystem::path& path, std::string_view name,
                                     const CheckStored& check);
 
-// Unsupported, naming the file and why it cannot be read piece by piece.
-Error readWholeError(const std::filesystem::path& path, const std::string& why);
-
 }  // namespace lic3d::vti
