@@ -5,7 +5,6 @@
 // name; plus errors that name a file and file names' extensions. POSIX only
 // (open/read/fsync/rename), like the rest of the project. The text the parsers read is core/text.h.
 
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -16,7 +15,6 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/volume.h"
 
 namespace lic3d {
 
