@@ -13,6 +13,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/stage_times.h"
 #include "core/volume_compare.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/shader_library.h"
@@ -30,9 +31,7 @@ Result<Timing> measure(const BenchOptions& options, double& budgetLeft,
                        const std::function<Result<double>()>& once) {
   Timing timing;
   const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  auto elapsed = [&] { return secondsSince(start); };
   // At least the requested warm-up runs, and at least a quarter of a second of them: a GPU that
   // idled while the host prepared the inputs needs that long to raise its clocks again.
   for (int i = 0; i < std::max(1, options.warmup) || elapsed() < 0.25; ++i) {
@@ -109,8 +108,7 @@ Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& 
   how.sink = [](const Brick&, const ScalarVolume&) -> Result<void> { return {}; };
   const auto start = std::chrono::steady_clock::now();
   LIC3D_TRY_ASSIGN(const LicVolumeRun run, computeLicVolume(devices, session, inputs, how));
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall = secondsSince(start);
   const DeviceShare& share = run.devices.front();
   const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
   std::printf(

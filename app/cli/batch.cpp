@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <initializer_list>
@@ -18,6 +17,7 @@
 
 #include "core/colormap.h"
 #include "core/session.h"
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/session_file.h"
@@ -28,12 +28,6 @@ namespace lic3d::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool parseInt(std::string_view text, int& value) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end && !text.empty();
-}
 
 std::string extensionOf(const std::string& path) { return fs::path(path).extension().string(); }
 

@@ -13,6 +13,7 @@
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
+#include "core/text.h"
 #include "gpu/device_choice.h"
 #include "gpu/gpu_timer.h"
 #include "gpu/vulkan_context.h"
@@ -34,10 +35,6 @@
 #include "passes/lic_renderer.h"
 
 namespace lic3d::cli {
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 Result<Context> openContext(const GlobalOptions& global) {
   ContextOptions options;
@@ -100,14 +97,6 @@ int finish(const std::vector<Context>& contexts, int status) {
   return status;
 }
 
-namespace {
-
-std::string tripleText(glm::dvec3 v) {
-  return formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z);
-}
-
-}  // namespace
-
 // --time given for a field that has none is a mistake worth naming.
 Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {
   if (options.time && options.time->count() > 0 && !domain.timeDependent)
@@ -156,8 +145,9 @@ std::string fieldText(const FieldSource& source, const SessionInputs& inputs) {
   if (!inputs.fromFile) return source.field + " " + gridText(field.dims);
   std::string text = inputs.series ? inputs.series->describe() : source.field;
   if (!inputs.info.arrayName.empty()) text += " array '" + inputs.info.arrayName + "'";
-  return text + " " + gridText(field.dims) + ", spacing " + tripleText(field.geometry.spacing) +
-         ", origin " + tripleText(field.geometry.origin);
+  return text + " " + gridText(field.dims) + ", spacing " +
+         tripleText(field.geometry.spacing, ",") + ", origin " +
+         tripleText(field.geometry.origin, ",");
 }
 
 RunSummary makeSummary(const char* command, const FieldSource& source,

@@ -17,7 +17,6 @@
 namespace lic3d::cli {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start);
 
 // The device of --device.
 Result<Context> openContext(const GlobalOptions& global);

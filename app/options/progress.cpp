@@ -5,15 +5,9 @@
 
 #include <cstdio>
 
+#include "core/stage_times.h"
+
 namespace lic3d::cli {
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 Progress::Progress(std::string what, bool quiet)
     : what_(std::move(what)),
       quiet_(quiet),

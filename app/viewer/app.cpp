@@ -17,6 +17,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/slice_geometry.h"
+#include "core/stage_times.h"
 #include "gpu/gpu_submit.h"
 #include "gpu/vk_check.h"
 #include "io/png_writer.h"
@@ -445,9 +446,7 @@ int runViewer(const cli::GlobalOptions& global, cli::SessionOptions& inputs,
   App app(global, inputs, options);
   const int status = app.run();
   // The stages of the whole session: field loads, uploads, LIC volumes, screenshots.
-  if (global.timings)
-    cli::printTimings(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  if (global.timings) cli::printTimings(secondsSince(start));
   return status;
 }
 

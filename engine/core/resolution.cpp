@@ -6,16 +6,12 @@
 #include <cmath>
 
 #include "core/parameter_ranges.h"
+#include "core/text.h"
 
 namespace lic3d {
 namespace {
 
 constexpr double kMaxResolutionFactor = 16.0;
-
-bool parseInt(std::string_view text, int& value) {
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() && end == text.data() + text.size();
-}
 
 bool parseFactor(std::string_view text, double& value) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);

@@ -16,6 +16,11 @@ namespace lic3d {
 // The stages in the order they were first recorded, with their summed seconds.
 using StageTimings = std::vector<std::pair<std::string, double>>;
 
+// Wall-clock seconds from `start` to now.
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void addStageTime(std::string_view stage, double seconds);
 StageTimings stageTimings();
 void clearStageTimings();
@@ -31,8 +36,7 @@ class StageTimer {
   void stop() {
     if (stopped_) return;
     stopped_ = true;
-    addStageTime(stage_,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    addStageTime(stage_, secondsSince(start_));
   }
 
  private:

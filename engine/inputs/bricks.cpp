@@ -12,6 +12,7 @@
 
 #include "core/memory_budget.h"
 #include "core/parallel.h"
+#include "core/stage_times.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
@@ -251,10 +252,6 @@ int scanLayers(Dims dims) {
   const std::uint64_t layer =
       std::uint64_t{12} * static_cast<std::uint64_t>(dims.x) * static_cast<std::uint64_t>(dims.y);
   return static_cast<int>(std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / layer, 1, 64));
-}
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 // A LIC dispatch (timed with GPU timestamps when asked), read back.

@@ -5,6 +5,7 @@
 
 #include "core/resolution.h"
 #include "core/stage_times.h"
+#include "core/text.h"
 #include "io/file_util.h"
 #include "lic/derived_fields.h"
 #include "lic/resample.h"
@@ -13,7 +14,7 @@ namespace lic3d {
 namespace {
 
 bool isScalarFile(const std::string& name) {
-  const std::string extension = asciiLowerCase(std::filesystem::path(name).extension().string());
+  const std::string extension = lowerCaseExtension(name);
   return extension == ".nrrd" || extension == ".nhdr";
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <system_error>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/raw_volume.h"
@@ -27,10 +28,6 @@ Result<void> checkRegularFile(const std::filesystem::path& path) {
   if (status.type() != std::filesystem::file_type::regular)
     return fileError(path, "not a regular file");
   return {};
-}
-
-std::string lowerCaseExtension(const std::filesystem::path& path) {
-  return asciiLowerCase(path.extension().string());
 }
 
 std::string describeExtension(const std::string& extension) {

@@ -8,15 +8,15 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <utility>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/nrrd_header.h"
 #include "io/raw_volume.h"
 #include "io/volume_io.h"
-#include "io/vti_file.h"
+#include "io/vti_stream.h"
 
 namespace lic3d {
 namespace {
@@ -25,15 +25,6 @@ namespace {
 constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are read as packed floats");
-
-std::string lowerCaseExtension(const std::filesystem::path& path) {
-  return asciiLowerCase(path.extension().string());
-}
-
-Error readWhole(const std::filesystem::path& path, const std::string& why) {
-  return unsupportedError(path.string() + ": " + why +
-                          ", so it cannot be read piece by piece and is read whole");
-}
 
 }  // namespace
 
@@ -46,10 +37,11 @@ Result<FieldStream> FieldStream::open(const std::filesystem::path& path,
   if (extension == ".vti") return openVti(path, arrayName);
   const bool single = extension == ".nrrd" || extension == ".nhdr" || extension == ".raw";
   if (!single)
-    return readWhole(path, extension == ".vtk"    ? "a VTK legacy file is parsed front to back"
-                           : extension == ".pvti" ? "a .pvti is read as its pieces' files"
-                                                  : "its format is not one that streams (.raw, "
-                                                    ".nrrd, .nhdr, .vti)");
+    return readWholeError(path, extension == ".vtk" ? "a VTK legacy file is parsed front to back"
+                                : extension == ".pvti"
+                                    ? "a .pvti is read as its pieces' files"
+                                    : "its format is not one that streams (.raw, "
+                                      ".nrrd, .nhdr, .vti)");
   if (!arrayName.empty())
     return fileError(path, "an array name (" + quoteForMessage(arrayName) +
                                ") applies only to .vtk and .vti files; a " +
@@ -64,12 +56,11 @@ Result<FieldStream> FieldStream::openRaw(const std::filesystem::path& path) {
   FieldStream stream(std::move(file), path);
   stream.dims_ = layout.dims;
   stream.geometry_ = layout.geometry;
-  stream.vectors_.type =
-      layout.valueBytes == 8 ? vti::NumberType::Float64 : vti::NumberType::Float32;
+  stream.vectors_.type = layout.valueBytes == 8 ? NumberType::Float64 : NumberType::Float32;
   stream.vectors_.valueBytes = layout.valueBytes;
   stream.vectors_.order = layout.order;
   stream.vectors_.planar = layout.planar;
-  LIC3D_TRY(stream.checkFileHolds(stream.vectors_, true));
+  LIC3D_TRY(checkFileHolds(stream.file_, path, stream.dims_, stream.vectors_, true));
   return stream;
 }
 
@@ -78,128 +69,72 @@ Result<FieldStream> FieldStream::openNrrd(const std::filesystem::path& path) {
                                    3,
                                    "3 vector components on a 3D grid",
                                    "vector components",
-                                   {nrrd::ValueType::Float, nrrd::ValueType::Double},
+                                   {NumberType::Float32, NumberType::Float64},
                                    "float or double",
                                    true,
                                    kMaxStreamedVoxels};
   LIC3D_TRY_ASSIGN(nrrd::Opened opened, nrrd::openPayload(path, expected));
   const nrrd::Layout& layout = opened.layout;
   if (layout.encoding != nrrd::Encoding::Raw)
-    return readWhole(path, "its data is gzip compressed, which decompresses only from its start");
+    return readWholeError(path,
+                          "its data is gzip compressed, which decompresses only from its start");
   const std::uint64_t offset = opened.reader.position();
   FieldStream stream(std::move(opened.reader), path);
   stream.dims_ = layout.dims;
   stream.geometry_ = layout.geometry;
   stream.unit_ = layout.sampleUnits;
-  const bool isDouble = layout.type == nrrd::ValueType::Double;
   stream.vectors_.offset = offset;
-  stream.vectors_.type = isDouble ? vti::NumberType::Float64 : vti::NumberType::Float32;
-  stream.vectors_.valueBytes = isDouble ? 8 : 4;
+  stream.vectors_.type = layout.type;
+  stream.vectors_.valueBytes = numberType(layout.type).bytes;
   stream.vectors_.order = layout.order;
   stream.vectors_.components = layout.components;  // 2 on a 2D grid
-  LIC3D_TRY(stream.checkFileHolds(stream.vectors_, false));
+  LIC3D_TRY(checkFileHolds(stream.file_, path, stream.dims_, stream.vectors_, false));
   return stream;
 }
 
 Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std::string_view name) {
-  LIC3D_TRY_ASSIGN(const std::unique_ptr<vti::VtiFile> file, vti::openVti(path, true));
-  if (file->zlib) return readWhole(path, "its arrays are compressed (vtkZLibDataCompressor)");
-  LIC3D_TRY_ASSIGN(const std::vector<vti::ArrayRef> arrays, vti::listArrays(*file));
-  LIC3D_TRY_ASSIGN(const vti::ArrayRef array,
-                   vti::chooseArray(*file, arrays, name, 3, "Vectors", 2));
-  // Cell data on N cells is a field of N voxels at the cell centres, as the whole-file reader has.
-  const CellCentredGrid grid = array.cellData ? cellCentredGrid(file->dims, file->geometry)
-                                              : CellCentredGrid{file->dims, file->geometry};
-  if (array.components == 2 && grid.dims.z != 1)
-    return file->fail(vti::describe(array) + " holds 2D vectors (2 components) on a grid of " +
-                      std::to_string(grid.dims.z) + " layers along z; they need a 2D grid");
-  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
-  FieldStream stream(std::move(reader), path);
-  stream.dims_ = grid.dims;
-  stream.geometry_ = grid.geometry;
-  stream.arrayName_ = array.name;
-
-  // Where an array's values start: after its block's byte count, which must be the array's size.
-  const auto appended = [&](const vti::ArrayRef& each) -> Result<ArrayLayout> {
-    const std::string what = vti::describe(each);
-    if (!each.type)
-      return file->fail(what + ": type " + quoteForMessage(each.node.attribute("type").value()) +
-                        " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
-    const std::uint64_t tuples = voxelCount(grid.dims);
-    if (const pugi::xml_attribute count = each.node.attribute("NumberOfTuples")) {
-      std::uint64_t declared = 0;
-      if (!parseUnsigned(count.value(), declared) || declared != tuples)
-        return file->fail(what + ": NumberOfTuples " + quoteForMessage(count.value()) +
-                          " does not match the " + std::to_string(tuples) +
-                          (each.cellData ? " cells" : " points") + " of the grid");
-    }
-    const std::string format = each.node.attribute("format").value();
-    if (format != "appended")
-      return readWhole(path, what + " is stored inline as " +
-                                 (format == "binary" ? std::string("base64") : format));
-    if (file->appendedBase64) return readWhole(path, "its appended data is base64 encoded");
-    std::uint64_t offset = 0;
-    const pugi::xml_attribute offsetAttribute = each.node.attribute("offset");
-    if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
-      return file->fail(what + ": an appended array needs a whole-number offset, found " +
-                        quoteForMessage(offsetAttribute.value()));
-    if (offset > file->appendedSize)
-      return file->fail(what + ": offset " + std::to_string(offset) + " is beyond the " +
-                        std::to_string(file->appendedSize) + " bytes of AppendedData");
-    const std::size_t headerBytes = file->header64 ? 8 : 4;
-    std::array<unsigned char, 8> header{};
-    LIC3D_TRY(stream.file_.readAt(file->appendedAt + offset, header.data(), headerBytes,
-                                  what + " (its byte count)"));
-    if (file->order != std::endian::native)
-      std::reverse(header.begin(), header.begin() + static_cast<std::ptrdiff_t>(headerBytes));
-    std::uint64_t size = 0;
-    if (headerBytes == 8) {
-      std::memcpy(&size, header.data(), 8);
-    } else {
-      std::uint32_t size32 = 0;
-      std::memcpy(&size32, header.data(), 4);
-      size = size32;
-    }
+  const auto layoutOf = [](const vti::StoredArray& stored) {
     ArrayLayout layout;
-    layout.offset = file->appendedAt + offset + headerBytes;
-    layout.type = each.type->type;
-    layout.valueBytes = each.type->bytes;
-    layout.order = file->order;
-    layout.components = static_cast<std::size_t>(each.components);
-    const std::uint64_t expected = tuples * layout.components * layout.valueBytes;
-    if (size != expected)
-      return file->fail(what + ": the data block holds " + std::to_string(size) +
-                        " bytes, expected " + std::to_string(expected) + " (" +
-                        std::to_string(tuples) + " tuples of " + std::to_string(layout.components) +
-                        " " + std::string(each.type->name) + ")");
-    LIC3D_TRY(stream.checkFileHolds(layout, false));
+    layout.offset = stored.offset;
+    layout.type = stored.type;
+    layout.valueBytes = numberType(stored.type).bytes;
+    layout.order = stored.order;
+    layout.components = stored.components;
     return layout;
   };
-  LIC3D_TRY_ASSIGN(stream.vectors_, appended(array));
-  // VTK's mask of valid points: the vectors it marks invalid are zero, as readVectorField has them.
-  const auto mask = std::find_if(arrays.begin(), arrays.end(), [](const vti::ArrayRef& each) {
-    return !each.cellData && each.components == 1 && each.name == kValidPointMaskName;
-  });
-  if (!array.cellData && mask != arrays.end()) {
-    LIC3D_TRY_ASSIGN(stream.mask_, appended(*mask));
+  LIC3D_TRY_ASSIGN(
+      vti::StreamedVti streamed,
+      vti::openStreamedVti(
+          path, name,
+          [&](const FileReader& file, Dims dims, const vti::StoredArray& stored) -> Result<void> {
+            return checkFileHolds(file, path, dims, layoutOf(stored), false);
+          }));
+  FieldStream stream(std::move(streamed.file), path);
+  stream.dims_ = streamed.dims;
+  stream.geometry_ = streamed.geometry;
+  stream.arrayName_ = std::move(streamed.arrayName);
+  stream.vectors_ = layoutOf(streamed.vectors);
+  if (streamed.mask) {
+    stream.mask_ = layoutOf(*streamed.mask);
     stream.hasMask_ = true;
   }
   return stream;
 }
 
-Result<void> FieldStream::checkFileHolds(const ArrayLayout& array, bool exact) const {
-  const std::uint64_t values = voxelCount(dims_) * array.components;
+Result<void> FieldStream::checkFileHolds(const FileReader& file, const std::filesystem::path& path,
+                                         Dims dims, const ArrayLayout& array, bool exact) {
+  const std::uint64_t values = voxelCount(dims) * array.components;
   const std::uint64_t needed = array.offset + values * array.valueBytes;
-  const std::uint64_t size = file_.size();
+  const std::uint64_t size = file.size();
   if (exact ? size == needed : size >= needed) return {};
-  std::string problem = "the file holds " + std::to_string(size) + " bytes; the " +
-                        gridText(dims_) + " grid of " + std::to_string(array.components) + " " +
+  std::string problem = "the file holds " + std::to_string(size) + " bytes; the " + gridText(dims) +
+                        " grid of " + std::to_string(array.components) + " " +
                         std::to_string(8 * array.valueBytes) + "-bit values per voxel" +
                         (array.offset > 0 ? " from byte " + std::to_string(array.offset) : "") +
                         " needs " + (exact ? "" : "at least ") + std::to_string(needed) +
                         (size < needed ? " (truncated?)" : "");
-  Error error = fileError(file_.path(), problem);
-  if (file_.path() != path_) error.message = path_.string() + ": data file " + error.message;
+  Error error = fileError(file.path(), problem);
+  if (file.path() != path) error.message = path.string() + ": data file " + error.message;
   return error;
 }
 
@@ -227,7 +162,7 @@ Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t fir
         std::memcpy(native.data(), buffer.data() + i * bytes, bytes);
         if (array.order != std::endian::native)
           std::reverse(native.begin(), native.begin() + static_cast<std::ptrdiff_t>(bytes));
-        const double decoded = vti::valueOf(native.data(), array.type);
+        const double decoded = valueOf(native.data(), array.type);
         const std::size_t voxel = array.planar ? done + i : done + i / array.components;
         const std::size_t component = array.planar ? span : i % array.components;
         store(voxel, component, decoded);
@@ -263,7 +198,7 @@ Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t
   const int rows = wholeRows ? 1 : dims.y;
   const int layers = wholeLayers ? 1 : dims.z;
   // Float32 vectors in the host's order are read straight into the field.
-  const bool direct = vectors_.type == vti::NumberType::Float32 && vectors_.components == 3 &&
+  const bool direct = vectors_.type == NumberType::Float32 && vectors_.components == 3 &&
                       !vectors_.planar && vectors_.order == std::endian::native;
   std::vector<unsigned char> buffer;
   for (int k = 0; k < layers; ++k) {

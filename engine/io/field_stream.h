@@ -23,7 +23,7 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
-#include "io/vti_file.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 
@@ -53,7 +53,7 @@ class FieldStream {
   // interleaved (xyzxyz...) or planar (every x, then every y, then every z).
   struct ArrayLayout {
     std::uint64_t offset = 0;
-    vti::NumberType type = vti::NumberType::Float32;
+    NumberType type = NumberType::Float32;
     std::size_t valueBytes = 4;
     std::endian order = std::endian::little;
     std::size_t components = 3;
@@ -64,8 +64,9 @@ class FieldStream {
   static Result<FieldStream> openRaw(const std::filesystem::path& path);
   static Result<FieldStream> openNrrd(const std::filesystem::path& path);
   static Result<FieldStream> openVti(const std::filesystem::path& path, std::string_view name);
-  // The file holds the array (exactly: nothing after it).
-  Result<void> checkFileHolds(const ArrayLayout& array, bool exact) const;
+  // `file` holds the array on a grid of `dims` (exactly: nothing after it); `path` as given.
+  static Result<void> checkFileHolds(const FileReader& file, const std::filesystem::path& path,
+                                     Dims dims, const ArrayLayout& array, bool exact);
   // The values of `count` voxels of `array` from voxel `first` on, handed to
   // store(voxel in the run, component, value), through `buffer`.
   template <class Store>

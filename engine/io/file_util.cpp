@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 
 namespace lic3d {
 namespace {
@@ -172,18 +173,6 @@ void syncFolderOf(const std::filesystem::path& path) {
   }
 }
 
-// from_chars takes no leading '+', which some writers put before positive numbers.
-template <class T>
-bool parseReal(std::string_view text, T& value) {
-  if (!text.empty() && text.front() == '+') {
-    text.remove_prefix(1);
-    if (!text.empty() && (text.front() == '+' || text.front() == '-')) return false;
-  }
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  return !text.empty() && error == std::errc() && stop == end;
-}
-
 Error writeError(ErrorKind kind, const std::filesystem::path& path, const std::string& reason) {
   return {kind, "cannot write '" + path.string() + "': " + reason};
 }
@@ -197,56 +186,13 @@ Error fileError(const std::filesystem::path& path, std::string_view problem) {
   return inputError(std::move(message));
 }
 
-bool parseUnsigned(std::string_view text, std::uint64_t& value) {
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  return !text.empty() && error == std::errc() && stop == end;
+Error readWholeError(const std::filesystem::path& path, const std::string& why) {
+  return unsupportedError(path.string() + ": " + why +
+                          ", so it cannot be read piece by piece and is read whole");
 }
 
-bool parseDouble(std::string_view text, double& value) { return parseReal(text, value); }
-bool parseFloat(std::string_view text, float& value) { return parseReal(text, value); }
-
-bool isAsciiSpace(int c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
-}
-
-std::string asciiLowerCase(std::string_view text) {
-  std::string lowered(text);
-  for (char& c : lowered)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return lowered;
-}
-
-std::vector<std::string_view> splitWords(std::string_view text) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && isAsciiSpace(text[i])) ++i;
-    const std::size_t start = i;
-    while (i < text.size() && !isAsciiSpace(text[i])) ++i;
-    if (i > start) words.push_back(text.substr(start, i - start));
-  }
-  return words;
-}
-
-std::string voxelText(Dims dims, std::uint64_t index) {
-  const std::uint64_t nx = static_cast<std::uint64_t>(std::max(dims.x, 1));
-  const std::uint64_t ny = static_cast<std::uint64_t>(std::max(dims.y, 1));
-  // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
-  std::string text = "(";
-  text += std::to_string(index % nx);
-  text += ',';
-  text += std::to_string(index / nx % ny);
-  text += ',';
-  text += std::to_string(index / (nx * ny));
-  text += ')';
-  return text;
-}
-
-void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order) {
-  if (order == std::endian::native || valueBytes < 2) return;
-  for (std::size_t i = 0; i < count; ++i)
-    std::reverse(data + i * valueBytes, data + (i + 1) * valueBytes);
+std::string lowerCaseExtension(const std::filesystem::path& path) {
+  return asciiLowerCase(path.extension().string());
 }
 
 Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes, bool data) {
@@ -583,50 +529,6 @@ Result<void> FileReader::readAt(std::uint64_t offset, void* data, std::size_t co
     done += static_cast<std::size_t>(got);
   }
   return {};
-}
-
-NumberScan scanNumberConversion(std::string_view pattern) {
-  NumberScan scan;
-  bool found = false;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] != '%') continue;
-    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
-      ++i;
-      continue;
-    }
-    NumberConversion c;
-    c.begin = i;
-    std::size_t j = i + 1;
-    if (j + 1 < pattern.size() && pattern[j] == '0' && pattern[j + 1] >= '1' &&
-        pattern[j + 1] <= '9') {
-      c.width = pattern[j + 1] - '0';
-      j += 2;
-    }
-    if (j >= pattern.size() || pattern[j] != 'd') {
-      scan.problem = NumberScan::Problem::NotAConversion;
-      scan.at = i;
-      return scan;
-    }
-    if (found) {
-      scan.problem = NumberScan::Problem::MoreThanOne;
-      return scan;
-    }
-    c.end = j + 1;
-    scan.conversion = c;
-    found = true;
-    i = j;
-  }
-  if (!found) scan.problem = NumberScan::Problem::NoConversion;
-  return scan;
-}
-
-std::string unescapePercent(std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
-  }
-  return out;
 }
 
 }  // namespace lic3d

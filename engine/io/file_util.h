@@ -2,10 +2,9 @@
 #pragma once
 // Reading and writing files safely: whole-file reads with a size limit, a buffered front-to-back
 // reader for the volume parsers, and writes that never leave a half-written file under the real
-// name; plus the few pieces the file-format parsers share. POSIX only (open/read/fsync/rename),
-// like the rest of the project.
+// name; plus errors that name a file and file names' extensions. POSIX only
+// (open/read/fsync/rename), like the rest of the project. The text the parsers read is core/text.h.
 
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -16,8 +15,6 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/text.h"
-#include "core/volume.h"
 
 namespace lic3d {
 
@@ -31,24 +28,13 @@ inline constexpr std::uint64_t kMaxStreamedVoxels = std::uint64_t{1} << 40;
 // An InvalidInput error about a file, worded "<path>: <problem>".
 Error fileError(const std::filesystem::path& path, std::string_view problem);
 
-// Whole-string numbers in the C locale; false for anything else (empty, trailing characters,
-// out of range). Doubles accept a leading '+', "nan" and "inf".
-bool parseUnsigned(std::string_view text, std::uint64_t& value);
-bool parseDouble(std::string_view text, double& value);
-bool parseFloat(std::string_view text, float& value);
+// Unsupported, naming the file and why it cannot be read piece by piece (FieldStream): the caller
+// reads it whole instead.
+Error readWholeError(const std::filesystem::path& path, const std::string& why);
 
-// ASCII text helpers for the parsers, independent of the locale.
-bool isAsciiSpace(int c);
-std::string asciiLowerCase(std::string_view text);
-// The words of `text` between ASCII whitespace, as views into `text`.
-std::vector<std::string_view> splitWords(std::string_view text);
-
-// "(i,j,k)" for the voxel at `index` on a grid of `dims`, for error messages.
-std::string voxelText(Dims dims, std::uint64_t index);
-
-// Reverses the bytes of each of the `count` values of `valueBytes` bytes at `data` when `order`
-// is not the host's byte order.
-void toNativeOrder(char* data, std::size_t count, std::size_t valueBytes, std::endian order);
+// The extension in lower case, dot included (".nrrd"), or empty: how readers and writers choose
+// a format.
+std::string lowerCaseExtension(const std::filesystem::path& path);
 
 // The whole file, or an error naming it: missing, unreadable, not a regular file, or larger than
 // maxBytes (refused from its size before anything is read).
@@ -173,21 +159,5 @@ class FileReader {
   std::size_t end_ = 0;
   int errorNumber_ = 0;
 };
-
-// A numbered file pattern's one %d or %0Nd (%% is a literal %), as ffmpeg takes them: output
-// frames (`-o frame_%04d.png`) and input time steps (`--field step_%03d.vti`).
-struct NumberConversion {
-  std::size_t begin = 0, end = 0;  // [begin, end) is the conversion in the pattern
-  int width = 0;                   // N of %0Nd, 0 for %d
-};
-struct NumberScan {
-  enum class Problem { None, NotAConversion, MoreThanOne, NoConversion };
-  Problem problem = Problem::None;
-  NumberConversion conversion;  // when problem is None
-  std::size_t at = 0;           // where a NotAConversion % stands
-};
-NumberScan scanNumberConversion(std::string_view pattern);
-// %% becomes %.
-std::string unescapePercent(std::string_view text);
 
 }  // namespace lic3d

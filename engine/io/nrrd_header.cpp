@@ -13,62 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 
 namespace lic3d::nrrd {
 namespace {
 
 constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
-
-struct TypeSpelling {
-  std::string_view spelling;
-  ValueType type;
-};
-
-// Every spelling the NRRD format allows, after lower-casing and collapsing spaces.
-constexpr TypeSpelling kTypeSpellings[] = {
-    {"signed char", ValueType::Int8},
-    {"int8", ValueType::Int8},
-    {"int8_t", ValueType::Int8},
-    {"uchar", ValueType::UInt8},
-    {"unsigned char", ValueType::UInt8},
-    {"uint8", ValueType::UInt8},
-    {"uint8_t", ValueType::UInt8},
-    {"short", ValueType::Int16},
-    {"short int", ValueType::Int16},
-    {"signed short", ValueType::Int16},
-    {"signed short int", ValueType::Int16},
-    {"int16", ValueType::Int16},
-    {"int16_t", ValueType::Int16},
-    {"ushort", ValueType::UInt16},
-    {"unsigned short", ValueType::UInt16},
-    {"unsigned short int", ValueType::UInt16},
-    {"uint16", ValueType::UInt16},
-    {"uint16_t", ValueType::UInt16},
-    {"int", ValueType::Int32},
-    {"signed int", ValueType::Int32},
-    {"int32", ValueType::Int32},
-    {"int32_t", ValueType::Int32},
-    {"uint", ValueType::UInt32},
-    {"unsigned int", ValueType::UInt32},
-    {"uint32", ValueType::UInt32},
-    {"uint32_t", ValueType::UInt32},
-    {"longlong", ValueType::Int64},
-    {"long long", ValueType::Int64},
-    {"long long int", ValueType::Int64},
-    {"signed long long", ValueType::Int64},
-    {"signed long long int", ValueType::Int64},
-    {"int64", ValueType::Int64},
-    {"int64_t", ValueType::Int64},
-    {"ulonglong", ValueType::UInt64},
-    {"unsigned long long", ValueType::UInt64},
-    {"unsigned long long int", ValueType::UInt64},
-    {"uint64", ValueType::UInt64},
-    {"uint64_t", ValueType::UInt64},
-    {"float", ValueType::Float},
-    {"double", ValueType::Double},
-    {"block", ValueType::Block},
-};
 
 struct HeaderField {
   std::string value;
@@ -327,15 +278,15 @@ class HeaderInterpreter {
       if (!key.empty()) key += ' ';
       key += word;
     }
-    const auto spelling = std::find_if(std::begin(kTypeSpellings), std::end(kTypeSpellings),
-                                       [&](const TypeSpelling& s) { return s.spelling == key; });
+    const NumberTypeInfo* info = findNrrdType(key);
     const std::string allowed = " (expected " + std::string(expected_.typesText) + ")";
-    if (spelling == std::end(kTypeSpellings))
+    // `block` (opaque values of a given size) is a NRRD type, though no reader takes it.
+    if (!info && key != "block")
       return fail("type", "unknown type " + quoteForMessage(type->value) + allowed);
-    if (std::find(expected_.types.begin(), expected_.types.end(), spelling->type) ==
-        expected_.types.end())
+    if (!info || std::find(expected_.types.begin(), expected_.types.end(), info->type) ==
+                     expected_.types.end())
       return fail("type", quoteForMessage(type->value) + " is not supported here" + allowed);
-    layout.type = spelling->type;
+    layout.type = info->type;
 
     const HeaderField* encoding = find("encoding");
     if (!encoding) return missing("encoding");
@@ -360,9 +311,10 @@ class HeaderInterpreter {
 
     const HeaderField* endian = find("endian");
     if (!endian) {
-      if (valueBytes(layout.type) > 1)
+      if (numberType(layout.type).bytes > 1)
         return fileError(path_, "missing field 'endian' (needed for " +
-                                    std::to_string(valueBytes(layout.type)) + "-byte values)");
+                                    std::to_string(numberType(layout.type).bytes) +
+                                    "-byte values)");
       return {};
     }
     const std::string endianKey = asciiLowerCase(endian->value);
@@ -458,23 +410,6 @@ class HeaderInterpreter {
 };
 
 }  // namespace
-
-std::size_t valueBytes(ValueType type) {
-  switch (type) {
-    case ValueType::Int8:
-    case ValueType::UInt8:
-    case ValueType::Block: return 1;
-    case ValueType::Int16:
-    case ValueType::UInt16: return 2;
-    case ValueType::Int32:
-    case ValueType::UInt32:
-    case ValueType::Float: return 4;
-    case ValueType::Int64:
-    case ValueType::UInt64:
-    case ValueType::Double: return 8;
-  }
-  return 1;
-}
 
 Result<Layout> readLayout(FileReader& reader, const Expectation& expected) {
   LIC3D_TRY_ASSIGN(const HeaderFields fields, readHeader(reader));

@@ -15,33 +15,18 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d::nrrd {
 
 // A multiple of every value size, so chunks never split a value.
 inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
-enum class ValueType {
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Int64,
-  UInt64,
-  Float,
-  Double,
-  Block
-};
-
-std::size_t valueBytes(ValueType type);
-
 enum class Encoding { Raw, Gzip };
 
 // What the header says about the payload, after every check.
 struct Layout {
-  ValueType type = ValueType::Float;
+  NumberType type = NumberType::Float32;
   std::size_t components = 1;  // values per voxel: 3 for vector fields, 4 for RGBA, 1 for scalars
   Dims dims{0};
   std::uint64_t voxels = 0;
@@ -58,7 +43,7 @@ struct Layout {
   // the header gives none.
   std::string sampleUnits;
 
-  std::uint64_t payloadBytes() const { return voxels * components * valueBytes(type); }
+  std::uint64_t payloadBytes() const { return voxels * components * numberType(type).bytes; }
 };
 
 // What one reader accepts.
@@ -67,7 +52,7 @@ struct Expectation {
   std::size_t components;  // the size of that first axis
   std::string_view dimensionMeaning;
   std::string_view componentsMeaning;
-  std::vector<ValueType> types;
+  std::vector<NumberType> types;
   std::string_view typesText;
   // Also a 2D grid (one layer along z), `dimension` - 1 axes. For vector fields the first axis
   // holds 2 or `components` values (2D vectors lie in the x-y plane); scalars have no such axis.

@@ -5,6 +5,8 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -12,9 +14,11 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/nrrd_header.h"
+#include "io/number_type.h"
 #include "io/volume_io.h"
 
 namespace lic3d {
@@ -25,8 +29,6 @@ using nrrd::Expectation;
 using nrrd::kChunkBytes;
 using nrrd::Layout;
 using nrrd::Opened;
-using nrrd::valueBytes;
-using nrrd::ValueType;
 
 // Moves `reader` past `line skip` lines and, for raw data, `byte skip` bytes.
 Result<void> skipToPayload(FileReader& reader, const Layout& layout) {
@@ -76,36 +78,24 @@ Result<void> checkPayloadFits(FileReader& reader, const Layout& layout) {
 
 using ChunkSink = std::function<void(const char* data, std::size_t bytes)>;
 
-template <class T, class Use>
-void forEachOf(const char* data, std::size_t bytes, Use&& use) {
-  for (std::size_t offset = 0; offset + sizeof(T) <= bytes; offset += sizeof(T)) {
-    T value;
-    std::memcpy(&value, data + offset, sizeof(T));
-    use(static_cast<double>(value));
-  }
-}
-
 // Calls `use` with each value of a chunk in native byte order, as a double.
 template <class Use>
-void forEachValue(ValueType type, const char* data, std::size_t bytes, Use&& use) {
-  switch (type) {
-    case ValueType::Int8: return forEachOf<std::int8_t>(data, bytes, use);
-    case ValueType::UInt8: return forEachOf<std::uint8_t>(data, bytes, use);
-    case ValueType::Int16: return forEachOf<std::int16_t>(data, bytes, use);
-    case ValueType::UInt16: return forEachOf<std::uint16_t>(data, bytes, use);
-    case ValueType::Int32: return forEachOf<std::int32_t>(data, bytes, use);
-    case ValueType::UInt32: return forEachOf<std::uint32_t>(data, bytes, use);
-    case ValueType::Int64: return forEachOf<std::int64_t>(data, bytes, use);
-    case ValueType::UInt64: return forEachOf<std::uint64_t>(data, bytes, use);
-    case ValueType::Float: return forEachOf<float>(data, bytes, use);
-    case ValueType::Double: return forEachOf<double>(data, bytes, use);
-    case ValueType::Block: return;  // no reader accepts it
+void forEachValue(NumberType type, const char* data, std::size_t bytes, Use&& use) {
+  const std::size_t size = numberType(type).bytes;
+  const std::size_t count = bytes / size;
+  std::array<double, 4096> values;
+  for (std::size_t done = 0; done < count;) {
+    const std::size_t n = std::min(values.size(), count - done);
+    convertValues(type, reinterpret_cast<const unsigned char*>(data) + done * size, n,
+                  std::endian::native, values.data());
+    for (std::size_t i = 0; i < n; ++i) use(values[i]);
+    done += n;
   }
 }
 
 // Hands the payload to `sink` in native byte order, in chunks of whole values.
 Result<void> readRaw(FileReader& reader, const Layout& layout, const ChunkSink& sink) {
-  const std::size_t bytesPerValue = valueBytes(layout.type);
+  const std::size_t bytesPerValue = numberType(layout.type).bytes;
   std::uint64_t left = layout.payloadBytes();
   std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, left)));
   while (left > 0) {
@@ -123,7 +113,7 @@ Result<void> readRaw(FileReader& reader, const Layout& layout, const ChunkSink& 
 // truncation, longer means the header and data disagree. Bytes after the stream's end are ignored.
 Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink& sink) {
   const std::filesystem::path& path = reader.path();
-  const std::size_t bytesPerValue = valueBytes(layout.type);
+  const std::size_t bytesPerValue = numberType(layout.type).bytes;
   const std::uint64_t total = layout.payloadBytes();
   InflateStream inflater;
   if (!inflater.init()) return runtimeError("zlib: cannot initialise inflate for " + path.string());
@@ -256,7 +246,7 @@ Result<ScalarVolume> readScalars(const std::filesystem::path& path, const Expect
   LIC3D_TRY(reserveDecoded(volume.values, voxels, path));
   std::size_t next = 0;
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
-    growDecoded(volume.values, next + bytes / valueBytes(layout.type));
+    growDecoded(volume.values, next + bytes / numberType(layout.type).bytes);
     forEachValue(layout.type, data, bytes,
                  [&](double value) { volume.values[next++] = vectorComponent(value); });
   }));
@@ -271,7 +261,7 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
                              3,
                              "3 vector components on a 3D grid",
                              "vector components",
-                             {ValueType::Float, ValueType::Double},
+                             {NumberType::Float32, NumberType::Float64},
                              "float or double",
                              true};
   LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
@@ -294,7 +284,8 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
     }
   };
   LIC3D_TRY(readPayload(opened, [&](const char* data, std::size_t bytes) {
-    const std::size_t valuesEnd = voxel * components + component + bytes / valueBytes(layout.type);
+    const std::size_t valuesEnd =
+        voxel * components + component + bytes / numberType(layout.type).bytes;
     growDecoded(field.vectors, (valuesEnd + components - 1) / components);
     forEachValue(layout.type, data, bytes, store);
   }));
@@ -307,8 +298,12 @@ Result<VectorField> readVectorFieldNrrd(const std::filesystem::path& path, Field
 }
 
 Result<ScalarVolume> readScalarNrrd(const std::filesystem::path& path) {
-  const Expectation expected{
-      3, 1, "a 3D grid of scalars", "", {ValueType::Float, ValueType::Double}, "float or double"};
+  const Expectation expected{3,
+                             1,
+                             "a 3D grid of scalars",
+                             "",
+                             {NumberType::Float32, NumberType::Float64},
+                             "float or double"};
   return readScalars(path, expected);
 }
 
@@ -318,8 +313,9 @@ Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path) {
       1,
       "a 3D grid of scalars",
       "",
-      {ValueType::Int8, ValueType::UInt8, ValueType::Int16, ValueType::UInt16, ValueType::Int32,
-       ValueType::UInt32, ValueType::Int64, ValueType::UInt64, ValueType::Float, ValueType::Double},
+      {NumberType::Int8, NumberType::UInt8, NumberType::Int16, NumberType::UInt16,
+       NumberType::Int32, NumberType::UInt32, NumberType::Int64, NumberType::UInt64,
+       NumberType::Float32, NumberType::Float64},
       "a signed or unsigned integer type, float or double",
       true};
   std::string unit;
@@ -336,7 +332,7 @@ Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path) {
 
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path) {
   const Expectation expected{
-      4, 4, "4 colour channels on a 3D grid", "RGBA channels", {ValueType::UInt8}, "uchar"};
+      4, 4, "4 colour channels on a 3D grid", "RGBA channels", {NumberType::UInt8}, "uchar"};
   LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   RgbaVolume volume;
@@ -358,15 +354,15 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
                              1,
                              "a 3D grid of scalars",
                              "",
-                             {ValueType::UInt8, ValueType::UInt16, ValueType::Float},
+                             {NumberType::UInt8, NumberType::UInt16, NumberType::Float32},
                              "uchar, ushort or float"};
   LIC3D_TRY_ASSIGN(Opened opened, nrrd::openPayload(path, expected));
   const Layout& layout = opened.layout;
   NoiseVolume noise;
   noise.dims = layout.dims;
-  noise.type = layout.type == ValueType::UInt8    ? NoiseType::UInt8
-               : layout.type == ValueType::UInt16 ? NoiseType::UInt16
-                                                  : NoiseType::Float32;
+  noise.type = layout.type == NumberType::UInt8    ? NoiseType::UInt8
+               : layout.type == NumberType::UInt16 ? NoiseType::UInt16
+                                                   : NoiseType::Float32;
   const auto payload = static_cast<std::size_t>(layout.payloadBytes());
   LIC3D_TRY(reserveDecoded(noise.bytes, payload, path));
   std::size_t offset = 0;

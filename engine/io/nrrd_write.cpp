@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/nrrd_header.h"
+#include "io/number_type.h"
 #include "io/volume_io.h"
 
 namespace lic3d {
@@ -23,11 +25,7 @@ static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are written as pa
 // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
 std::string formatVector(const glm::dvec3& v) {
   std::string text = "(";
-  text += formatDouble(v.x);
-  text += ',';
-  text += formatDouble(v.y);
-  text += ',';
-  text += formatDouble(v.z);
+  text += tripleText(v, ",");
   text += ')';
   return text;
 }
@@ -47,6 +45,11 @@ bool writeLittleEndian(std::ostream& out, const void* data, std::size_t count,
     out.write(chunk.data(), static_cast<std::streamsize>(n * bytesPerValue));
   }
   return static_cast<bool>(out);
+}
+
+// The magic line, the comment and the type, as every header here begins.
+std::string headerStart(NumberType type) {
+  return "NRRD0004\n# written by lic3d\ntype: " + std::string(numberType(type).nrrdNames[0]) + "\n";
 }
 
 std::string sizesText(Dims dims) {
@@ -72,7 +75,7 @@ std::string labelsText(std::string_view name, bool componentAxis) {
 }  // namespace
 
 std::string nrrd::scalarHeader(Dims dims, const GridGeometry& geometry, std::string_view name) {
-  return "NRRD0004\n# written by lic3d\ntype: float\ndimension: 3\nsizes: " + sizesText(dims) +
+  return headerStart(NumberType::Float32) + "dimension: 3\nsizes: " + sizesText(dims) +
          "\nspace dimension: 3\nspace directions: " + directionsText(geometry) +
          "\nkinds: domain domain domain\n" + labelsText(name, false) +
          "endian: little\nencoding: raw\nspace origin: " + formatVector(geometry.origin) + "\n\n";
@@ -91,7 +94,7 @@ Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolu
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field) {
   LIC3D_TRY(checkVolumeForWriting(path, field.dims, field.vectors.size(), 1, &field.geometry));
   const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: float\ndimension: 4\nsizes: 3 " + sizesText(field.dims) +
+      headerStart(NumberType::Float32) + "dimension: 4\nsizes: 3 " + sizesText(field.dims) +
       "\nspace dimension: 3\nspace directions: none " + directionsText(field.geometry) +
       "\nkinds: vector domain domain domain\n" + labelsText("vectors", true) +
       "endian: little\nencoding: raw\nspace origin: " + formatVector(field.geometry.origin) +
@@ -109,11 +112,10 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
                       std::to_string(noise.bytes.size()) + " bytes, not a whole number of values");
   LIC3D_TRY(
       checkVolumeForWriting(path, noise.dims, noise.bytes.size() / bytesPerValue, 1, nullptr));
-  const char* type = noise.type == NoiseType::UInt8    ? "uchar"
-                     : noise.type == NoiseType::UInt16 ? "ushort"
-                                                       : "float";
-  const std::string header = std::string("NRRD0004\n# written by lic3d\ntype: ") + type +
-                             "\ndimension: 3\nsizes: " + sizesText(noise.dims) +
+  const NumberType type = noise.type == NoiseType::UInt8    ? NumberType::UInt8
+                          : noise.type == NoiseType::UInt16 ? NumberType::UInt16
+                                                            : NumberType::Float32;
+  const std::string header = headerStart(type) + "dimension: 3\nsizes: " + sizesText(noise.dims) +
                              "\nkinds: domain domain domain\n" + labelsText("noise", false) +
                              (bytesPerValue > 1 ? "endian: little\n" : "") + "encoding: raw\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
@@ -126,10 +128,9 @@ Result<void> writeNoiseNrrd(const std::filesystem::path& path, const NoiseVolume
 Result<void> writeRgbaNrrd(const std::filesystem::path& path, const RgbaVolume& volume) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
   const std::string header =
-      "NRRD0004\n# written by lic3d\ntype: uchar\ndimension: 4\nsizes: 4 " +
-      sizesText(volume.dims) + "\nspace dimension: 3\nspace directions: none " +
-      directionsText(volume.geometry) + "\nkinds: RGBA-color domain domain domain\n" +
-      labelsText("RGBA", true) +
+      headerStart(NumberType::UInt8) + "dimension: 4\nsizes: 4 " + sizesText(volume.dims) +
+      "\nspace dimension: 3\nspace directions: none " + directionsText(volume.geometry) +
+      "\nkinds: RGBA-color domain domain domain\n" + labelsText("RGBA", true) +
       "encoding: raw\nspace origin: " + formatVector(volume.geometry.origin) + "\n\n";
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;

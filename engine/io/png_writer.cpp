@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/stage_times.h"
+#include "core/text.h"
 #include "io/file_util.h"
 
 // libpng is linked statically (like zlib) so the binary needs nothing beyond libvulkan, libstdc++

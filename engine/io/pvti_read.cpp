@@ -3,24 +3,33 @@
 // with the whole extent and a Piece (Extent, Source) per process, each a .vti of its own. The
 // field is assembled from the pieces by their extents.
 #include <array>
-#include <cstdio>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <pugixml.hpp>
 #include <string>
 #include <vector>
 
 #include "io/file_util.h"
 #include "io/vti.h"
+#include "io/vti_file.h"
 
 namespace lic3d {
 namespace {
 
 using Extent = std::array<int, 6>;
 
+// The .vti reader's extent, each number within int.
 bool parseExtent(const char* text, Extent& extent) {
-  char rest = 0;
-  return std::sscanf(text, "%d %d %d %d %d %d %c", &extent[0], &extent[1], &extent[2], &extent[3],
-                     &extent[4], &extent[5], &rest) == 6 &&
-         extent[0] <= extent[1] && extent[2] <= extent[3] && extent[4] <= extent[5];
+  const std::optional<vti::Extent> parsed = vti::parseExtent(text);
+  if (!parsed) return false;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const std::int64_t bound = parsed->bounds[i];
+    if (bound < std::numeric_limits<int>::min() || bound > std::numeric_limits<int>::max())
+      return false;
+    extent[i] = static_cast<int>(bound);
+  }
+  return true;
 }
 
 Dims pointsOf(const Extent& e) { return {e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1}; }

@@ -5,14 +5,15 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 namespace {
@@ -185,6 +186,7 @@ Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldR
   resizeLarge(field.vectors, static_cast<std::size_t>(voxels));
   std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, expected)));
   std::uint64_t next = 0;  // the index of the next value in the file
+  const NumberType type = sidecar.valueBytes == 8 ? NumberType::Float64 : NumberType::Float32;
   for (std::uint64_t left = expected; left > 0;) {
     const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), left));
     if (reader.read(chunk.data(), count) != count)
@@ -192,14 +194,8 @@ Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldR
     const std::size_t values = count / sidecar.valueBytes;
     toNativeOrder(chunk.data(), values, sidecar.valueBytes, sidecar.order);
     for (std::size_t i = 0; i < values; ++i, ++next) {
-      double value = 0.0;
-      if (sidecar.valueBytes == 8) {
-        std::memcpy(&value, chunk.data() + 8 * i, 8);
-      } else {
-        float single = 0.0f;
-        std::memcpy(&single, chunk.data() + 4 * i, 4);
-        value = single;
-      }
+      const double value = valueOf(
+          reinterpret_cast<const unsigned char*>(chunk.data()) + i * sidecar.valueBytes, type);
       // Interleaved: x y z of voxel 0, then voxel 1. Planar: x of every voxel, then y, then z.
       const std::uint64_t voxel = sidecar.planar ? next % voxels : next / 3;
       const std::uint64_t axis = sidecar.planar ? next / voxels : next % 3;

@@ -16,8 +16,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd_header.h"
+#include "io/number_type.h"
 
 namespace lic3d {
 namespace {
@@ -29,15 +31,19 @@ Error cannotWrite(ErrorKind kind, const std::filesystem::path& path, const std::
   return {kind, "cannot write '" + path.string() + "': " + reason};
 }
 
-std::string tripleText(const glm::dvec3& v) {
-  return "[" + formatDouble(v.x) + ", " + formatDouble(v.y) + ", " + formatDouble(v.z) + "]";
+// Appends rather than "[" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
+std::string jsonList(const glm::dvec3& v) {
+  std::string text = "[";
+  text += tripleText(v, ", ");
+  text += ']';
+  return text;
 }
 
 // What raw_volume.h describes, for one float32 component per voxel.
 std::string rawSidecar(Dims dims, const GridGeometry& geometry) {
   return "{\"dims\": [" + std::to_string(dims.x) + ", " + std::to_string(dims.y) + ", " +
-         std::to_string(dims.z) + "], \"spacing\": " + tripleText(geometry.spacing) +
-         ", \"origin\": " + tripleText(geometry.origin) +
+         std::to_string(dims.z) + "], \"spacing\": " + jsonList(geometry.spacing) +
+         ", \"origin\": " + jsonList(geometry.origin) +
          ", \"components\": 1, \"type\": \"float32\", \"endian\": \"little\"}\n";
 }
 
@@ -78,7 +84,7 @@ Dims ScalarVolumeStream::dims() const { return state_->dims; }
 Result<ScalarVolumeStream> ScalarVolumeStream::create(const std::filesystem::path& path, Dims dims,
                                                       const GridGeometry& geometry,
                                                       std::string_view name) {
-  const std::string extension = asciiLowerCase(path.extension().string());
+  const std::string extension = lowerCaseExtension(path);
   if (extension != ".nrrd" && extension != ".raw")
     return cannotWrite(ErrorKind::InvalidInput, path,
                        "a volume is written piece by piece only as .nrrd or .raw, not " +

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/text.h"
 #include "io/file_util.h"
 
 namespace lic3d::vti {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 
@@ -23,20 +24,6 @@ constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 36;
 // Files larger than this whose XML fits in it are read as a head and streamed (openHead).
 constexpr std::size_t kHeadBytes = std::size_t{64} << 10;
 
-constexpr TypeInfo kTypes[] = {
-    {"Int8", NumberType::Int8, 1},       {"UInt8", NumberType::UInt8, 1},
-    {"Int16", NumberType::Int16, 2},     {"UInt16", NumberType::UInt16, 2},
-    {"Int32", NumberType::Int32, 4},     {"UInt32", NumberType::UInt32, 4},
-    {"Int64", NumberType::Int64, 8},     {"UInt64", NumberType::UInt64, 8},
-    {"Float32", NumberType::Float32, 4}, {"Float64", NumberType::Float64, 8},
-};
-
-const TypeInfo* findType(std::string_view name) {
-  for (const TypeInfo& type : kTypes)
-    if (type.name == name) return &type;
-  return nullptr;
-}
-
 Result<std::int64_t> parseExtentNumber(std::string_view word) {
   const bool negative = !word.empty() && word.front() == '-';
   if (negative) word.remove_prefix(1);
@@ -45,11 +32,6 @@ Result<std::int64_t> parseExtentNumber(std::string_view word) {
   if (!parseUnsigned(word, magnitude) || magnitude > (std::uint64_t{1} << 40)) return Error{};
   return negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
 }
-
-struct Extent {
-  std::array<std::int64_t, 6> bounds{};
-  bool operator==(const Extent&) const = default;
-};
 
 // Where AppendedData's data starts in `bytes`: the end of its opening tag and the byte after its
 // '_'. Empty when there is no AppendedData or it is empty (<AppendedData/>).
@@ -115,25 +97,16 @@ Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, 
   return value;
 }
 
-Result<Extent> parseExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
+Result<Extent> readExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
   const pugi::xml_attribute attribute = node.attribute(name);
   if (!attribute) return file.fail(std::string(node.name()) + ": missing " + name);
-  const std::vector<std::string_view> words = splitWords(attribute.value());
-  Extent extent;
-  bool good = words.size() == 6;
-  for (std::size_t i = 0; good && i < 6; ++i) {
-    Result<std::int64_t> number = parseExtentNumber(words[i]);
-    good = number.ok();
-    if (good) extent.bounds[i] = *number;
-  }
-  for (std::size_t axis = 0; good && axis < 3; ++axis)
-    good = extent.bounds[2 * axis] <= extent.bounds[2 * axis + 1];
-  if (!good)
+  const std::optional<Extent> extent = parseExtent(attribute.value());
+  if (!extent)
     return file.fail(
         std::string(node.name()) + " " + name +
         ": expected 6 whole numbers x0 x1 y0 y1 z0 z1 with each first <= last, found " +
         quoteForMessage(attribute.value()));
-  return extent;
+  return *extent;
 }
 
 std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t components) {
@@ -146,114 +119,95 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
   return list.empty() ? "none" : list;
 }
 
-template <class T>
-double load(const unsigned char* data) {
-  T value;
-  std::memcpy(&value, data, sizeof(T));
-  return static_cast<double>(value);
-}
-
-}  // namespace
-
-double valueOf(const unsigned char* data, NumberType type) {
-  switch (type) {
-    case NumberType::Int8: return load<std::int8_t>(data);
-    case NumberType::UInt8: return load<std::uint8_t>(data);
-    case NumberType::Int16: return load<std::int16_t>(data);
-    case NumberType::UInt16: return load<std::uint16_t>(data);
-    case NumberType::Int32: return load<std::int32_t>(data);
-    case NumberType::UInt32: return load<std::uint32_t>(data);
-    case NumberType::Int64: return load<std::int64_t>(data);
-    case NumberType::UInt64: return load<std::uint64_t>(data);
-    case NumberType::Float32: return load<float>(data);
-    case NumberType::Float64: return load<double>(data);
-  }
-  return 0.0;
-}
-
-Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
-  auto file = std::make_unique<VtiFile>();
-  file->path = path;
-  const bool head = openHead(*file, stream);
+// The file's bytes (or, for a large file, its head: openHead) read and its XML parsed.
+Result<void> readXml(VtiFile& file, bool stream) {
+  const std::filesystem::path& path = file.path;
+  const bool head = openHead(file, stream);
   if (!head && stream) {
     LIC3D_TRY_ASSIGN(const FileReader reader, FileReader::open(path));
     if (reader.size() > kHeadBytes)
-      return unsupportedError(
-          path.string() +
-          ": its data is not all appended raw after an XML header of at most 64 KiB (inline "
-          "ascii or base64 arrays), so it cannot be read piece by piece and is read whole");
+      return readWholeError(path,
+                            "its data is not all appended raw after an XML header of at "
+                            "most 64 KiB (inline ascii or base64 arrays)");
   }
   if (!head) {
-    LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
+    LIC3D_TRY_ASSIGN(file.bytes, readFile(path, kMaxFileBytes));
   }
-  const std::size_t first = file->bytes.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos || file->bytes[first] != '<')
-    return file->fail(first == std::string::npos
-                          ? "empty file (expected a VTK XML ImageData file)"
-                          : "not an XML file: it starts with " +
-                                quoteForMessage(std::string_view(file->bytes).substr(first, 16)) +
-                                ", expected '<?xml' or '<VTKFile'");
+  const std::size_t first = file.bytes.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || file.bytes[first] != '<')
+    return file.fail(first == std::string::npos
+                         ? "empty file (expected a VTK XML ImageData file)"
+                         : "not an XML file: it starts with " +
+                               quoteForMessage(std::string_view(file.bytes).substr(first, 16)) +
+                               ", expected '<?xml' or '<VTKFile'");
   if (!head) {
-    LIC3D_TRY_ASSIGN(const std::optional<AppendedSplit> split, findAppended(*file, file->bytes));
+    LIC3D_TRY_ASSIGN(const std::optional<AppendedSplit> split, findAppended(file, file.bytes));
     if (split) {
-      useAppended(*file, file->bytes, *split);
-      file->appended = std::string_view(file->bytes).substr(split->data);
-      file->appendedAt = split->data;
-      file->appendedSize = file->appended.size();
+      useAppended(file, file.bytes, *split);
+      file.appended = std::string_view(file.bytes).substr(split->data);
+      file.appendedAt = split->data;
+      file.appendedSize = file.appended.size();
     }
   }
-  std::string& xml = file->hasAppended ? file->xml : file->bytes;
-  const pugi::xml_parse_result parsed = file->document.load_buffer_inplace(
+  std::string& xml = file.hasAppended ? file.xml : file.bytes;
+  const pugi::xml_parse_result parsed = file.document.load_buffer_inplace(
       xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!parsed)
-    return file->fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
-                      parsed.description());
+    return file.fail(std::string("invalid XML at byte ") + std::to_string(parsed.offset) + ": " +
+                     parsed.description());
+  return {};
+}
 
-  const pugi::xml_node root = file->document.child("VTKFile");
-  if (!root) return file->fail("not a VTK XML file: the root element is not VTKFile");
+// VTKFile's attributes: the type, the byte order, the header type, the compressor, and the
+// appended data's encoding.
+Result<void> readRoot(VtiFile& file, const pugi::xml_node& root, bool stream) {
+  const std::filesystem::path& path = file.path;
+  if (!root) return file.fail("not a VTK XML file: the root element is not VTKFile");
   const std::string type = root.attribute("type").value();
   if (type != "ImageData")
-    return file->fail("VTKFile type " + quoteForMessage(type) +
-                      " is not supported (expected ImageData)");
+    return file.fail("VTKFile type " + quoteForMessage(type) +
+                     " is not supported (expected ImageData)");
   const std::string order = root.attribute("byte_order").value();
   if (order == "BigEndian") {
-    file->order = std::endian::big;
+    file.order = std::endian::big;
   } else if (!order.empty() && order != "LittleEndian") {
-    return file->fail("byte_order: expected LittleEndian or BigEndian, found " +
-                      quoteForMessage(order));
+    return file.fail("byte_order: expected LittleEndian or BigEndian, found " +
+                     quoteForMessage(order));
   }
   const std::string headerType = root.attribute("header_type").value();
   if (headerType == "UInt64") {
-    file->header64 = true;
+    file.header64 = true;
   } else if (!headerType.empty() && headerType != "UInt32") {
-    return file->fail("header_type: expected UInt32 or UInt64, found " +
-                      quoteForMessage(headerType));
+    return file.fail("header_type: expected UInt32 or UInt64, found " +
+                     quoteForMessage(headerType));
   }
   const std::string compressor = root.attribute("compressor").value();
   if (compressor == "vtkZLibDataCompressor") {
-    file->zlib = true;
+    file.zlib = true;
   } else if (!compressor.empty()) {
-    return file->fail("compressor " + quoteForMessage(compressor) +
-                      " is not supported (expected vtkZLibDataCompressor or none)");
+    return file.fail("compressor " + quoteForMessage(compressor) +
+                     " is not supported (expected vtkZLibDataCompressor or none)");
   }
-  if (file->hasAppended) {
+  if (file.hasAppended) {
     const std::string encoding = root.child("AppendedData").attribute("encoding").value();
     if (encoding != "raw" && encoding != "base64")
-      return file->fail("AppendedData encoding: expected raw or base64, found " +
-                        quoteForMessage(encoding));
-    file->appendedBase64 = encoding == "base64";
-    if (file->appendedInFile && file->appendedBase64 && !stream) {
+      return file.fail("AppendedData encoding: expected raw or base64, found " +
+                       quoteForMessage(encoding));
+    file.appendedBase64 = encoding == "base64";
+    if (file.appendedInFile && file.appendedBase64 && !stream) {
       // Base64 is decoded from memory: the rest of the file is read after all.
-      LIC3D_TRY_ASSIGN(file->bytes, readFile(path, kMaxFileBytes));
-      file->appended = std::string_view(file->bytes).substr(file->appendedAt);
-      file->appendedSize = file->appended.size();
-      file->appendedInFile = false;
+      LIC3D_TRY_ASSIGN(file.bytes, readFile(path, kMaxFileBytes));
+      file.appended = std::string_view(file.bytes).substr(file.appendedAt);
+      file.appendedSize = file.appended.size();
+      file.appendedInFile = false;
     }
   }
+  return {};
+}
 
-  const pugi::xml_node image = root.child("ImageData");
-  if (!image) return file->fail("VTKFile holds no ImageData element");
-  LIC3D_TRY_ASSIGN(const Extent whole, parseExtent(*file, image, "WholeExtent"));
+// ImageData's grid (WholeExtent, Origin, Spacing) and its one Piece.
+Result<void> readGrid(VtiFile& file, const pugi::xml_node& image, bool stream) {
+  LIC3D_TRY_ASSIGN(const Extent whole, readExtent(file, image, "WholeExtent"));
   std::array<std::uint64_t, 3> sizes{};
   for (std::size_t axis = 0; axis < 3; ++axis)
     sizes[axis] =
@@ -261,43 +215,98 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool
   if (const std::string problem =
           gridLimitProblem(sizes[0], sizes[1], sizes[2], stream ? kMaxStreamedVoxels : kMaxVoxels);
       !problem.empty())
-    return file->fail("WholeExtent: " + problem);
-  file->dims =
+    return file.fail("WholeExtent: " + problem);
+  file.dims =
       Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(*file, image, "Origin", 0.0, false));
-  LIC3D_TRY_ASSIGN(file->geometry.spacing, parseTriple(*file, image, "Spacing", 1.0, true));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(file, image, "Origin", 0.0, false));
+  LIC3D_TRY_ASSIGN(file.geometry.spacing, parseTriple(file, image, "Spacing", 1.0, true));
   // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
   // start at 0 moves the first voxel.
   for (glm::length_t axis = 0; axis < 3; ++axis)
-    file->geometry.origin[axis] =
+    file.geometry.origin[axis] =
         origin[axis] + static_cast<double>(whole.bounds[2 * static_cast<std::size_t>(axis)]) *
-                           file->geometry.spacing[axis];
+                           file.geometry.spacing[axis];
   for (glm::length_t axis = 0; axis < 3; ++axis)
-    if (!std::isfinite(file->geometry.origin[axis]))
-      return file->fail("ImageData: Origin + WholeExtent * Spacing is not finite");
+    if (!std::isfinite(file.geometry.origin[axis]))
+      return file.fail("ImageData: Origin + WholeExtent * Spacing is not finite");
 
   std::size_t pieces = 0;
   for (const pugi::xml_node piece : image.children("Piece")) {
     ++pieces;
-    file->piece = piece;
+    file.piece = piece;
   }
   if (pieces != 1)
-    return file->fail("ImageData holds " + std::to_string(pieces) +
-                      " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
-                      "write them by default)");
-  if (file->piece.attribute("Extent")) {
-    LIC3D_TRY_ASSIGN(const Extent extent, parseExtent(*file, file->piece, "Extent"));
+    return file.fail("ImageData holds " + std::to_string(pieces) +
+                     " Piece elements; lic3d reads files with exactly one (as ParaView and VTK "
+                     "write them by default)");
+  if (file.piece.attribute("Extent")) {
+    LIC3D_TRY_ASSIGN(const Extent extent, readExtent(file, file.piece, "Extent"));
     if (!(extent == whole))
-      return file->fail(
-          "the Piece's Extent " + quoteForMessage(file->piece.attribute("Extent").value()) +
+      return file.fail(
+          "the Piece's Extent " + quoteForMessage(file.piece.attribute("Extent").value()) +
           " differs from WholeExtent " + quoteForMessage(image.attribute("WholeExtent").value()) +
           " (lic3d reads one piece covering the whole grid)");
   }
+  return {};
+}
+
+}  // namespace
+
+std::optional<Extent> parseExtent(std::string_view text) {
+  const std::vector<std::string_view> words = splitWords(text);
+  if (words.size() != 6) return std::nullopt;
+  Extent extent;
+  for (std::size_t i = 0; i < 6; ++i) {
+    Result<std::int64_t> number = parseExtentNumber(words[i]);
+    if (!number) return std::nullopt;
+    extent.bounds[i] = *number;
+  }
+  for (std::size_t axis = 0; axis < 3; ++axis)
+    if (extent.bounds[2 * axis] > extent.bounds[2 * axis + 1]) return std::nullopt;
+  return extent;
+}
+
+Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool stream) {
+  auto file = std::make_unique<VtiFile>();
+  file->path = path;
+  LIC3D_TRY(readXml(*file, stream));
+  const pugi::xml_node root = file->document.child("VTKFile");
+  LIC3D_TRY(readRoot(*file, root, stream));
+  const pugi::xml_node image = root.child("ImageData");
+  if (!image) return file->fail("VTKFile holds no ImageData element");
+  LIC3D_TRY(readGrid(*file, image, stream));
   return file;
 }
 
 std::string describe(const ArrayRef& array) {
   return "DataArray " + quoteForMessage(array.name) + (array.cellData ? " (cell data)" : "");
+}
+
+Result<void> checkArray(const VtiFile& file, const ArrayRef& array, std::uint64_t tuples) {
+  const std::string what = describe(array);
+  if (!array.type)
+    return file.fail(what + ": type " + quoteForMessage(array.node.attribute("type").value()) +
+                     " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+  if (const pugi::xml_attribute count = array.node.attribute("NumberOfTuples")) {
+    std::uint64_t declared = 0;
+    if (!parseUnsigned(count.value(), declared) || declared != tuples)
+      return file.fail(what + ": NumberOfTuples " + quoteForMessage(count.value()) +
+                       " does not match the " + std::to_string(tuples) +
+                       (array.cellData ? " cells" : " points") + " of the grid");
+  }
+  return {};
+}
+
+Result<std::uint64_t> appendedOffset(const VtiFile& file, const ArrayRef& array) {
+  std::uint64_t offset = 0;
+  const pugi::xml_attribute attribute = array.node.attribute("offset");
+  if (!attribute || !parseUnsigned(attribute.value(), offset))
+    return file.fail(describe(array) + ": an appended array needs a whole-number offset, found " +
+                     quoteForMessage(attribute.value()));
+  if (offset > file.appendedSize)
+    return file.fail(describe(array) + ": offset " + std::to_string(offset) + " is beyond the " +
+                     std::to_string(file.appendedSize) + " bytes of AppendedData");
+  return offset;
 }
 
 Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {
@@ -309,7 +318,7 @@ Result<std::vector<ArrayRef>> listArrays(const VtiFile& file) {
       array.node = node;
       array.name = node.attribute("Name").value();
       array.cellData = cellData;
-      array.type = findType(node.attribute("type").value());
+      array.type = findVtkXmlType(node.attribute("type").value());
       if (const pugi::xml_attribute components = node.attribute("NumberOfComponents")) {
         if (!parseUnsigned(components.value(), array.components) || array.components < 1 ||
             array.components > 64)

@@ -3,11 +3,13 @@
 // Internal to the VTK XML ImageData reader (vti_file.cpp, vti_read.cpp): the file's structure,
 // checked once, apart from the decoding of the arrays' data that it points to.
 
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <pugixml.hpp>
 #include <string>
 #include <string_view>
@@ -16,30 +18,9 @@
 #include "core/error.h"
 #include "core/volume.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d::vti {
-
-enum class NumberType {
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Int64,
-  UInt64,
-  Float32,
-  Float64
-};
-
-struct TypeInfo {
-  std::string_view name;
-  NumberType type;
-  std::size_t bytes;
-};
-
-// One value of `type` in native byte order, as a double.
-double valueOf(const unsigned char* data, NumberType type);
 
 // The parsed file. pugixml parses in place and keeps pointers into `xml`, so this stays put
 // (held by unique_ptr).
@@ -66,13 +47,23 @@ struct VtiFile {
   Error fail(const std::string& problem) const { return fileError(path, problem); }
 };
 
+// A WholeExtent or a Piece's Extent: the first and last point index along x, y and z.
+struct Extent {
+  std::array<std::int64_t, 6> bounds{};
+  bool operator==(const Extent&) const = default;
+};
+
+// "x0 x1 y0 y1 z0 z1": six whole numbers (each at most 2^40 from zero) with each first <= last;
+// nullopt for anything else. .vti and .pvti files write their extents so.
+std::optional<Extent> parseExtent(std::string_view text);
+
 // A DataArray of PointData or CellData.
 struct ArrayRef {
   pugi::xml_node node;
   std::string name;
   bool cellData = false;
   std::uint64_t components = 1;
-  const TypeInfo* type = nullptr;  // null for a type lic3d does not read
+  const NumberTypeInfo* type = nullptr;  // null for a type lic3d does not read
 };
 
 // The whole file read and parsed, with its grid (WholeExtent, Origin, Spacing) and its one Piece
@@ -84,6 +75,12 @@ Result<std::unique_ptr<VtiFile>> openVti(const std::filesystem::path& path, bool
 
 // "DataArray 'name'", marked when it is cell data: how every error names an array.
 std::string describe(const ArrayRef& array);
+
+// What every reader checks of an array before its data: a type lic3d reads, and NumberOfTuples
+// (where given) equal to the grid's `tuples`. The error starts with describe(array).
+Result<void> checkArray(const VtiFile& file, const ArrayRef& array, std::uint64_t tuples);
+// An appended array's `offset` attribute: a whole number within AppendedData.
+Result<std::uint64_t> appendedOffset(const VtiFile& file, const ArrayRef& array);
 
 // Every DataArray of PointData, then of CellData, in file order.
 Result<std::vector<ArrayRef>> listArrays(const VtiFile& file);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 #include "io/vti.h"
@@ -26,15 +27,14 @@ namespace lic3d {
 constexpr std::size_t kInflateBatchBytes = std::size_t{32} << 20;
 namespace {
 
+using vti::appendedOffset;
 using vti::ArrayRef;
 using vti::ByteSource;
+using vti::checkArray;
 using vti::chooseArray;
 using vti::describe;
 using vti::listArrays;
-using vti::NumberType;
 using vti::openVti;
-using vti::TypeInfo;
-using vti::valueOf;
 using vti::VtiFile;
 
 // Values are converted in chunks of this many.
@@ -48,38 +48,9 @@ constexpr std::size_t kStreamChunkBytes = std::size_t{32} << 20;
 // grow call).
 using ValueSink = std::function<void(std::uint64_t first, const double* values, std::size_t count)>;
 
-// Converts `count` whole values of `type` in byte order `order` at `data` into `out`.
-template <class T>
-void convertValues(const unsigned char* data, std::size_t count, std::endian order, double* out) {
-  for (std::size_t i = 0; i < count; ++i) {
-    std::array<unsigned char, sizeof(T)> bytes;
-    std::memcpy(bytes.data(), data + i * sizeof(T), sizeof(T));
-    if (order != std::endian::native) std::reverse(bytes.begin(), bytes.end());
-    T value;
-    std::memcpy(&value, bytes.data(), sizeof(T));
-    out[i] = static_cast<double>(value);
-  }
-}
-
-void convertValues(const TypeInfo& type, const unsigned char* data, std::size_t count,
-                   std::endian order, double* out) {
-  switch (type.type) {
-    case NumberType::Int8: return convertValues<std::int8_t>(data, count, order, out);
-    case NumberType::UInt8: return convertValues<std::uint8_t>(data, count, order, out);
-    case NumberType::Int16: return convertValues<std::int16_t>(data, count, order, out);
-    case NumberType::UInt16: return convertValues<std::uint16_t>(data, count, order, out);
-    case NumberType::Int32: return convertValues<std::int32_t>(data, count, order, out);
-    case NumberType::UInt32: return convertValues<std::uint32_t>(data, count, order, out);
-    case NumberType::Int64: return convertValues<std::int64_t>(data, count, order, out);
-    case NumberType::UInt64: return convertValues<std::uint64_t>(data, count, order, out);
-    case NumberType::Float32: return convertValues<float>(data, count, order, out);
-    case NumberType::Float64: return convertValues<double>(data, count, order, out);
-  }
-}
-
 // Whole values in memory, from value number `first` on, converted and delivered on the available
 // threads in chunks of kChunkValues.
-void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned char* data,
+void decodeInParallel(const NumberTypeInfo& type, std::endian order, const unsigned char* data,
                       std::uint64_t count, std::uint64_t first, const ValueSink& sink) {
   const std::size_t chunks = static_cast<std::size_t>((count + kChunkValues - 1) / kChunkValues);
   parallelChunks(chunks, [&](std::size_t begin, std::size_t end) {
@@ -87,7 +58,7 @@ void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned ch
     for (std::size_t c = begin; c < end; ++c) {
       const std::uint64_t at = std::uint64_t{c} * kChunkValues;
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(kChunkValues, count - at));
-      convertValues(type, data + at * type.bytes, n, order, values.data());
+      convertValues(type.type, data + at * type.bytes, n, order, values.data());
       sink(first + at, values.data(), n);
     }
   });
@@ -97,7 +68,7 @@ void decodeInParallel(const TypeInfo& type, std::endian order, const unsigned ch
 // the next one.
 class ValueDecoder {
  public:
-  ValueDecoder(const TypeInfo& type, std::endian order, const ValueSink& sink)
+  ValueDecoder(const NumberTypeInfo& type, std::endian order, const ValueSink& sink)
       : type_(type), order_(order), sink_(sink) {
     values_.reserve(kChunkValues);
   }
@@ -134,7 +105,7 @@ class ValueDecoder {
     values_.clear();
   }
 
-  const TypeInfo& type_;
+  const NumberTypeInfo& type_;
   std::endian order_;
   const ValueSink& sink_;
   std::array<unsigned char, 8> carry_{};
@@ -167,18 +138,9 @@ class ArrayReader {
       : file_(file), array_(array), what_(describe(array)), tuples_(tuples) {}
 
   Result<void> read(const GrowSink& grow, const ValueSink& sink) {
-    if (!array_.type)
-      return fail("type " + quoteForMessage(array_.node.attribute("type").value()) +
-                  " is not supported (expected Int8 .. UInt64, Float32 or Float64)");
+    LIC3D_TRY(checkArray(file_, array_, tuples_));
     values_ = tuples_ * array_.components;
     bytes_ = values_ * array_.type->bytes;
-    if (const pugi::xml_attribute count = array_.node.attribute("NumberOfTuples")) {
-      std::uint64_t declared = 0;
-      if (!parseUnsigned(count.value(), declared) || declared != tuples_)
-        return fail("NumberOfTuples " + quoteForMessage(count.value()) + " does not match the " +
-                    std::to_string(tuples_) + (array_.cellData ? " cells" : " points") +
-                    " of the grid");
-    }
     const std::string format = array_.node.attribute("format").value();
     if (format == "ascii") return readAscii(grow, sink);
     if (format == "binary") {
@@ -187,14 +149,7 @@ class ArrayReader {
     }
     if (format == "appended") {
       if (!file_.hasAppended) return fail("format is appended, but the file has no AppendedData");
-      std::uint64_t offset = 0;
-      const pugi::xml_attribute offsetAttribute = array_.node.attribute("offset");
-      if (!offsetAttribute || !parseUnsigned(offsetAttribute.value(), offset))
-        return fail("an appended array needs a whole-number offset, found " +
-                    quoteForMessage(offsetAttribute.value()));
-      if (offset > file_.appendedSize)
-        return fail("offset " + std::to_string(offset) + " is beyond the " +
-                    std::to_string(file_.appendedSize) + " bytes of AppendedData");
+      LIC3D_TRY_ASSIGN(const std::uint64_t offset, appendedOffset(file_, array_));
       if (file_.appendedInFile) {
         LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(file_.path));
         if (reader.skip(file_.appendedAt + offset) != file_.appendedAt + offset)
@@ -214,7 +169,7 @@ class ArrayReader {
 
   std::string layoutText() const {
     return std::to_string(tuples_) + " tuples of " + std::to_string(array_.components) + " " +
-           std::string(array_.type->name);
+           std::string(array_.type->vtkXmlName);
   }
 
   Result<void> readAscii(const GrowSink& grow, const ValueSink& sink) {

@@ -6,7 +6,9 @@
 #include <ostream>
 #include <string>
 
+#include "core/text.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 #include "io/volume_io.h"
 #include "io/vti.h"
 
@@ -35,14 +37,10 @@ Result<std::string> escapeXml(const std::filesystem::path& path, std::string_vie
   return escaped;
 }
 
-std::string tripleText(const glm::dvec3& v) {
-  return formatDouble(v.x) + " " + formatDouble(v.y) + " " + formatDouble(v.z);
-}
-
 // One point-data array, appended raw after a UInt64 byte count, in the host's byte order.
 Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGeometry& geometry,
-                      std::string_view typeName, int components, std::string_view arrayName,
-                      const void* data, std::size_t bytes) {
+                      NumberType type, int components, std::string_view arrayName, const void* data,
+                      std::size_t bytes) {
   LIC3D_TRY_ASSIGN(const std::string name, escapeXml(path, arrayName));
   const std::string extent = "0 " + std::to_string(dims.x - 1) + " 0 " +
                              std::to_string(dims.y - 1) + " 0 " + std::to_string(dims.z - 1);
@@ -51,10 +49,10 @@ Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGe
       std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
       "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
       "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
-      tripleText(geometry.origin) + "\" Spacing=\"" + tripleText(geometry.spacing) +
+      tripleText(geometry.origin, " ") + "\" Spacing=\"" + tripleText(geometry.spacing, " ") +
       "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
       "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
-      std::string(typeName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
+      std::string(numberType(type).vtkXmlName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
       std::to_string(components) +
       "\" format=\"appended\" offset=\"0\"/>\n      </PointData>\n      <CellData>\n"
       "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n   _";
@@ -73,14 +71,14 @@ Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGe
 Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
                             std::string_view arrayName) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, "Float32", 1, arrayName, volume.values.data(),
-                  volume.values.size() * sizeof(float));
+  return writeVti(path, volume.dims, volume.geometry, NumberType::Float32, 1, arrayName,
+                  volume.values.data(), volume.values.size() * sizeof(float));
 }
 
 Result<void> writeRgbaVti(const std::filesystem::path& path, const RgbaVolume& volume) {
   LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.rgba.size(), 4, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, "UInt8", 4, "rgba", volume.rgba.data(),
-                  volume.rgba.size());
+  return writeVti(path, volume.dims, volume.geometry, NumberType::UInt8, 4, "rgba",
+                  volume.rgba.data(), volume.rgba.size());
 }
 
 }  // namespace lic3d

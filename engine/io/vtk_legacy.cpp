@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 #include "io/vtk_legacy_parser.h"

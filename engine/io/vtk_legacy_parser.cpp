@@ -11,18 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "core/text.h"
 #include "io/file_util.h"
 #include "io/volume_io.h"
 
 namespace lic3d::vtk_legacy {
-
-enum class NumberKind { Signed, Unsigned, Real };
-
-struct DataType {
-  std::string_view name;  // lower case, as VTK compares them
-  std::size_t binaryBytes;
-  NumberKind kind;
-};
 
 namespace {
 
@@ -32,45 +25,6 @@ constexpr std::size_t kMaxTokenBytes = 256;
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 // ASCII values are delivered in chunks of this many.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
-
-// The sizes in BINARY files. `long` is 8 bytes because VTK writes sizeof(long), and legacy files
-// come from LP64 systems; vtkIdType is always written as a 32-bit int.
-constexpr DataType kDataTypes[] = {
-    {"unsigned_char", 1, NumberKind::Unsigned},
-    {"char", 1, NumberKind::Signed},
-    {"unsigned_short", 2, NumberKind::Unsigned},
-    {"short", 2, NumberKind::Signed},
-    {"unsigned_int", 4, NumberKind::Unsigned},
-    {"int", 4, NumberKind::Signed},
-    {"unsigned_long", 8, NumberKind::Unsigned},
-    {"long", 8, NumberKind::Signed},
-    {"vtktypeint64", 8, NumberKind::Signed},
-    {"vtktypeuint64", 8, NumberKind::Unsigned},
-    {"float", 4, NumberKind::Real},
-    {"double", 8, NumberKind::Real},
-    {"vtkidtype", 4, NumberKind::Signed},
-};
-
-// One BINARY value in native byte order, as a double.
-double binaryValue(const char* data, const DataType& type) {
-  if (type.kind == NumberKind::Real) {
-    if (type.binaryBytes == 4) {
-      float value;
-      std::memcpy(&value, data, 4);
-      return value;
-    }
-    double value;
-    std::memcpy(&value, data, 8);
-    return value;
-  }
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, data, type.binaryBytes);
-  // On a big-endian host the value's bytes landed in the high end.
-  if (std::endian::native == std::endian::big) bits >>= 8 * (8 - type.binaryBytes);
-  if (type.kind == NumberKind::Unsigned) return static_cast<double>(bits);
-  const unsigned shift = static_cast<unsigned>(64 - 8 * type.binaryBytes);
-  return static_cast<double>(static_cast<std::int64_t>(bits << shift) >> shift);
-}
 
 int hexDigit(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -165,34 +119,34 @@ Result<void> Parser::skipTyped(std::uint64_t count, std::string_view typeName,
 }
 
 Result<std::size_t> Parser::binarySize(std::string_view typeName, const std::string& what) const {
-  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
-  return type->binaryBytes;
+  LIC3D_TRY_ASSIGN(const NumberTypeInfo* type, dataType(typeName, what));
+  return type->bytes;
 }
 
-Result<const DataType*> Parser::dataType(std::string_view typeName, const std::string& what) const {
+Result<const NumberTypeInfo*> Parser::dataType(std::string_view typeName,
+                                               const std::string& what) const {
   const std::string key = asciiLowerCase(typeName);
   if (key == "bit") return fail(what + ": bit arrays are not supported");
   if (key == "string" || key == "utf8_string" || key == "variant")
     return fail(what + ": " + quoteForMessage(typeName) + " arrays are not supported");
-  for (const DataType& type : kDataTypes)
-    if (type.name == key) return &type;
+  if (const NumberTypeInfo* type = findVtkLegacyType(key)) return type;
   return fail(what + ": unknown data type " + quoteForMessage(typeName));
 }
 
 Result<std::vector<double>> Parser::readNumbers(std::uint64_t count, std::string_view typeName,
                                                 const std::string& what) {
-  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
+  LIC3D_TRY_ASSIGN(const NumberTypeInfo* type, dataType(typeName, what));
   std::vector<double> numbers;
   if (format_ == Format::Binary) {
-    const std::uint64_t bytes = count * type->binaryBytes;
-    if (bytes > reader_.remaining()) return truncated(what, count, type->binaryBytes);
+    const std::uint64_t bytes = count * type->bytes;
+    if (bytes > reader_.remaining()) return truncated(what, count, type->bytes);
     std::vector<char> data(static_cast<std::size_t>(bytes));
     if (reader_.read(data.data(), data.size()) != data.size())
       return fail(what + ": cannot read: " + reader_.failureReason());
-    toNativeOrder(data.data(), static_cast<std::size_t>(count), type->binaryBytes,
-                  std::endian::big);
+    toNativeOrder(data.data(), static_cast<std::size_t>(count), type->bytes, std::endian::big);
     for (std::size_t i = 0; i < count; ++i)
-      numbers.push_back(binaryValue(data.data() + i * type->binaryBytes, *type));
+      numbers.push_back(valueOf(
+          reinterpret_cast<const unsigned char*>(data.data() + i * type->bytes), type->type));
     return numbers;
   }
   LIC3D_TRY(checkAsciiFits(count, what));
@@ -207,8 +161,8 @@ Result<std::vector<double>> Parser::readNumbers(std::uint64_t count, std::string
 Result<void> Parser::readValues(std::uint64_t count, std::string_view typeName,
                                 const std::string& what, const std::function<void()>& allocate,
                                 const ValueSink& sink) {
-  LIC3D_TRY_ASSIGN(const DataType* type, dataType(typeName, what));
-  const std::size_t bytesPerValue = type->binaryBytes;
+  LIC3D_TRY_ASSIGN(const NumberTypeInfo* type, dataType(typeName, what));
+  const std::size_t bytesPerValue = type->bytes;
   if (format_ == Format::Binary) {
     std::uint64_t bytes = 0;
     if (__builtin_mul_overflow(count, bytesPerValue, &bytes) || bytes > reader_.remaining())
@@ -224,7 +178,8 @@ Result<void> Parser::readValues(std::uint64_t count, std::string_view typeName,
         return fail(what + ": cannot read: " + reader_.failureReason());
       toNativeOrder(chunk.data(), n, bytesPerValue, std::endian::big);
       for (std::size_t i = 0; i < n; ++i)
-        values[i] = binaryValue(chunk.data() + i * bytesPerValue, *type);
+        values[i] = valueOf(
+            reinterpret_cast<const unsigned char*>(chunk.data() + i * bytesPerValue), type->type);
       sink(values.data(), n);
       done += n;
     }
@@ -232,7 +187,7 @@ Result<void> Parser::readValues(std::uint64_t count, std::string_view typeName,
   }
   LIC3D_TRY(checkAsciiFits(count, what));
   allocate();
-  const bool asFloat = type->kind == NumberKind::Real && bytesPerValue == 4;
+  const bool asFloat = type->type == NumberType::Float32;
   std::vector<double> values;
   values.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, kChunkValues)));
   for (std::uint64_t i = 0; i < count; ++i) {

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "io/file_util.h"
+#include "io/number_type.h"
 
 namespace lic3d::vtk_legacy {
 
@@ -28,9 +29,6 @@ Words wordsOf(std::string_view text);
 std::string upperCase(std::string_view text);
 // VTK writes array names with spaces and other unsafe bytes as %XX.
 std::string decodeName(std::string_view name);
-
-// A data type as the file names it, with its size in BINARY files (vtk_legacy_parser.cpp).
-struct DataType;
 
 // Receives an array's values in order, in chunks.
 using ValueSink = std::function<void(const double* values, std::size_t count)>;
@@ -69,7 +67,7 @@ class Parser {
 
  private:
   Result<std::size_t> binarySize(std::string_view typeName, const std::string& what) const;
-  Result<const DataType*> dataType(std::string_view typeName, const std::string& what) const;
+  Result<const NumberTypeInfo*> dataType(std::string_view typeName, const std::string& what) const;
   Error truncated(const std::string& what, std::uint64_t count, std::size_t bytesPerValue) const;
   // Each ASCII value takes at least one character and one separator.
   Result<void> checkAsciiFits(std::uint64_t count, const std::string& what) const;

@@ -7,6 +7,8 @@
 #include <bit>
 #include <cstring>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "core/parallel.h"
 #include "lic/fixed_point.h"
@@ -71,6 +73,205 @@ struct PoissonSetup {
   std::vector<PoissonRow> rows;  // offsets in any grid with shape.nx by shape.ny cells per layer
 };
 
+// Candidate offsets, uniform in the spherical annulus [r, 2r] (Bridson 2007) by rejection from
+// the cube [-2r, 2r]^3 (46 % accepted), made in batches without a branch per try.
+class AnnulusOffsets {
+ public:
+  AnnulusOffsets(std::int64_t r, std::int64_t r2) : r_(r), r2_(r2), span_(4 * r + 1) {}
+
+  const FixedPoint& next(Random& random) {
+    while (next_ == count_) {
+      next_ = count_ = 0;
+      for (int i = 0; i < kTries; ++i) {
+        const std::uint64_t bits = random.next();
+        const std::int64_t dx = scaled21(bits, 0, span_) - 2 * r_;
+        const std::int64_t dy = scaled21(bits, 1, span_) - 2 * r_;
+        const std::int64_t dz = scaled21(bits, 2, span_) - 2 * r_;
+        const std::int64_t d2 = dx * dx + dy * dy + dz * dz;
+        offsets_[static_cast<std::size_t>(count_)] = {static_cast<std::int32_t>(dx),
+                                                      static_cast<std::int32_t>(dy),
+                                                      static_cast<std::int32_t>(dz)};
+        count_ += static_cast<std::uint64_t>(d2 - r2_) <= static_cast<std::uint64_t>(3 * r2_);
+      }
+    }
+    return offsets_[static_cast<std::size_t>(next_++)];
+  }
+
+ private:
+  static constexpr int kTries = 32;
+  std::int64_t r_, r2_, span_;
+  std::array<FixedPoint, kTries> offsets_;
+  int count_ = 0, next_ = 0;
+};
+
+// Bridson's sampling of the cell layers [first, last) along z, clipped to the volume (see
+// sampleRegion): the region's grid, its samples and its active list.
+class RegionSampler {
+ public:
+  RegionSampler(const PoissonSetup& setup, std::size_t first, std::size_t last, bool surrounded)
+      : setup_(setup),
+        first_(first),
+        last_(last),
+        zLow_(static_cast<std::int64_t>(first) * setup.shape.cell),
+        zHigh_(std::min(static_cast<std::int64_t>(last) * setup.shape.cell, setup.extent.z)),
+        // Padding along z: `reach` layers of conflicts, and for samples placed around the region
+        // also the layers up to 2r away, whose annulus reaches in. Along x and y the grid is
+        // padded by `reach` empty cells, so the rows need no bounds checks.
+        pad_(static_cast<std::size_t>(surrounded ? 2 * setup.shape.reach : setup.shape.reach)),
+        nx_(setup.shape.nx),
+        ny_(setup.shape.ny),
+        nz_(last - first + 2 * pad_),
+        grid_(nx_ * ny_ * nz_, 0),
+        occupied_(grid_.size() / 8 + 16, 0),
+        tilesX_(nx_ / kTileCellsXY + 1),
+        tilesY_(ny_ / kTileCellsXY + 1),
+        tiles_(tilesX_ * tilesY_ * (nz_ / kTileCellsZ + 1)),
+        firstTile_(tiles_.size()) {}
+
+  // The samples placed before that lie near enough to conflict; those whose annulus reaches into
+  // the region are active.
+  void placeAround(std::span<const std::vector<FixedPoint>> around) {
+    const std::int64_t r = setup_.r;
+    for (const std::vector<FixedPoint>& placed : around)
+      for (const FixedPoint& p : placed) {
+        const auto layer = static_cast<std::size_t>(setup_.toCell(p.z));
+        if (layer + pad_ < first_ || layer >= last_ + pad_) continue;
+        const Cell cell = cellOf(p.x, p.y, p.z);
+        add(p.x, p.y, p.z, cell);
+        if (p.z + 2 * r >= zLow_ && p.z - 2 * r < zHigh_) activate(cell);
+      }
+    placedCount_ = samples_.size();
+  }
+
+  // A first sample uniform in the region.
+  void placeFirst(Random& random) {
+    const std::uint64_t bits = random.next();
+    const std::int64_t x = scaled21(bits, 0, setup_.extent.x),
+                       y = scaled21(bits, 1, setup_.extent.y),
+                       z = zLow_ + scaled21(bits, 2, zHigh_ - zLow_);
+    const Cell cell = cellOf(x, y, z);
+    add(x, y, z, cell);
+    activate(cell);
+  }
+
+  // New samples around active ones until none is active or `maxNew` are made.
+  void grow(Random& random, std::size_t maxNew) {
+    AnnulusOffsets offsets(setup_.r, setup_.r2);
+    while (samples_.size() - placedCount_ < maxNew) {
+      while (firstTile_ < tiles_.size() && tiles_[firstTile_].empty()) ++firstTile_;
+      if (firstTile_ == tiles_.size()) break;
+      // A reference to the tile's vector stays valid while activate() appends to it or to others.
+      std::vector<std::uint32_t>& active = tiles_[firstTile_];
+      const std::size_t slot = random.below(active.size());
+      const FixedPoint centre = samples_[active[slot]];
+      if (!tryAround(centre, offsets, random)) {
+        active[slot] = active.back();
+        active.pop_back();
+      }
+    }
+  }
+
+  // The new samples, in the order made.
+  std::vector<FixedPoint> take() {
+    samples_.erase(samples_.begin(), samples_.begin() + static_cast<std::ptrdiff_t>(placedCount_));
+    return std::move(samples_);
+  }
+
+ private:
+  struct Cell {
+    std::size_t x, y, z, index;
+  };
+
+  // The active list, bucketed by tiles of the grid. Bridson draws the next active sample
+  // uniformly from all of them; drawing it uniformly from the first non-empty tile (z, y, x
+  // order) instead keeps the grid around the draws in cache, which halves the time at 256^3
+  // where the grid is tens of MB. What the algorithm guarantees is unchanged: the minimum
+  // distance, and a sample leaves the active list only after k candidates around it failed.
+  static constexpr std::size_t kTileCellsXY = 16, kTileCellsZ = 8;
+
+  Cell cellOf(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    const int reach = setup_.shape.reach;
+    Cell c{static_cast<std::size_t>(setup_.toCell(x) + reach),
+           static_cast<std::size_t>(setup_.toCell(y) + reach),
+           static_cast<std::size_t>(setup_.toCell(z)) + pad_ - first_, 0};
+    c.index = c.x + nx_ * (c.y + ny_ * c.z);
+    return c;
+  }
+
+  bool conflicts(std::int64_t x, std::int64_t y, std::int64_t z, std::size_t cell) const {
+    for (const PoissonRow& row : setup_.rows) {
+      const auto begin = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(cell) + row.start);
+      std::uint64_t bits;
+      std::memcpy(&bits, occupied_.data() + begin / 8, sizeof bits);
+      for (bits = (bits >> (begin % 8)) & row.mask; bits != 0; bits &= bits - 1) {
+        const FixedPoint& other =
+            samples_[grid_[begin + static_cast<std::size_t>(std::countr_zero(bits))] - 1];
+        const std::int64_t dx = other.x - x, dy = other.y - y, dz = other.z - z;
+        if (dx * dx + dy * dy + dz * dz < setup_.r2) return true;
+      }
+    }
+    return false;
+  }
+
+  void activate(const Cell& cell) {
+    const std::size_t tile = cell.x / kTileCellsXY +
+                             tilesX_ * (cell.y / kTileCellsXY + tilesY_ * (cell.z / kTileCellsZ));
+    tiles_[tile].push_back(static_cast<std::uint32_t>(samples_.size() - 1));
+    firstTile_ = std::min(firstTile_, tile);
+  }
+
+  void add(std::int64_t x, std::int64_t y, std::int64_t z, const Cell& cell) {
+    samples_.push_back(
+        {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), static_cast<std::int32_t>(z)});
+    grid_[cell.index] = static_cast<std::uint32_t>(samples_.size());
+    occupied_[cell.index / 8] =
+        static_cast<std::uint8_t>(occupied_[cell.index / 8] | (1u << (cell.index % 8)));
+  }
+
+  // Up to k candidates around `centre`; true when one was placed (and made active).
+  bool tryAround(const FixedPoint& centre, AnnulusOffsets& offsets, Random& random) {
+    const FixedExtent& extent = setup_.extent;
+    // A sample placed below or above a band tries only the half of its annulus that faces the
+    // band: the other half lies in its own slab, where every attempt would fail. Mirroring those
+    // attempts (dz -> |dz| towards the band) keeps the candidates uniform on the facing half.
+    // Without it, twice as many random probes in a band as elsewhere were r from every sample
+    // (1.8 % against 0.9 %); with it, as many (0.8-0.9 %).
+    const int towards = centre.z < zLow_ ? 1 : centre.z >= zHigh_ ? -1 : 0;
+    for (int attempt = 0; attempt < kPoissonAttempts; ++attempt) {
+      const FixedPoint& offset = offsets.next(random);
+      const std::int64_t dz = towards == 0 ? offset.z : towards * std::abs(offset.z);
+      const std::int64_t x = centre.x + offset.x, y = centre.y + offset.y, z = centre.z + dz;
+      if ((static_cast<std::uint64_t>(x) >= static_cast<std::uint64_t>(extent.x)) |
+          (static_cast<std::uint64_t>(y) >= static_cast<std::uint64_t>(extent.y)) |
+          (static_cast<std::uint64_t>(z - zLow_) >= static_cast<std::uint64_t>(zHigh_ - zLow_)))
+        continue;
+      const Cell cell = cellOf(x, y, z);
+      if (!conflicts(x, y, z, cell.index)) {
+        add(x, y, z, cell);
+        activate(cell);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  const PoissonSetup& setup_;
+  std::size_t first_, last_;
+  std::int64_t zLow_, zHigh_;
+  std::size_t pad_;
+  std::size_t nx_, ny_, nz_;
+  // Bridson's grid: sample index + 1 per cell (0 = empty). An occupancy bit per cell (1/32 of
+  // the grid's memory) answers a row with one load; only occupied cells touch the grid and the
+  // samples.
+  std::vector<std::uint32_t> grid_;
+  std::vector<std::uint8_t> occupied_;
+  std::vector<FixedPoint> samples_;
+  std::size_t tilesX_, tilesY_;
+  std::vector<std::vector<std::uint32_t>> tiles_;
+  std::size_t firstTile_;
+  std::size_t placedCount_ = 0;
+};
+
 // Bridson's sampling of the cell layers [first, last) along z, clipped to the volume: new samples
 // go only there, and a candidate outside counts as a failed attempt, like one outside the volume.
 // `around` holds samples placed before (the slabs on either side of a band): those near enough
@@ -81,150 +282,11 @@ struct PoissonSetup {
 std::vector<FixedPoint> sampleRegion(const PoissonSetup& setup, std::size_t first, std::size_t last,
                                      std::span<const std::vector<FixedPoint>> around,
                                      Random& random, std::size_t maxNew) {
-  const FixedExtent& extent = setup.extent;
-  const std::int64_t r = setup.r, r2 = setup.r2;
-  const PoissonGridShape& shape = setup.shape;
-  const int reach = shape.reach;
-  const std::int64_t zLow = static_cast<std::int64_t>(first) * shape.cell;
-  const std::int64_t zHigh = std::min(static_cast<std::int64_t>(last) * shape.cell, extent.z);
-  // Padding along z: `reach` layers of conflicts, and for samples placed around the region also
-  // the layers up to 2r away, whose annulus reaches in. Along x and y the grid is padded by
-  // `reach` empty cells, so the rows need no bounds checks.
-  const auto pad = static_cast<std::size_t>(around.empty() ? reach : 2 * reach);
-  const std::size_t nx = shape.nx, ny = shape.ny, nz = last - first + 2 * pad;
-
-  // Bridson's grid: sample index + 1 per cell (0 = empty). An occupancy bit per cell (1/32 of
-  // the grid's memory) answers a row with one load; only occupied cells touch the grid and the
-  // samples.
-  std::vector<std::uint32_t> grid(nx * ny * nz, 0);
-  std::vector<std::uint8_t> occupied(grid.size() / 8 + 16, 0);
-  std::vector<FixedPoint> samples;
-  struct Cell {
-    std::size_t x, y, z, index;
-  };
-  const auto cellOf = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    Cell c{static_cast<std::size_t>(setup.toCell(x) + reach),
-           static_cast<std::size_t>(setup.toCell(y) + reach),
-           static_cast<std::size_t>(setup.toCell(z)) + pad - first, 0};
-    c.index = c.x + nx * (c.y + ny * c.z);
-    return c;
-  };
-  const auto conflicts = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::size_t cell) {
-    for (const PoissonRow& row : setup.rows) {
-      const auto begin = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(cell) + row.start);
-      std::uint64_t bits;
-      std::memcpy(&bits, occupied.data() + begin / 8, sizeof bits);
-      for (bits = (bits >> (begin % 8)) & row.mask; bits != 0; bits &= bits - 1) {
-        const FixedPoint& other =
-            samples[grid[begin + static_cast<std::size_t>(std::countr_zero(bits))] - 1];
-        const std::int64_t dx = other.x - x, dy = other.y - y, dz = other.z - z;
-        if (dx * dx + dy * dy + dz * dz < r2) return true;
-      }
-    }
-    return false;
-  };
-
-  // The active list, bucketed by tiles of the grid. Bridson draws the next active sample
-  // uniformly from all of them; drawing it uniformly from the first non-empty tile (z, y, x
-  // order) instead keeps the grid around the draws in cache, which halves the time at 256^3
-  // where the grid is tens of MB. What the algorithm guarantees is unchanged: the minimum
-  // distance, and a sample leaves the active list only after k candidates around it failed.
-  constexpr std::size_t kTileCellsXY = 16, kTileCellsZ = 8;
-  const std::size_t tilesX = nx / kTileCellsXY + 1, tilesY = ny / kTileCellsXY + 1;
-  std::vector<std::vector<std::uint32_t>> tiles(tilesX * tilesY * (nz / kTileCellsZ + 1));
-  std::size_t firstTile = tiles.size();
-  const auto activate = [&](const Cell& cell) {
-    const std::size_t tile =
-        cell.x / kTileCellsXY + tilesX * (cell.y / kTileCellsXY + tilesY * (cell.z / kTileCellsZ));
-    tiles[tile].push_back(static_cast<std::uint32_t>(samples.size() - 1));
-    firstTile = std::min(firstTile, tile);
-  };
-  const auto add = [&](std::int64_t x, std::int64_t y, std::int64_t z, const Cell& cell) {
-    samples.push_back(
-        {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), static_cast<std::int32_t>(z)});
-    grid[cell.index] = static_cast<std::uint32_t>(samples.size());
-    occupied[cell.index / 8] =
-        static_cast<std::uint8_t>(occupied[cell.index / 8] | (1u << (cell.index % 8)));
-  };
-
-  for (const std::vector<FixedPoint>& placed : around)
-    for (const FixedPoint& p : placed) {
-      const auto layer = static_cast<std::size_t>(setup.toCell(p.z));
-      if (layer + pad < first || layer >= last + pad) continue;
-      const Cell cell = cellOf(p.x, p.y, p.z);
-      add(p.x, p.y, p.z, cell);
-      if (p.z + 2 * r >= zLow && p.z - 2 * r < zHigh) activate(cell);
-    }
-  const std::size_t placedCount = samples.size();
-  if (around.empty()) {
-    const std::uint64_t bits = random.next();
-    const std::int64_t x = scaled21(bits, 0, extent.x), y = scaled21(bits, 1, extent.y),
-                       z = zLow + scaled21(bits, 2, zHigh - zLow);
-    const Cell cell = cellOf(x, y, z);
-    add(x, y, z, cell);
-    activate(cell);
-  }
-
-  // Candidate offsets, uniform in the spherical annulus [r, 2r] (Bridson 2007) by rejection from
-  // the cube [-2r, 2r]^3 (46 % accepted), made in batches without a branch per try.
-  constexpr int kTries = 32;
-  std::array<FixedPoint, kTries> offsets;
-  int offsetCount = 0, offsetNext = 0;
-  const std::int64_t span = 4 * r + 1;
-  const auto nextOffset = [&]() -> const FixedPoint& {
-    while (offsetNext == offsetCount) {
-      offsetNext = offsetCount = 0;
-      for (int i = 0; i < kTries; ++i) {
-        const std::uint64_t bits = random.next();
-        const std::int64_t dx = scaled21(bits, 0, span) - 2 * r;
-        const std::int64_t dy = scaled21(bits, 1, span) - 2 * r;
-        const std::int64_t dz = scaled21(bits, 2, span) - 2 * r;
-        const std::int64_t d2 = dx * dx + dy * dy + dz * dz;
-        offsets[static_cast<std::size_t>(offsetCount)] = {static_cast<std::int32_t>(dx),
-                                                          static_cast<std::int32_t>(dy),
-                                                          static_cast<std::int32_t>(dz)};
-        offsetCount += static_cast<std::uint64_t>(d2 - r2) <= static_cast<std::uint64_t>(3 * r2);
-      }
-    }
-    return offsets[static_cast<std::size_t>(offsetNext++)];
-  };
-
-  while (samples.size() - placedCount < maxNew) {
-    while (firstTile < tiles.size() && tiles[firstTile].empty()) ++firstTile;
-    if (firstTile == tiles.size()) break;
-    // A reference to the tile's vector stays valid while activate() appends to it or to others.
-    std::vector<std::uint32_t>& active = tiles[firstTile];
-    const std::size_t slot = random.below(active.size());
-    const FixedPoint centre = samples[active[slot]];
-    // A sample placed below or above a band tries only the half of its annulus that faces the
-    // band: the other half lies in its own slab, where every attempt would fail. Mirroring those
-    // attempts (dz -> |dz| towards the band) keeps the candidates uniform on the facing half.
-    // Without it, twice as many random probes in a band as elsewhere were r from every sample
-    // (1.8 % against 0.9 %); with it, as many (0.8-0.9 %).
-    const int towards = centre.z < zLow ? 1 : centre.z >= zHigh ? -1 : 0;
-    bool emitted = false;
-    for (int attempt = 0; attempt < kPoissonAttempts && !emitted; ++attempt) {
-      const FixedPoint& offset = nextOffset();
-      const std::int64_t dz = towards == 0 ? offset.z : towards * std::abs(offset.z);
-      const std::int64_t x = centre.x + offset.x, y = centre.y + offset.y, z = centre.z + dz;
-      if ((static_cast<std::uint64_t>(x) >= static_cast<std::uint64_t>(extent.x)) |
-          (static_cast<std::uint64_t>(y) >= static_cast<std::uint64_t>(extent.y)) |
-          (static_cast<std::uint64_t>(z - zLow) >= static_cast<std::uint64_t>(zHigh - zLow)))
-        continue;
-      const Cell cell = cellOf(x, y, z);
-      if (!conflicts(x, y, z, cell.index)) {
-        add(x, y, z, cell);
-        activate(cell);
-        emitted = true;
-      }
-    }
-    if (!emitted) {
-      active[slot] = active.back();
-      active.pop_back();
-    }
-  }
-  samples.erase(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(placedCount));
-  return samples;
+  RegionSampler sampler(setup, first, last, !around.empty());
+  sampler.placeAround(around);
+  if (around.empty()) sampler.placeFirst(random);
+  sampler.grow(random, maxNew);
+  return sampler.take();
 }
 
 // Slabs of at least this many cell layers (about 55 r, so the bands of about 1.2 r between them

@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/text.h"
 #include "io/field_io.h"
 #include "io/file_util.h"
 

@@ -194,16 +194,13 @@ Result<FieldTexture> uploadLicInputs(const Context& context, const VectorField& 
             field, noise, scale, [](float f) { return glm::packHalf1x16(f); },
             static_cast<std::uint16_t*>(staging));
     }
-    packingSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    packingSeconds = secondsSince(start);
   };
   const auto start = std::chrono::steady_clock::now();
   LIC3D_TRY(uploadImageFilled(context, texture.image,
                               field.vectors.size() * fieldTexelBytes(resolved), pack));
   addStageTime("field packing", packingSeconds);
-  addStageTime("field upload",
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-                   packingSeconds);
+  addStageTime("field upload", secondsSince(start) - packingSeconds);
   return texture;
 }
 

@@ -214,6 +214,154 @@ T fromProperty(Value value) {
   }
 }
 
+// What RequestData reads of its input: the piece's extents and field, or why LIC cannot run on it.
+struct InputPiece {
+  Extent whole{};
+  Extent extent{0, -1, 0, -1, 0, -1};
+  Extent own{0, -1, 0, -1, 0, -1};  // without the input's ghost layers
+  lic3d::VectorField field;
+  std::size_t nonFinite = 0;
+  std::string failure;  // empty when the piece can be computed
+};
+
+// Checks the parameters and the chosen `vectors` and copies them into a field on the piece's grid;
+// everything that can fail before the collective step fails here, on this process only.
+void readField(vtkImageData* input, vtkDataArray* vectors, const std::string& name, int association,
+               const lic3d::LicParams& params, InputPiece& piece) {
+  if (const lic3d::Result<void> valid = lic3d::validate(params); !valid) {
+    piece.failure = valid.error().message;
+    return;
+  }
+  if (!vectors) {
+    piece.failure = name.empty() ? "3D LIC needs a 3-component point array (Vectors)"
+                                 : "the input has no array '" + name + "'";
+    return;
+  }
+  const std::string arrayName = vectors->GetName() ? vectors->GetName() : "";
+  if (vectors->GetNumberOfComponents() != 3) {
+    piece.failure = "the array '" + arrayName + "' has " +
+                    std::to_string(vectors->GetNumberOfComponents()) +
+                    " components; 3D LIC needs 3";
+    return;
+  }
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS) {
+    piece.failure =
+        "the array '" + arrayName +
+        "' is cell data: 3D LIC needs vectors at the points (apply Cell Data to Point Data)";
+    return;
+  }
+  piece.own = ownExtent(input, piece.extent);
+  lic3d::VectorField& field = piece.field;
+  field.dims = dimsOf(piece.extent);
+  const double* spacing = input->GetSpacing();
+  const double* origin = input->GetOrigin();
+  for (int a = 0; a < 3; ++a) {
+    field.geometry.spacing[a] = spacing[a];
+    field.geometry.origin[a] = origin[a] + piece.extent[2 * a] * spacing[a];
+  }
+  field.vectors.resize(lic3d::voxelCount(field.dims));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(field.vectors.size()); ++i) {
+    double v[3];
+    vectors->GetTuple(i, v);
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+      ++piece.nonFinite;
+      v[0] = v[1] = v[2] = 0.0;
+    }
+    field.vectors[static_cast<std::size_t>(i)] =
+        glm::vec3(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+  }
+  if (const lic3d::Result<void> spacingOk = lic3d::checkSpacing(field.geometry); !spacingOk) {
+    piece.failure = spacingOk.error().message;
+  }
+}
+
+// The voxels this process writes: its own part and the ghost layers asked of this filter.
+Extent outputExtent(const InputPiece& piece, int askedGhosts) {
+  Extent out = piece.own;
+  for (int a = 0; a < 3; ++a) {
+    out[2 * a] = std::max(piece.own[2 * a] - askedGhosts, piece.extent[2 * a]);
+    out[2 * a + 1] = std::min(piece.own[2 * a + 1] + askedGhosts, piece.extent[2 * a + 1]);
+  }
+  return out;
+}
+
+// What the user should know about a piece that is computed: vectors read as zero, a direction
+// matrix LIC ignores, too few ghost layers, a reader that did not split the data.
+void warnAboutPiece(vtkLic3dFilter* self, vtkImageData* input, const InputPiece& piece,
+                    const Extent& out, int ghostLayers) {
+  if (piece.nonFinite > 0) {
+    vtkWarningWithObjectMacro(self, << piece.nonFinite
+                                    << " vector(s) with a NaN or infinite component were read as "
+                                       "zero (streamlines stop there)");
+  }
+  if (vtkMatrix3x3* direction = input->GetDirectionMatrix();
+      direction && !direction->IsIdentity()) {
+    vtkWarningWithObjectMacro(self, << "the image's direction matrix is not the identity: LIC "
+                                       "follows the vectors along the grid's index axes");
+  }
+  // Where the piece borders another, its ghost layers must hold the streamlines of those voxels.
+  const Extent& whole = piece.whole;
+  const Extent& extent = piece.extent;
+  int shortest = ghostLayers;
+  for (int a = 0; a < 3; ++a) {
+    if (out[2 * a] > whole[2 * a]) {
+      shortest = std::min(shortest, out[2 * a] - extent[2 * a]);
+    }
+    if (out[2 * a + 1] < whole[2 * a + 1]) {
+      shortest = std::min(shortest, extent[2 * a + 1] - out[2 * a + 1]);
+    }
+  }
+  if (shortest < ghostLayers) {
+    vtkWarningWithObjectMacro(
+        self, << "this piece has " << shortest << " ghost layer(s) where the streamlines need "
+              << ghostLayers
+              << ": voxels near its border differ from a serial run (read .vti/.pvti, or "
+                 "put a GhostCellsGenerator before 3D LIC)");
+  }
+  if (processCount() > 1 && Extent(piece.own) == whole) {
+    vtkWarningWithObjectMacro(
+        self, << "this process holds the whole grid: the reader does not split its data among "
+                 "processes (the legacy .vtk reader does not); convert the file to .vti to "
+                 "distribute the work");
+  }
+}
+
+// The output: the input's arrays passed through, cut to `out`, with LIC (the active scalars, NaN
+// where sparsity hides the voxel) and |v| added.
+void writeOutput(vtkImageData* input, vtkImageData* output, const InputPiece& piece,
+                 const Extent& out, const lic3d::ScalarVolume& volume) {
+  output->ShallowCopy(input);
+  output->Crop(out.data());
+  const lic3d::Dims outDims = dimsOf(out);
+  const vtkIdType count = static_cast<vtkIdType>(lic3d::voxelCount(outDims));
+  vtkNew<vtkFloatArray> licArray;
+  licArray->SetName(std::string(lic3d::kLicArrayName).c_str());
+  licArray->SetNumberOfValues(count);
+  vtkNew<vtkFloatArray> magnitude;
+  magnitude->SetName("Magnitude");
+  magnitude->SetNumberOfValues(count);
+  const Extent& extent = piece.extent;
+  vtkIdType to = 0;
+  for (int k = out[4]; k <= out[5]; ++k) {
+    for (int j = out[2]; j <= out[3]; ++j) {
+      for (int i = out[0]; i <= out[1]; ++i, ++to) {
+        const std::size_t from =
+            lic3d::voxelIndex(piece.field.dims, i - extent[0], j - extent[2], k - extent[4]);
+        const bool drawn = volume.drawn.empty() || volume.drawn[from] != 0;
+        licArray->SetValue(to, drawn ? volume.values[from] : std::nanf(""));
+        magnitude->SetValue(to,
+                            static_cast<float>(glm::length(glm::dvec3(piece.field.vectors[from]))));
+      }
+    }
+  }
+  output->GetPointData()->SetScalars(licArray);
+  output->GetPointData()->AddArray(magnitude);
+  if (out != piece.own) {
+    Extent own = piece.own;  // GenerateGhostArray takes a pointer to non-const
+    output->GenerateGhostArray(own.data());
+  }
+}
+
 }  // namespace
 
 #define LIC3D_DEFINE_PARAMETER(Name, Type, member)                                   \
@@ -339,73 +487,31 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const int askedGhosts =
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS());
 
-  Extent whole{}, extent{0, -1, 0, -1, 0, -1};
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole.data());
+  InputPiece piece;
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), piece.whole.data());
   if (input && input->GetNumberOfPoints() > 0) {
-    input->GetExtent(extent.data());
+    input->GetExtent(piece.extent.data());
   }
-  const bool empty = isEmpty(extent);
-
-  // Everything that can fail before the collective step fails here, on this process only.
-  std::string failure;
-  lic3d::VectorField field;
-  std::size_t nonFinite = 0;
-  vtkDataArray* vectors = nullptr;
-  Extent own{0, -1, 0, -1, 0, -1};
+  const bool empty = isEmpty(piece.extent);
   if (!empty) {
     int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
     const std::string name = selectedArrayName(this->GetInputArrayInformation(0));
-    vectors =
+    vtkDataArray* vectors =
         name.empty() ? defaultVectors(input) : this->GetInputArrayToProcess(0, input, association);
-    if (const lic3d::Result<void> valid = lic3d::validate(params); !valid) {
-      failure = valid.error().message;
-    } else if (!vectors) {
-      failure = name.empty() ? "3D LIC needs a 3-component point array (Vectors)"
-                             : "the input has no array '" + name + "'";
-    } else if (vectors->GetNumberOfComponents() != 3) {
-      failure = std::string("the array '") + (vectors->GetName() ? vectors->GetName() : "") +
-                "' has " + std::to_string(vectors->GetNumberOfComponents()) +
-                " components; 3D LIC needs 3";
-    } else if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS) {
-      failure =
-          std::string("the array '") + (vectors->GetName() ? vectors->GetName() : "") +
-          "' is cell data: 3D LIC needs vectors at the points (apply Cell Data to Point Data)";
-    } else {
-      own = ownExtent(input, extent);
-      field.dims = dimsOf(extent);
-      const double* spacing = input->GetSpacing();
-      const double* origin = input->GetOrigin();
-      for (int a = 0; a < 3; ++a) {
-        field.geometry.spacing[a] = spacing[a];
-        field.geometry.origin[a] = origin[a] + extent[2 * a] * spacing[a];
-      }
-      field.vectors.resize(lic3d::voxelCount(field.dims));
-      for (vtkIdType i = 0; i < static_cast<vtkIdType>(field.vectors.size()); ++i) {
-        double v[3];
-        vectors->GetTuple(i, v);
-        if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
-          ++nonFinite;
-          v[0] = v[1] = v[2] = 0.0;
-        }
-        field.vectors[static_cast<std::size_t>(i)] =
-            glm::vec3(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
-      }
-      if (const lic3d::Result<void> spacingOk = lic3d::checkSpacing(field.geometry); !spacingOk) {
-        failure = spacingOk.error().message;
-      }
-    }
+    readField(input, vectors, name, association, params, piece);
   }
+  lic3d::VectorField& field = piece.field;
 
   // Every process takes part, an empty one too: its rank on its node, which picks its device when
   // the Device property is empty, and the whole field's largest |u|.
   const int localRank = nodeLocalRank();
-  const bool valid = failure.empty() && !empty && !isEmpty(own);
+  const bool valid = piece.failure.empty() && !empty && !isEmpty(piece.own);
   Shared mine;
-  mine.failed = !failure.empty();
+  mine.failed = !piece.failure.empty();
   mine.maxVoxelSpeed = valid ? lic3d::maxVoxelSpeedOverVoxels(field) : 0.0;
   const Shared all = shareAcrossProcesses(mine);
-  if (!failure.empty()) {
-    vtkErrorMacro(<< failure);
+  if (!piece.failure.empty()) {
+    vtkErrorMacro(<< piece.failure);
     return 0;
   }
   if (all.failed) {
@@ -416,49 +522,13 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
     return 1;  // an empty piece gives an empty output
   }
 
-  if (nonFinite > 0) {
-    vtkWarningMacro(<< nonFinite
-                    << " vector(s) with a NaN or infinite component were read as zero "
-                       "(streamlines stop there)");
-  }
-  if (vtkMatrix3x3* direction = input->GetDirectionMatrix();
-      direction && !direction->IsIdentity()) {
-    vtkWarningMacro(<< "the image's direction matrix is not the identity: LIC follows the "
-                       "vectors along the grid's index axes");
-  }
+  const Extent out = outputExtent(piece, askedGhosts);
+  warnAboutPiece(this, input, piece, out, ghostLayers);
 
-  // The voxels this process writes: its own part and the ghost layers asked of this filter.
-  Extent out = own;
-  for (int a = 0; a < 3; ++a) {
-    out[2 * a] = std::max(own[2 * a] - askedGhosts, extent[2 * a]);
-    out[2 * a + 1] = std::min(own[2 * a + 1] + askedGhosts, extent[2 * a + 1]);
-  }
-  // Where the piece borders another, its ghost layers must hold the streamlines of those voxels.
-  int shortest = ghostLayers;
-  for (int a = 0; a < 3; ++a) {
-    if (out[2 * a] > whole[2 * a]) {
-      shortest = std::min(shortest, out[2 * a] - extent[2 * a]);
-    }
-    if (out[2 * a + 1] < whole[2 * a + 1]) {
-      shortest = std::min(shortest, extent[2 * a + 1] - out[2 * a + 1]);
-    }
-  }
-  if (shortest < ghostLayers) {
-    vtkWarningMacro(<< "this piece has " << shortest
-                    << " ghost layer(s) where the streamlines need " << ghostLayers
-                    << ": voxels near its border differ from a serial run (read .vti/.pvti, or "
-                       "put a GhostCellsGenerator before 3D LIC)");
-  }
-  if (processCount() > 1 && Extent(own) == whole) {
-    vtkWarningMacro(<< "this process holds the whole grid: the reader does not split its data "
-                       "among processes (the legacy .vtk reader does not); convert the file to "
-                       ".vti to distribute the work");
-  }
-
-  const lic3d::Dims dims = field.dims;
-  const lic3d::Dims wholeDims = dimsOf(whole);
-  const lic3d::Dims offset(extent[0] - whole[0], extent[2] - whole[2], extent[4] - whole[4]);
-  if (dims != wholeDims) {
+  const lic3d::Dims wholeDims = dimsOf(piece.whole);
+  const lic3d::Dims offset(piece.extent[0] - piece.whole[0], piece.extent[2] - piece.whole[2],
+                           piece.extent[4] - piece.whole[4]);
+  if (field.dims != wholeDims) {
     field.piece = lic3d::FieldPiece{wholeDims, offset, all.maxVoxelSpeed};
   }
   // The whole grid's noise, cut to this piece: the pieces agree with a serial run.
@@ -480,36 +550,6 @@ int vtkLic3dFilter::RequestData(vtkInformation*, vtkInformationVector** inputVec
     vtkErrorMacro(<< lic.error().message);
     return 0;
   }
-
-  // The output: the input's arrays passed through, cut to `out`, with LIC (the active scalars, NaN
-  // where sparsity hides the voxel) and |v| added.
-  output->ShallowCopy(input);
-  output->Crop(out.data());
-  const lic3d::Dims outDims = dimsOf(out);
-  const vtkIdType count = static_cast<vtkIdType>(lic3d::voxelCount(outDims));
-  vtkNew<vtkFloatArray> licArray;
-  licArray->SetName(std::string(lic3d::kLicArrayName).c_str());
-  licArray->SetNumberOfValues(count);
-  vtkNew<vtkFloatArray> magnitude;
-  magnitude->SetName("Magnitude");
-  magnitude->SetNumberOfValues(count);
-  const lic3d::ScalarVolume& volume = *lic;
-  vtkIdType to = 0;
-  for (int k = out[4]; k <= out[5]; ++k) {
-    for (int j = out[2]; j <= out[3]; ++j) {
-      for (int i = out[0]; i <= out[1]; ++i, ++to) {
-        const std::size_t from =
-            lic3d::voxelIndex(dims, i - extent[0], j - extent[2], k - extent[4]);
-        const bool drawn = volume.drawn.empty() || volume.drawn[from] != 0;
-        licArray->SetValue(to, drawn ? volume.values[from] : std::nanf(""));
-        magnitude->SetValue(to, static_cast<float>(glm::length(glm::dvec3(field.vectors[from]))));
-      }
-    }
-  }
-  output->GetPointData()->SetScalars(licArray);
-  output->GetPointData()->AddArray(magnitude);
-  if (out != own) {
-    output->GenerateGhostArray(own.data());
-  }
+  writeOutput(input, output, piece, out, *lic);
   return 1;
 }
