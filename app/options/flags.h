@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/key_names.h"
 #include "core/parameter_ranges.h"
 #include "options/session_options.h"
 
@@ -32,7 +33,7 @@ std::vector<std::string_view> splitCommas(std::string_view text);
 // The session keys the engine names parameters by (Error::parameter), and the flags that set
 // them: reportError shows the flag where the message has the key. Filled as the options are
 // added.
-std::map<std::string, std::string, std::less<>>& flagNames();
+KeyNames& flagNames();
 // Records that `flags` ("-L,--length") sets the session key `key`.
 void nameFlag(std::string_view key, const std::string& flags);
 
