@@ -22,6 +22,10 @@
 
 namespace lic3d::cli {
 
+bool given(const CLI::Option* option) { return option && option->count() > 0; }
+
+bool TextOption::given() const { return cli::given(option); }
+
 int exitCodeFor(const Error& error) {
   switch (error.kind) {
     case ErrorKind::InvalidInput: return kExitBadInput;
