@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <CLI/CLI.hpp>
 #include <array>
 #include <cstring>
 #include <memory>
@@ -110,7 +111,7 @@ Request parseRequest(const std::string& command, const py::object& session,
     for (char& c : name) c = c == '_' ? '-' : c;
     const std::string flag = "--" + name;
     CLI::Option* option = sub.get_option_no_throw(flag);
-    if (!option) option = line.app.get_option_no_throw(flag);
+    if (!option) option = line.app->get_option_no_throw(flag);
     if (!option || notParameters().contains(flag))
       throw py::type_error("lic3d." + command + "() got an unexpected keyword argument '" +
                            key.cast<std::string>() +
@@ -129,7 +130,7 @@ Request parseRequest(const std::string& command, const py::object& session,
   }
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
-  take(cli::parseArguments(line.app, static_cast<int>(argv.size()), argv.data(),
+  take(cli::parseArguments(*line.app, static_cast<int>(argv.size()), argv.data(),
                            {&request.options->inputs}));
   take(cli::finishCommand(line));
   return request;

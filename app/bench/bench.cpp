@@ -129,6 +129,57 @@ Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& 
                         {"host_peak_bytes", hostPeakBytes()}};
 }
 
+// The frame table of runBenchmarks: each frame buffer format at each image size.
+Result<void> benchFrames(LicRenderer& renderer, const BenchOptions& options,
+                         const std::vector<int>& frameSizes, AnalyticField fieldKind, double memory,
+                         double& budgetLeft, nlohmann::json& report) {
+  const FieldPrecision precision = renderer.fieldPrecision();
+  const int n = options.frameVolume;
+  std::printf("\nFrame: %d^3 volume, view-aligned slices (%d = one per voxel), default camera\n", n,
+              n);
+  std::printf("%12s %10s %7s %12s %12s\n", "image", "buffer", "slices", "median ms", "min ms");
+  report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
+  if (residentBytes(n, precision) > 0.8 * memory) {
+    report["frame"]["skipped"] = "device memory";
+  } else {
+    LIC3D_TRY(setVolume(renderer, fieldKind, n, options.seed));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
+    // Each buffer format at each size with one slice per voxel, then with a quarter of them:
+    // how the time splits between what each slice costs and what each frame costs.
+    for (const int slices : {n, std::max(1, n / 4)}) {
+      for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
+                                         FramePrecision::Unorm10, FramePrecision::Unorm8}) {
+        LIC3D_TRY(renderer.setFramePrecision(frame));
+        const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
+                                 : frame == FramePrecision::Unorm16 ? "rgba16"
+                                 : frame == FramePrecision::Unorm10 ? "rgb10a2"
+                                                                    : "rgba8";
+        for (const int size : frameSizes) {
+          ViewParams view;
+          view.width = view.height = size;
+          view.slices = slices;
+          LIC3D_TRY_ASSIGN(const Timing t,
+                           measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
+          nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
+          if (t.measured) {
+            std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
+                        t.minMs);
+            row["median_ms"] = t.medianMs;
+            row["min_ms"] = t.minMs;
+          } else {
+            std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
+                        t.skipped.c_str());
+            row["skipped"] = t.skipped;
+          }
+          std::fflush(stdout);
+          report["frame"]["rows"].push_back(row);
+        }
+      }
+    }
+  }
+  return {};
+}
+
 Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions& options) {
   LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 4096));
   LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
@@ -193,49 +244,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
     }
   }
 
-  const int n = options.frameVolume;
-  std::printf("\nFrame: %d^3 volume, view-aligned slices (%d = one per voxel), default camera\n", n,
-              n);
-  std::printf("%12s %10s %7s %12s %12s\n", "image", "buffer", "slices", "median ms", "min ms");
-  report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
-  if (residentBytes(n, precision) > 0.8 * memory) {
-    report["frame"]["skipped"] = "device memory";
-  } else {
-    LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
-    // Each buffer format at each size with one slice per voxel, then with a quarter of them:
-    // how the time splits between what each slice costs and what each frame costs.
-    for (const int slices : {n, std::max(1, n / 4)}) {
-      for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
-                                         FramePrecision::Unorm10, FramePrecision::Unorm8}) {
-        LIC3D_TRY(renderer.setFramePrecision(frame));
-        const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
-                                 : frame == FramePrecision::Unorm16 ? "rgba16"
-                                 : frame == FramePrecision::Unorm10 ? "rgb10a2"
-                                                                    : "rgba8";
-        for (const int size : frameSizes) {
-          ViewParams view;
-          view.width = view.height = size;
-          view.slices = slices;
-          LIC3D_TRY_ASSIGN(const Timing t,
-                           measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
-          nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
-          if (t.measured) {
-            std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
-                        t.minMs);
-            row["median_ms"] = t.medianMs;
-            row["min_ms"] = t.minMs;
-          } else {
-            std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
-                        t.skipped.c_str());
-            row["skipped"] = t.skipped;
-          }
-          std::fflush(stdout);
-          report["frame"]["rows"].push_back(row);
-        }
-      }
-    }
-  }
+  LIC3D_TRY(benchFrames(renderer, options, frameSizes, *fieldKind, memory, budgetLeft, report));
   return report;
 }
 
@@ -336,28 +345,21 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   return report;
 }
 
-// Thesis Figure 6.4 today: how long each distribution takes to make its points (and mask), and
-// how long a sparsity change takes end to end (mask on the CPU, upload, LIC pass).
-Result<nlohmann::json> runDistributions(const Context& context, const BenchOptions& options) {
-  const int n = options.distributionVolume;
-  const Dims dims(n);
-  const double voxels = static_cast<double>(voxelCount(dims));
-  const DeviceInfo& device = context.deviceInfo();
-  nlohmann::json report = newReport(context);
-  report["volume"] = n;
-  report["generation"] = nlohmann::json::array();
-  std::printf("lic3d bench --distributions, %d^3 volume, %s\n", n, today().c_str());
-  std::printf("Mask generation on the CPU (wall clock, one run each):\n");
-  std::printf("%-16s %12s %14s %12s\n", "distribution", "requested", "black voxels", "ms");
-  double budgetLeft = options.budgetSeconds;
-  // Per distribution, the largest row measured (points, ms): a row whose time, scaled from it by
-  // the points, would not fit in what is left of the budget is skipped rather than started.
+// Per distribution, the largest row measured (points, ms): a row whose time, scaled from it by
+// the points, would not fit in what is left of the budget is skipped rather than started.
+struct DistributionTimes {
   std::map<SparsityDistribution, std::pair<double, double>> measured;
-  const auto predictedSeconds = [&](SparsityDistribution d, double count) {
+  double predictedSeconds(SparsityDistribution d, double count) const {
     const auto known = measured.find(d);
     if (known == measured.end() || known->second.first <= 0.0) return 0.0;
     return known->second.second / 1000.0 * std::max(1.0, count / known->second.first);
-  };
+  }
+};
+
+// The generation table of runDistributions: each distribution's mask at 10^3..10^6 points.
+Result<void> benchMaskGeneration(Dims dims, DistributionTimes& times, double& budgetLeft,
+                                 nlohmann::json& report) {
+  const double voxels = static_cast<double>(voxelCount(dims));
   for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
     if (d == SparsityDistribution::None) continue;
     for (const double count : {1e3, 1e4, 1e5, 1e6}) {
@@ -380,7 +382,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
         report["generation"].push_back(row);
         continue;
       }
-      if (budgetLeft <= 0.0 || predictedSeconds(d, count) > budgetLeft) {
+      if (budgetLeft <= 0.0 || times.predictedSeconds(d, count) > budgetLeft) {
         std::printf("%-16s %12.0f %14s %12s (skipped: over the time budget)\n",
                     std::string(name).c_str(), count, "-", "-");
         row["skipped"] = "over the time budget";
@@ -393,7 +395,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
       budgetLeft -= ms / 1000.0;
-      measured[d] = {count, ms};
+      times.measured[d] = {count, ms};
       std::printf("%-16s %12.0f %14zu %12.1f\n", std::string(name).c_str(), count, mask.blackCount,
                   ms);
       std::fflush(stdout);
@@ -402,6 +404,25 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
       report["generation"].push_back(row);
     }
   }
+  return {};
+}
+
+// Thesis Figure 6.4 today: how long each distribution takes to make its points (and mask), and
+// how long a sparsity change takes end to end (mask on the CPU, upload, LIC pass).
+Result<nlohmann::json> runDistributions(const Context& context, const BenchOptions& options) {
+  const int n = options.distributionVolume;
+  const Dims dims(n);
+  const double voxels = static_cast<double>(voxelCount(dims));
+  const DeviceInfo& device = context.deviceInfo();
+  nlohmann::json report = newReport(context);
+  report["volume"] = n;
+  report["generation"] = nlohmann::json::array();
+  std::printf("lic3d bench --distributions, %d^3 volume, %s\n", n, today().c_str());
+  std::printf("Mask generation on the CPU (wall clock, one run each):\n");
+  std::printf("%-16s %12s %14s %12s\n", "distribution", "requested", "black voxels", "ms");
+  double budgetLeft = options.budgetSeconds;
+  DistributionTimes times;
+  LIC3D_TRY(benchMaskGeneration(dims, times, budgetLeft, report));
 
   std::printf(
       "\nA sparsity change end to end on %s: mask (CPU) + upload + LIC pass, automatic "
@@ -418,7 +439,7 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
     std::vector<double> wall;
     // The automatic parameters blacken about kDefaultBlackFraction of the voxels: the first
     // change is predicted from the generation table, later ones from the changes measured.
-    double predicted = predictedSeconds(d, kDefaultBlackFraction * voxels);
+    double predicted = times.predictedSeconds(d, kDefaultBlackFraction * voxels);
     LicParams lic;
     lic.sparsity.distribution = d;
     for (int i = 0; i < options.repeats && budgetLeft > 0.0 && predicted <= budgetLeft; ++i) {

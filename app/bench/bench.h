@@ -8,7 +8,8 @@
 
 #include "core/error.h"
 #include "gpu/vulkan_context.h"
-#include "options/command_line.h"
+#include "options/bench_options.h"
+#include "options/session_options.h"
 
 namespace lic3d::cli {
 

@@ -181,7 +181,7 @@ Result<FramePlan> planFrames(const BatchOptions& options, const ComputeOptions& 
     LIC3D_TRY(checkOutputPath(plan.output, ".png"));
     return plan;
   }
-  const bool outputGiven = compute.outputOption && compute.outputOption->count() > 0;
+  const bool outputGiven = given(compute.outputOption);
   plan.output = outputGiven ? compute.output : defaultPattern;
   LIC3D_TRY(findConversion(plan.output));
   LIC3D_TRY(checkOutputPath(framePath(plan.output, plan.first), ".png"));

@@ -5,7 +5,6 @@
 // volumes, a LIC slice as 16-bit PNG), the parameters every PNG carries, video through ffmpeg,
 // and the one-line JSON summary scripts read. docs/BATCH.md is the user's side of this file.
 
-#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <optional>
 #include <string>

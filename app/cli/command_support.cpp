@@ -99,7 +99,7 @@ int finish(const std::vector<Context>& contexts, int status) {
 
 // --time given for a field that has none is a mistake worth naming.
 Result<void> checkTimeGiven(const SessionOptions& options, const TimeDomain& domain) {
-  if (options.time && options.time->count() > 0 && !domain.timeDependent)
+  if (given(options.time) && !domain.timeDependent)
     return inputError("--time: " + options.session.field.field +
                       " does not change with time (the tornado, the 2D wave and series of files "
                       "do)");

@@ -11,7 +11,6 @@
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
 #include "inputs/session_inputs.h"
-#include "options/command_line.h"
 #include "options/session_options.h"
 
 namespace lic3d::cli {

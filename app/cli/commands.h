@@ -5,7 +5,6 @@
 #include <string>
 
 #include "cli/batch.h"
-#include "options/command_line.h"
 #include "options/session_options.h"
 
 namespace lic3d::cli {

@@ -136,6 +136,105 @@ class StreamedOutput {
   std::atomic<bool> sparse_{false};
 };
 
+// The inputs, from `stream` (read once first for its largest speed, into `scan`) or read whole.
+Result<SessionInputs> readComputeInputs(const GlobalOptions& global, const ComputeOptions& options,
+                                        std::optional<FieldStream>& stream,
+                                        std::optional<StreamScan>& scan) {
+  if (!stream) return loadInputs(options, !options.cpu);
+  {
+    Progress progress("reading " + stream->path().string() + " (" + gridText(stream->dims()) +
+                          ") for its largest speed",
+                      global.quiet);
+    LIC3D_TRY_ASSIGN(const StreamScan scanned,
+                     scanFieldStream(*stream, [&](double f) { progress.update(f); }));
+    progress.finish();
+    scan = scanned;
+  }
+  return streamedInputs(*stream, options.inputs.session, *scan);
+}
+
+// --slice's index against the grid, before any work.
+Result<void> checkSliceIndex(const std::optional<LicSlice>& slice, Dims dims) {
+  if (!slice) return {};
+  const std::string axis(1, static_cast<char>('x' + slice->axis));
+  const std::string text = axis + ":" + std::to_string(slice->index);
+  if (slice->index >= dims[slice->axis])
+    return inputError("--slice " + text + ": the grid " + gridText(dims) + " has " +
+                      std::to_string(dims[slice->axis]) + " slices along " + axis + " (0.." +
+                      std::to_string(dims[slice->axis] - 1) + ")");
+  return {};
+}
+
+// compute --cpu: the CPU reference at the session's time, then the output.
+int computeOnHost(const GlobalOptions& global, const ComputeOptions& options,
+                  const std::optional<LicSlice>& slice, SessionInputs& inputs, RunSummary& summary,
+                  Clock::time_point start) {
+  const Session& session = options.inputs.session;
+  if (inputs.series) {
+    Result<VectorField> field = hostFieldAt(inputs, session, session.time);
+    if (!field) return reportError(field.error());
+    inputs.field = std::move(*field);
+    inputs.fieldStep.reset();
+  }
+  const Result<ScalarVolume> volume = computeOnCpu(inputs, session.lic, global.quiet);
+  if (!volume) return reportError(volume.error());
+  if (auto r = writeComputeOutput(options, slice, *volume); !r) return reportError(r.error());
+  if (!global.quiet)
+    std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
+                 fieldText(session.field, inputs).c_str());
+  noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
+  summary.device = "CPU reference";
+  printSummary(global, summary, start);
+  return kExitOk;
+}
+
+// The LIC volume on the devices, in one piece when it fits the device (or --memory-budget),
+// else in bricks, then the output; the exit status before the devices are finished.
+int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
+                     const std::optional<LicSlice>& slice, const std::vector<Context>& contexts,
+                     FieldStream* stream, const StreamScan* scan, SessionInputs& inputs,
+                     RunSummary& summary) {
+  const Session& session = options.inputs.session;
+  const std::string deviceNames = devicesText(contexts);
+  Progress progress("LIC " + gridText(inputs.field.dims) + " on " + deviceNames, global.quiet);
+  // Bricks go straight into a .nrrd or .raw output, so that the host never holds the volume.
+  std::optional<StreamedOutput> streamed;
+  if (!slice && StreamedOutput::streams(options.output))
+    streamed.emplace(options.output, inputs.field.dims, inputs.field.geometry);
+  LicVolumeOptions how{
+      .deviceCap = options.memoryBudget, .sinkAtOnce = true, .stream = stream, .scan = scan};
+  if (streamed)
+    how.sink = [&](const Brick& brick, const ScalarVolume& lic) {
+      return streamed->take(brick, lic);
+    };
+  Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
+                                              [&](double f) { progress.update(f); });
+  if (run) {
+    progress.finish();
+  } else {
+    progress.cancel();
+  }
+  // In one piece the volume comes back whole; in bricks a streamed output has it already.
+  const bool wroteBricks = run && streamed && run->volume.values.empty();
+  Result<void> done = !run          ? Result<void>(run.error())
+                      : wroteBricks ? streamed->finish()
+                                    : writeComputeOutput(options, slice, run->volume);
+  if (!done) return reportError(done.error());
+  noteHiddenFraction(global, session.lic,
+                     wroteBricks ? streamed->hiddenFraction() : hiddenFractionOf(run->volume),
+                     summary);
+  summary.bricks = run->bricks;
+  summary.shares = run->devices;
+  if (!global.quiet)
+    std::fprintf(stderr, "lic3d: wrote %s (%s, on %s%s)\n", options.output.c_str(),
+                 fieldText(session.field, inputs).c_str(), deviceNames.c_str(),
+                 run->bricks > 1 ? (", in " + std::to_string(run->bricks) + " bricks of " +
+                                    gridText(run->brickCore) + " and ghost layers")
+                                       .c_str()
+                                 : "");
+  return kExitOk;
+}
+
 }  // namespace
 
 int runCompute(const GlobalOptions& global, const ComputeOptions& options,
@@ -171,105 +270,20 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   std::optional<FieldStream> stream;
   std::optional<StreamScan> scan;
   if (!options.cpu) stream = openFieldStream(options, contexts);
-  Result<SessionInputs> inputs = inputError("no inputs");
-  if (stream) {
-    {
-      Progress progress("reading " + stream->path().string() + " (" + gridText(stream->dims()) +
-                            ") for its largest speed",
-                        global.quiet);
-      Result<StreamScan> scanned = scanFieldStream(*stream, [&](double f) { progress.update(f); });
-      if (!scanned) return fail(scanned.error());
-      progress.finish();
-      scan = *scanned;
-    }
-    inputs = streamedInputs(*stream, session, *scan);
-  } else {
-    inputs = loadInputs(options, !options.cpu);
-  }
+  Result<SessionInputs> inputs = readComputeInputs(global, options, stream, scan);
   if (!inputs) return fail(inputs.error());
   if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
-  if (const std::optional<LicSlice> chosen = *slice) {
-    // The index against the grid, before any work.
-    const std::string text =
-        std::string(1, static_cast<char>('x' + chosen->axis)) + ":" + std::to_string(chosen->index);
-    if (chosen->index >= inputs->field.dims[chosen->axis])
-      return fail(inputError("--slice " + text + ": the grid " + gridText(inputs->field.dims) +
-                             " has " + std::to_string(inputs->field.dims[chosen->axis]) +
-                             " slices along " +
-                             std::string(1, static_cast<char>('x' + chosen->axis)) + " (0.." +
-                             std::to_string(inputs->field.dims[chosen->axis] - 1) + ")"));
-  }
+  if (auto r = checkSliceIndex(*slice, inputs->field.dims); !r) return fail(r.error());
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.readByBricks = stream.has_value();
   summary.outputs = {options.output};
 
-  if (options.cpu) {
-    if (inputs->series) {
-      Result<VectorField> field = hostFieldAt(*inputs, session, session.time);
-      if (!field) return reportError(field.error());
-      inputs->field = std::move(*field);
-      inputs->fieldStep.reset();
-    }
-    const Result<ScalarVolume> volume = computeOnCpu(*inputs, session.lic, global.quiet);
-    if (!volume) return reportError(volume.error());
-    if (auto r = writeComputeOutput(options, *slice, *volume); !r) return reportError(r.error());
-    if (!global.quiet)
-      std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str());
-    noteHiddenFraction(global, session.lic, hiddenFractionOf(*volume), summary);
-    summary.device = "CPU reference";
-    printSummary(global, summary, start);
-    return kExitOk;
-  }
+  if (options.cpu) return computeOnHost(global, options, *slice, *inputs, summary, start);
 
   const Context& device = contexts.front();
-  const std::string deviceNames = devicesText(contexts);
-  int status = kExitOk;
-  {
-    // In one piece when it fits the device (or --memory-budget), else in bricks.
-    Progress progress("LIC " + gridText(inputs->field.dims) + " on " + deviceNames, global.quiet);
-    // Bricks go straight into a .nrrd or .raw output, so that the host never holds the volume.
-    std::optional<StreamedOutput> streamed;
-    if (!*slice && StreamedOutput::streams(options.output))
-      streamed.emplace(options.output, inputs->field.dims, inputs->field.geometry);
-    LicVolumeOptions how{.deviceCap = options.memoryBudget,
-                         .sinkAtOnce = true,
-                         .stream = stream ? &*stream : nullptr,
-                         .scan = scan ? &*scan : nullptr};
-    if (streamed)
-      how.sink = [&](const Brick& brick, const ScalarVolume& lic) {
-        return streamed->take(brick, lic);
-      };
-    Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, *inputs, how,
-                                                [&](double f) { progress.update(f); });
-    if (run) {
-      progress.finish();
-    } else {
-      progress.cancel();
-    }
-    // In one piece the volume comes back whole; in bricks a streamed output has it already.
-    const bool wroteBricks = run && streamed && run->volume.values.empty();
-    Result<void> done = !run          ? Result<void>(run.error())
-                        : wroteBricks ? streamed->finish()
-                                      : writeComputeOutput(options, *slice, run->volume);
-    if (done) {
-      noteHiddenFraction(global, session.lic,
-                         wroteBricks ? streamed->hiddenFraction() : hiddenFractionOf(run->volume),
-                         summary);
-      summary.bricks = run->bricks;
-      summary.shares = run->devices;
-    }
-    if (!done)
-      status = reportError(done.error());
-    else if (!global.quiet)
-      std::fprintf(stderr, "lic3d: wrote %s (%s, on %s%s)\n", options.output.c_str(),
-                   fieldText(session.field, *inputs).c_str(), deviceNames.c_str(),
-                   run->bricks > 1 ? (", in " + std::to_string(run->bricks) + " bricks of " +
-                                      gridText(run->brickCore) + " and ghost layers")
-                                         .c_str()
-                                   : "");
-  }
+  int status = computeOnDevices(global, options, *slice, contexts, stream ? &*stream : nullptr,
+                                scan ? &*scan : nullptr, *inputs, summary);
   status = finish(contexts, status);
   if (status == kExitOk) {
     summary.device = device.deviceInfo().name;

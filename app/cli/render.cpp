@@ -134,6 +134,36 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
   return made;
 }
 
+// After the frames: the RGBA volume and the video.
+Result<void> writeBatchOutputs(const GlobalOptions& global, const ComputeOptions& options,
+                               const BatchOptions& batch, const FramePlan& plan,
+                               SessionInputs& inputs, LicRenderer& renderer,
+                               const ViewScalars& scalars, std::vector<std::string>& outputs) {
+  const Session& session = options.inputs.session;
+  if (!batch.rgbaVolume.empty()) {
+    LIC3D_TRY_ASSIGN(const ScalarVolume lic, renderer.readLicVolume());
+    // The field the volume was made from is inputs.field, except a series blended on the GPU.
+    std::optional<VectorField> blend;
+    if (inputs.series && !options.cpu) {
+      LIC3D_TRY_ASSIGN(VectorField host, hostFieldAt(inputs, session, inputs.time));
+      blend = std::move(host);
+    }
+    const VectorField& field = blend ? *blend : inputs.field;
+    const RgbaVolume rgba = colourLicVolume(lic, field, session.view,
+                                            renderer.volumeFacts().transfer(), scalars.pointers());
+    LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
+    outputs.push_back(batch.rgbaVolume);
+  }
+  if (!batch.video.empty()) {
+    LIC3D_TRY_ASSIGN(const std::filesystem::path ffmpeg, findFfmpeg());
+    if (!global.quiet)
+      std::fprintf(stderr, "lic3d: encoding %s with %s\n", batch.video.c_str(), ffmpeg.c_str());
+    LIC3D_TRY(encodeVideo(ffmpeg, plan, batch.fps, batch.video));
+    outputs.push_back(batch.video);
+  }
+  return {};
+}
+
 // The frames of `plan` (one picture without an animation), then the RGBA volume and the video.
 Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& options,
                           const BatchOptions& batch, const FramePlan& plan, SessionInputs& inputs,
@@ -219,28 +249,22 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
                  "GPU (median)\n",
                  inputs.stepsRead, inputs.blendMs.size(), median(inputs.blendMs));
 
-  if (!batch.rgbaVolume.empty()) {
-    LIC3D_TRY_ASSIGN(const ScalarVolume lic, renderer.readLicVolume());
-    // The field the volume was made from is inputs.field, except a series blended on the GPU.
-    std::optional<VectorField> blend;
-    if (inputs.series && !options.cpu) {
-      LIC3D_TRY_ASSIGN(VectorField host, hostFieldAt(inputs, session, inputs.time));
-      blend = std::move(host);
-    }
-    const VectorField& field = blend ? *blend : inputs.field;
-    const RgbaVolume rgba = colourLicVolume(lic, field, session.view,
-                                            renderer.volumeFacts().transfer(), scalars.pointers());
-    LIC3D_TRY(writeRgbaVolumeFile(batch.rgbaVolume, rgba));
-    outputs.push_back(batch.rgbaVolume);
-  }
-  if (!batch.video.empty()) {
-    LIC3D_TRY_ASSIGN(const std::filesystem::path ffmpeg, findFfmpeg());
-    if (!global.quiet)
-      std::fprintf(stderr, "lic3d: encoding %s with %s\n", batch.video.c_str(), ffmpeg.c_str());
-    LIC3D_TRY(encodeVideo(ffmpeg, plan, batch.fps, batch.video));
-    outputs.push_back(batch.video);
-  }
-  return {};
+  return writeBatchOutputs(global, options, batch, plan, inputs, renderer, scalars, outputs);
+}
+
+// The line saying what was written, on stderr.
+void printRenderDone(const Session& session, const FramePlan& plan, const RunSummary& summary,
+                     const std::string& field, const std::string& devices, const GivenLic* given) {
+  const int width =
+      session.view.stereo == StereoMode::SideBySide ? 2 * session.view.width : session.view.width;
+  const std::string what =
+      plan.animation == Animation::None
+          ? plan.output
+          : std::to_string(plan.rendered()) + " frames " + summary.outputs.front() +
+                (plan.rendered() > 1 ? " .. " + framePath(plan.output, plan.end - 1) : "");
+  std::fprintf(stderr, "lic3d: wrote %s (%dx%d, %s, on %s%s%s)\n", what.c_str(), width,
+               session.view.height, field.c_str(), devices.c_str(),
+               given && !given->note.empty() ? "; " : "", given ? given->note.c_str() : "");
 }
 
 }  // namespace
@@ -320,17 +344,8 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     if (!done) {
       status = reportError(done.error());
     } else if (!global.quiet) {
-      const int width = session.view.stereo == StereoMode::SideBySide ? 2 * session.view.width
-                                                                      : session.view.width;
-      const std::string what =
-          plan->animation == Animation::None
-              ? plan->output
-              : std::to_string(plan->rendered()) + " frames " + summary.outputs.front() +
-                    (plan->rendered() > 1 ? " .. " + framePath(plan->output, plan->end - 1) : "");
-      std::fprintf(stderr, "lic3d: wrote %s (%dx%d, %s, on %s%s%s)\n", what.c_str(), width,
-                   session.view.height, fieldText(session.field, *inputs).c_str(),
-                   devicesText(*contexts).c_str(), given && !given->note.empty() ? "; " : "",
-                   given ? given->note.c_str() : "");
+      printRenderDone(session, *plan, summary, fieldText(session.field, *inputs),
+                      devicesText(*contexts), given ? &*given : nullptr);
     }
     if (done) noteHiddenFraction(global, session.lic, renderer->hiddenFraction(), summary);
     if (renderer) {

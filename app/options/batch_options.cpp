@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "options/batch_options.h"
 
+#include "options/flags.h"
+
 namespace lic3d::cli {
 namespace {
 

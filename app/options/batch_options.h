@@ -3,7 +3,6 @@
 // The batch flags of `lic3d render`, `compute` and `render2d` (animations, frame ranges, video,
 // extra outputs) as the command line declares them; batch.h does the work they ask for.
 
-#include <CLI/CLI.hpp>
 #include <string>
 
 #include "options/session_options.h"

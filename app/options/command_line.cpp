@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "options/command_line.h"
 
+#include "options/flags.h"
+
 namespace lic3d::cli {
+
+CommandLine::CommandLine() : app(std::make_unique<CLI::App>()) {}
+CommandLine::~CommandLine() = default;
 
 std::unique_ptr<CommandLine> makeCommandLine() {
   auto line = std::make_unique<CommandLine>();
-  CLI::App& app = line->app;
+  CLI::App& app = *line->app;
   app.description(
       "lic3d: 3D Line Integral Convolution of vector fields with Vulkan.\n"
       "Computes a LIC volume on the GPU (or the CPU) and renders it with blended slices.");
@@ -140,7 +145,7 @@ std::unique_ptr<CommandLine> makeCommandLine() {
 std::optional<int> parseAndCheck(CommandLine& line, int argc, char** argv) {
   // A session file is read before the flags, which then override it.
   if (const std::optional<int> status = parseCommandLine(
-          line.app, argc, argv, "lic3d", "Run `lic3d --help` or `lic3d <command> --help`.",
+          *line.app, argc, argv, "lic3d", "Run `lic3d --help` or `lic3d <command> --help`.",
           {&line.compute.inputs, &line.render.inputs, &line.render2d.inputs}))
     return *status;
   if (Result<void> checked = finishCommand(line); !checked) return reportError(checked.error());

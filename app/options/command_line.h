@@ -4,40 +4,22 @@
 // given, apart from running anything, so that the program and the command-line fuzz target
 // (tests/fuzz/fuzz_cli.cpp) parse alike.
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "options/batch_options.h"
+#include "options/bench_options.h"
 #include "options/session_options.h"
 
 namespace lic3d::cli {
 
-struct BenchOptions {
-  std::string field = "tornado";
-  std::uint64_t seed = 1;
-  FieldPrecision precision = FieldPrecision::Auto;
-  std::string sizes = "64,128,256,512";
-  std::string lengths = "10,20";
-  std::string frameSizes = "512,1024,2048";
-  int frameVolume = 256;
-  int repeats = 7;
-  int warmup = 2;
-  double budgetSeconds = 120.0;
-  std::string json;
-  bool variants = false;       // specialized pipelines against runtime mode switches
-  bool distributions = false;  // sparsity point generation and mask + LIC recompute
-  bool kernels = false;        // the naive LIC kernel against each shipped one
-  bool fidelity = false;       // each scheme's error against a converged LIC
-  std::string fidelityFiles;   // fields judged besides the analytic ones (comma-separated)
-  int distributionVolume = 256;
-};
-
 // Every subcommand's options, filled by parseAndCheck, and which subcommand was given.
 struct CommandLine {
-  CLI::App app;
+  CommandLine();
+  ~CommandLine();  // where CLI::App is whole
+  std::unique_ptr<CLI::App> app;
   GlobalOptions global;
   ComputeOptions compute;
   BatchOptions computeBatch;

@@ -24,8 +24,8 @@ std::vector<std::string_view> splitCommas(std::string_view text) {
   return parts;
 }
 
-std::map<std::string, std::string, std::less<>>& flagNames() {
-  static std::map<std::string, std::string, std::less<>> names;
+KeyNames& flagNames() {
+  static KeyNames names;
   return names;
 }
 

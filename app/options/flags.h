@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Internal to the command-line options (options/session_options.cpp, options/view_options.cpp): how
-// a flag is added with its range and its session key, and the small parsers the text flags share.
+// Internal to the command-line options (options/*.cpp): how a flag is added with its range and its
+// session key, and the small parsers the text flags share. The one header of the options that
+// includes CLI11, so that the programs' own files need not compile it.
 
 #include <CLI/CLI.hpp>
 #include <charconv>
@@ -10,7 +11,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "core/error.h"
+#include "core/key_names.h"
 #include "core/parameter_ranges.h"
 #include "options/session_options.h"
 
@@ -32,7 +35,7 @@ std::vector<std::string_view> splitCommas(std::string_view text);
 // The session keys the engine names parameters by (Error::parameter), and the flags that set
 // them: reportError shows the flag where the message has the key. Filled as the options are
 // added.
-std::map<std::string, std::string, std::less<>>& flagNames();
+KeyNames& flagNames();
 // Records that `flags` ("-L,--length") sets the session key `key`.
 void nameFlag(std::string_view key, const std::string& flags);
 
@@ -50,6 +53,20 @@ CLI::Option* addRanged(CLI::App& app, const std::string& flags, T& value,
   nameFlag(range.key, flags);
   return app.add_option(flags, value, help)->check(rangeCheck(range))->capture_default_str();
 }
+
+// An option taking one of the names of E (enum_names.h).
+template <class E>
+CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
+                           const std::string& help) {
+  std::map<std::string, E> names;
+  for (const EnumName<E>& n : enumNames<E>()) names.emplace(std::string(n.name), n.value);
+  return app.add_option(flag, value, help + ": " + enumChoices<E>())
+      ->transform(CLI::CheckedTransformer(names).description(""))
+      ->default_str(std::string(enumName(value)));
+}
+
+// Accepts only the digits of a whole number >= 0 (seeds: "-1" would otherwise wrap to 2^64 - 1).
+CLI::Validator wholeNumberText();
 
 // The view flags whose text needs parsing, into the session (checked with it afterwards).
 Result<void> applyViewOptions(SessionOptions& options);

@@ -21,13 +21,10 @@
 #include "options/flags.h"
 
 namespace lic3d::cli {
-namespace {
 
-bool isKeyCharacter(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.';
-}
+bool given(const CLI::Option* option) { return option && option->count() > 0; }
 
-}  // namespace
+bool TextOption::given() const { return cli::given(option); }
 
 int exitCodeFor(const Error& error) {
   switch (error.kind) {
@@ -37,29 +34,7 @@ int exitCodeFor(const Error& error) {
   }
 }
 
-std::string messageWithFlags(const Error& error) {
-  std::string text = error.message;
-  if (error.parameter.empty()) return text;
-  // The key the message starts with, then every other key with a dot that it mentions.
-  const auto named = flagNames().find(error.parameter);
-  if (named != flagNames().end() && text.starts_with(error.parameter))
-    text.replace(0, error.parameter.size(), named->second);
-  for (const auto& [key, flag] : flagNames()) {
-    if (key.find('.') == std::string::npos) continue;
-    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at)) {
-      const std::size_t end = at + key.size();
-      const bool whole = (at == 0 || !isKeyCharacter(text[at - 1])) &&
-                         (end == text.size() || !isKeyCharacter(text[end]));
-      if (!whole) {
-        at = end;
-        continue;
-      }
-      text.replace(at, key.size(), flag);
-      at += flag.size();
-    }
-  }
-  return text;
-}
+std::string messageWithFlags(const Error& error) { return rewriteKeys(error, flagNames()); }
 
 int reportError(const Error& error) {
   // A message quotes what it was given (a path, a value): cut, so that no input fills the

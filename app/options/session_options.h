@@ -3,7 +3,6 @@
 // The flags shared by the subcommands (and the viewer), bound straight to a Session: the engine's
 // parameter structs plus where the field and the noise come from.
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <initializer_list>
 #include <map>
@@ -16,6 +15,13 @@
 #include "core/session.h"
 #include "core/volume.h"
 #include "inputs/session_inputs.h"
+
+// CLI11 is heavy to compile: only the files that declare options include it (options/flags.h).
+namespace CLI {
+class App;
+class Option;
+class Validator;
+}  // namespace CLI
 
 namespace lic3d::cli {
 
@@ -47,8 +53,11 @@ struct GlobalOptions {
 struct TextOption {
   std::string text;
   CLI::Option* option = nullptr;
-  bool given() const { return option && option->count() > 0; }
+  bool given() const;
 };
+
+// Whether `option` was given on the command line (not only filled from a session file).
+bool given(const CLI::Option* option);
 
 struct SessionOptions {
   Session session;
@@ -73,20 +82,6 @@ struct ComputeOptions {
   std::string output;
   CLI::Option* outputOption = nullptr;  // to tell a given -o from the default
 };
-
-// An option taking one of the names of E (enum_names.h).
-template <class E>
-CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
-                           const std::string& help) {
-  std::map<std::string, E> names;
-  for (const EnumName<E>& n : enumNames<E>()) names.emplace(std::string(n.name), n.value);
-  return app.add_option(flag, value, help + ": " + enumChoices<E>())
-      ->transform(CLI::CheckedTransformer(names).description(""))
-      ->default_str(std::string(enumName(value)));
-}
-
-// Accepts only the digits of a whole number >= 0 (seeds: "-1" would otherwise wrap to 2^64 - 1).
-CLI::Validator wholeNumberText();
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options);
 // --session, the field and noise flags, the LIC flags, --field-precision, --time and

@@ -193,6 +193,100 @@ Result<void> App::saveScreenshot(const FramePresenter::Frame& f) {
   return {};
 }
 
+// Takes what the frame's last submission finished and measured, and its screenshot.
+Result<void> App::collectFrame(FramePresenter::Frame& f, std::uint32_t slot) {
+  if (f.finishedLic) {
+    renderer_->collectStatistics(slot);
+    ++soak_.counts.volumes;
+  }
+  if (f.timed) {
+    LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
+    LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
+    if (f.licSlices > 0) {
+      licSumMs_ += slabMs;
+      // Aim the next slabs at the LIC time budget, from this device's measured speed.
+      const double msPerSlice = std::max(slabMs / f.licSlices, 1e-3);
+      slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
+                                   std::max(1, renderer_->dims().z));
+    }
+    if (f.finishedLic) {
+      stats_.licMs = licSumMs_;  // the whole volume, summed over its slabs
+      licSumMs_ = 0.0;
+    }
+  }
+  f.finishedLic = false;
+  if (f.screenshot) {
+    LIC3D_TRY(saveScreenshot(f));
+    f.screenshot = f.scriptedShot = false;
+  }
+  return {};
+}
+
+// The renderer's state the panels show.
+void App::updateStats() {
+  const LicStatus status = renderer_->licStatus();
+  stats_.computing = status.pending;
+  stats_.computeFraction = status.fraction;
+  stats_.waitingForMask = status.waitingForMask;
+  stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
+  const VolumeFacts facts = renderer_->volumeFacts();
+  stats_.colorValues = facts.colorValues;
+  stats_.opacityValues = facts.opacityValues;
+  stats_.hiddenFraction = renderer_->hiddenFraction().value_or(-1.0);
+}
+
+// One step of the endurance run (--soak).
+void App::stepSoak() {
+  const std::optional<TimeSeries>& series = loader_.series();
+  const Soak::AppState state{
+      .atRest =
+          !stats_.loading && !renderer_->licStatus().pending && !loader_.timePending(session_.time),
+      .seriesStep = series && !stats_.loading ? series->stepTime(1) - series->stepTime(0) : 0.0,
+      .deviceBytes = context_->allocatedBytes()};
+  soak_.step(frameNumber_, options_.frames, session_, state, [&](bool larger) {
+    glfwSetWindowSize(window_, options_.windowWidth + (larger ? 64 : 0),
+                      options_.windowHeight + (larger ? 48 : 0));
+  });
+}
+
+// Checks the session the panels and input changed and starts the work it asks for: the 2D
+// picture, or the field, its time, the scalars and the LIC volume.
+Result<void> App::applySession() {
+  if (auto r = validate(session_.view); !r) {
+    stats_.message = uiMessage(r.error());
+    session_.view = drawnSession_.view;
+  }
+  if (stopped_) {
+    // Nothing is read or computed any more: the session stays as it was saved.
+  } else if (session_.twoD) {
+    updatePlane();
+  } else {
+    // Back from the 2D mode with another field: the volume's field is read again.
+    if (!stats_.loading &&
+        (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
+      LIC3D_TRY(startLoading(session_.field, session_.noise));
+    LIC3D_TRY(updateTime());
+    LIC3D_TRY(updateScalars());
+    if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
+      if (auto r = renderer_->requestLic(session_.lic); !r) {
+        stats_.message = uiMessage(r.error());
+        session_.lic = drawnSession_.lic;
+      }
+    }
+  }
+  drawnSession_ = session_;
+  return {};
+}
+
+// Whether a scripted run may take its screenshot: the volume for the current parameters is
+// shown (stopped: at once, showing the error).
+bool App::readyForShot() const {
+  return stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
+                                    : !stats_.loading && renderer_->hasVolume() &&
+                                          !renderer_->licStatus().pending &&
+                                          !loader_.timePending(session_.time));
+}
+
 // Draws one frame; false when the app should quit.
 Result<bool> App::frame() {
   glfwPollEvents();
@@ -219,31 +313,7 @@ Result<bool> App::frame() {
   FramePresenter::Frame& f = presenter_->frame(frameNumber_);
   const auto slot = static_cast<std::uint32_t>(frameNumber_ % FramePresenter::kFramesInFlight);
   LIC3D_TRY(presenter_->wait(f));
-  // What the frame's last submission finished and measured.
-  if (f.finishedLic) {
-    renderer_->collectStatistics(slot);
-    ++soak_.counts.volumes;
-  }
-  if (f.timed) {
-    LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
-    LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
-    if (f.licSlices > 0) {
-      licSumMs_ += slabMs;
-      // Aim the next slabs at the LIC time budget, from this device's measured speed.
-      const double msPerSlice = std::max(slabMs / f.licSlices, 1e-3);
-      slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
-                                   std::max(1, renderer_->dims().z));
-    }
-    if (f.finishedLic) {
-      stats_.licMs = licSumMs_;  // the whole volume, summed over its slabs
-      licSumMs_ = 0.0;
-    }
-  }
-  f.finishedLic = false;
-  if (f.screenshot) {
-    LIC3D_TRY(saveScreenshot(f));
-    f.screenshot = f.scriptedShot = false;
-  }
+  LIC3D_TRY(collectFrame(f, slot));
 
   LIC3D_TRY_ASSIGN(const std::optional<std::uint32_t> imageIndex, presenter_->acquire(f, window));
   if (!imageIndex) {  // out of date: made again, drawn next frame
@@ -258,15 +328,7 @@ Result<bool> App::frame() {
   if (in.toggleUi) ui_.visible = !ui_.visible;
   if (in.toggleHelp) ui_.help = !ui_.help;
   if (in.togglePlay) ui_.playing = !ui_.playing;
-  const LicStatus status = renderer_->licStatus();
-  stats_.computing = status.pending;
-  stats_.computeFraction = status.fraction;
-  stats_.waitingForMask = status.waitingForMask;
-  stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
-  const VolumeFacts facts = renderer_->volumeFacts();
-  stats_.colorValues = facts.colorValues;
-  stats_.opacityValues = facts.opacityValues;
-  stats_.hiddenFraction = renderer_->hiddenFraction().value_or(-1.0);
+  updateStats();
   // Laid out once per frame: the annotations and the picture's viewport share it.
   const PictureLayout layout = viewLayout();
   drawAnnotations(layout);
@@ -281,48 +343,10 @@ Result<bool> App::frame() {
     animate(seconds);
     LIC3D_TRY(handleActions(actions));
   }
-  if (options_.soak && !stopped_) {
-    const std::optional<TimeSeries>& series = loader_.series();
-    const Soak::AppState state{
-        .atRest = !stats_.loading && !renderer_->licStatus().pending &&
-                  !loader_.timePending(session_.time),
-        .seriesStep = series && !stats_.loading ? series->stepTime(1) - series->stepTime(0) : 0.0,
-        .deviceBytes = context_->allocatedBytes()};
-    soak_.step(frameNumber_, options_.frames, session_, state, [&](bool larger) {
-      glfwSetWindowSize(window_, options_.windowWidth + (larger ? 64 : 0),
-                        options_.windowHeight + (larger ? 48 : 0));
-    });
-  }
-  if (auto r = validate(session_.view); !r) {
-    stats_.message = uiMessage(r.error());
-    session_.view = drawnSession_.view;
-  }
-  if (stopped_) {
-    // Nothing is read or computed any more: the session stays as it was saved.
-  } else if (session_.twoD) {
-    updatePlane();
-  } else {
-    // Back from the 2D mode with another field: the volume's field is read again.
-    if (!stats_.loading &&
-        (reloadField_ || !(loadedField_ == session_.field && loadedNoise_ == session_.noise)))
-      LIC3D_TRY(startLoading(session_.field, session_.noise));
-    LIC3D_TRY(updateTime());
-    LIC3D_TRY(updateScalars());
-    if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
-      if (auto r = renderer_->requestLic(session_.lic); !r) {
-        stats_.message = uiMessage(r.error());
-        session_.lic = drawnSession_.lic;
-      }
-    }
-  }
-  drawnSession_ = session_;
+  if (options_.soak && !stopped_) stepSoak();
+  LIC3D_TRY(applySession());
 
-  // A scripted run takes its screenshot once the volume for the current parameters is shown
-  // (stopped: at once, showing the error).
-  const bool ready = stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
-                                                : !stats_.loading && renderer_->hasVolume() &&
-                                                      !renderer_->licStatus().pending &&
-                                                      !loader_.timePending(session_.time));
+  const bool ready = readyForShot();
   const bool scriptedShot = options_.frames > 0 &&
                             frameNumber_ + 1 >= static_cast<std::uint64_t>(options_.frames) &&
                             ready;

@@ -67,6 +67,11 @@ class App {
   Result<void> finishLoading();
   Result<void> updateTime();
   Result<bool> frame();
+  Result<void> collectFrame(FramePresenter::Frame& f, std::uint32_t slot);
+  void updateStats();
+  void stepSoak();
+  Result<void> applySession();
+  bool readyForShot() const;
   Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
                              const PictureLayout& layout);
   void updateCamera(const Input& in);

@@ -2,27 +2,17 @@
 #include "viewer/plane.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "gpu/gpu_submit.h"
-#include "lic/colouring.h"
 #include "lic/lic2d_reference.h"
-#include "lic/noise.h"
-#include "options/session_options.h"
 
 namespace lic3d::viewer {
 namespace {
 
-// What each stage of the picture depends on.
-bool sameField(const Session& a, const Session& b) {
-  return a.field == b.field && a.plane.axis == b.plane.axis && a.plane.index == b.plane.index &&
-         a.time == b.time;
-}
-bool sameInputs(const Session& a, const Session& b) {
-  return sameField(a, b) && a.noise == b.noise && a.plane == b.plane && a.precision == b.precision;
-}
+// The picture shows all of these (PlanePicture makes again only what changed).
 bool samePicture(const Session& a, const Session& b) {
-  return sameInputs(a, b) && a.lic == b.lic && a.view == b.view;
+  return a.field == b.field && a.plane == b.plane && a.time == b.time && a.noise == b.noise &&
+         a.precision == b.precision && a.lic == b.lic && a.view == b.view;
 }
 
 }  // namespace
@@ -30,8 +20,7 @@ bool samePicture(const Session& a, const Session& b) {
 Result<PlaneView> PlaneView::create(const Context& context) {
   PlaneView view;
   view.context_ = &context;
-  LIC3D_TRY_ASSIGN(Lic2DPass pass, Lic2DPass::create(context));
-  view.pass_.emplace(std::move(pass));
+  LIC3D_TRY(view.plane_.useGpu(context));
   return view;
 }
 
@@ -50,34 +39,12 @@ Result<void> PlaneView::update(const Session& session) {
 
 Result<void> PlaneView::make(const Session& session) {
   LIC3D_TRY(checkLic2DParams(session.lic));
-  const bool newField = !made_ || !sameField(*made_, session);
-  const bool newInputs = !made_ || !sameInputs(*made_, session);
-  if (newField) {
-    if (!made_ || !(made_->field == session.field)) source_ = PlaneSource{};
-    LIC3D_TRY_ASSIGN(field_, planeField(session, false, session.time, source_));
-    minMagnitude_ = static_cast<float>(lic3d::minMagnitude(field_));
-    maxMagnitude_ = static_cast<float>(lic3d::maxMagnitude(field_));
-  }
-  if (newInputs) {
-    const Dims size = imageSize(field_.dims, session.plane);
-    // The noise depends on the image's size and the noise source only.
-    if (!made_ || noise_.dims != size || !(made_->noise == session.noise)) {
-      LIC3D_TRY_ASSIGN(noise_, loadNoise(session.noise, size));
-    }
-    inputs_.reset();
-    LIC3D_TRY_ASSIGN(inputs_, uploadLic2DInputs(*context_, field_, noise_, session.precision));
-  }
-  if (newInputs || !(made_->lic == session.lic)) {
-    const auto start = std::chrono::steady_clock::now();
-    LIC3D_TRY_ASSIGN(lic_, pass_->compute(*inputs_, session.lic));
-    licMs_ =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    lic_.geometry = imageGeometry(field_, noise_.dims);
-  }
+  LIC3D_TRY(plane_.setInputs(session));
+  LIC3D_TRY(plane_.computeLic(session.lic));
   // The app draws its own legend over the window.
   ViewParams view = session.view;
   view.legend = false;
-  const RgbaImage rgba = colourLic2D(lic_, field_, view, source_.outside);
+  const RgbaImage rgba = plane_.colour(view);
 
   vkQueueWaitIdle(context_->queue());  // frames in flight read the old picture
   picture_ = Image();

@@ -7,15 +7,12 @@
 #include <vulkan/vulkan.h>
 
 #include <optional>
-#include <string>
 
 #include "core/error.h"
 #include "core/session.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/plane_inputs.h"
-#include "lic/colouring.h"
-#include "passes/lic2d_pass.h"
+#include "inputs/plane_picture.h"
 
 namespace lic3d::viewer {
 
@@ -36,30 +33,21 @@ class PlaneView {
 
   bool hasPicture() const { return static_cast<bool>(picture_); }
   // The picture as `lic3d render2d` writes it for `view` (with its legend), at the image's size.
-  RgbaImage image(const ViewParams& view) const {
-    return colourLic2D(lic_, field_, view, source_.outside);
-  }
-  Dims fieldDims() const { return field_.dims; }
-  Dims imageDims() const { return noise_.dims; }
-  float minMagnitude() const { return minMagnitude_; }
-  float maxMagnitude() const { return maxMagnitude_; }
-  double licMilliseconds() const { return licMs_; }  // wall time of the last LIC image
+  RgbaImage image(const ViewParams& view) const { return plane_.colour(view); }
+  Dims fieldDims() const { return plane_.field().dims; }
+  Dims imageDims() const { return plane_.imageDims(); }
+  float minMagnitude() const { return plane_.minMagnitude(); }
+  float maxMagnitude() const { return plane_.maxMagnitude(); }
+  double licMilliseconds() const { return plane_.licMilliseconds(); }  // of the last LIC image
 
  private:
   Result<void> make(const Session& session);
 
   const Context* context_ = nullptr;
-  std::optional<Lic2DPass> pass_;
-  PlaneSource source_;
-  VectorField field_;
-  NoiseVolume noise_;
-  std::optional<Lic2DInputs> inputs_;
-  ScalarVolume lic_;
+  PlanePicture plane_;
   Image picture_;                  // RGBA8, kept in TRANSFER_SRC_OPTIMAL
   std::optional<Session> made_;    // what picture_ shows
   std::optional<Session> failed_;  // the last session whose picture could not be made
-  float minMagnitude_ = 0.0f, maxMagnitude_ = 1.0f;
-  double licMs_ = 0.0;
 };
 
 }  // namespace lic3d::viewer

@@ -14,6 +14,7 @@
 
 #include "core/colormap.h"
 #include "core/enum_names.h"
+#include "core/key_names.h"
 #include "core/look.h"
 #include "core/parameter_ranges.h"
 #include "lic/analytic_fields.h"
@@ -27,8 +28,8 @@ void tip(const char* text) {
 
 // The session keys the engine names parameters by, and the widgets that set them: uiMessage shows
 // the widget where an error message has the key. Filled as the widgets are drawn.
-std::map<std::string, std::string, std::less<>>& widgetNames() {
-  static std::map<std::string, std::string, std::less<>> names;
+KeyNames& widgetNames() {
+  static KeyNames names;
   return names;
 }
 
@@ -542,13 +543,6 @@ Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
   return actions;
 }
 
-std::string uiMessage(const Error& error) {
-  std::string text = error.message;
-  if (error.parameter.empty()) return text;
-  const auto named = widgetNames().find(error.parameter);
-  if (named != widgetNames().end() && text.starts_with(error.parameter))
-    text.replace(0, error.parameter.size(), named->second);
-  return text;
-}
+std::string uiMessage(const Error& error) { return rewriteKeys(error, widgetNames()); }
 
 }  // namespace lic3d::viewer

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// What `lic3d bench` measures, as its flags fill it (options/command_line.cpp declares them).
+
+#include <cstdint>
+#include <string>
+
+#include "core/field_precision.h"
+
+namespace lic3d::cli {
+
+struct BenchOptions {
+  std::string field = "tornado";
+  std::uint64_t seed = 1;
+  FieldPrecision precision = FieldPrecision::Auto;
+  std::string sizes = "64,128,256,512";
+  std::string lengths = "10,20";
+  std::string frameSizes = "512,1024,2048";
+  int frameVolume = 256;
+  int repeats = 7;
+  int warmup = 2;
+  double budgetSeconds = 120.0;
+  std::string json;
+  bool variants = false;       // specialized pipelines against runtime mode switches
+  bool distributions = false;  // sparsity point generation and mask + LIC recompute
+  bool kernels = false;        // the naive LIC kernel against each shipped one
+  bool fidelity = false;       // each scheme's error against a converged LIC
+  std::string fidelityFiles;   // fields judged besides the analytic ones (comma-separated)
+  int distributionVolume = 256;
+};
+
+}  // namespace lic3d::cli
