@@ -36,8 +36,12 @@ class CliTest : public test::TempFolderTest {
     const char* redirect = streams == Streams::Both         ? " 2>&1"
                            : streams == Streams::StdoutOnly ? " 2>/dev/null"
                                                             : " 2>&1 >/dev/null";
-    const std::string command = "cd '" + folder().string() + "' && " + environment + " '" +
-                                LIC3D_EXECUTABLE + "' " + args + redirect;
+    return shell(environment + " '" + LIC3D_EXECUTABLE + "' " + args + redirect);
+  }
+
+  // A shell command line in the test's folder; what it prints, and its status.
+  CommandRun shell(const std::string& line) const {
+    const std::string command = "cd '" + folder().string() + "' && " + line;
     CommandRun result;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return result;

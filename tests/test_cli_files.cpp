@@ -608,24 +608,38 @@ TEST_F(CliTest, ALostDeviceIsReportedAndLeavesNothing) {
 }
 
 // Killed at any moment, a batch render never leaves a truncated file under a real name: each
-// frame is written to a temporary name in the same folder and renamed once complete.
+// frame is written to a temporary name in the same folder and renamed once complete. The kills
+// follow events, not the clock: when the first temporary file shows (a frame being written), and
+// right after the 1st, 3rd and 6th frames are complete, so the verdict does not depend on the
+// machine's speed.
 TEST_F(CliTest, KillingABatchRenderLeavesOnlyCompleteFrames) {
+  const std::string frames = "$(ls frame_*.png 2>/dev/null | wc -l)";
+  const std::string writing = "ls -a | grep -q '^[.]frame_.*[.]tmp-'";
   int complete = 0;
-  for (const char* delay : {"0.3", "0.6", "0.9", "1.3", "1.8"}) {
+  for (const std::string& event :
+       {writing + " || [ " + frames + " -ge 1 ]", "[ " + frames + " -ge 1 ]",
+        "[ " + frames + " -ge 3 ]", "[ " + frames + " -ge 6 ]"}) {
     for (const fs::directory_entry& e : fs::directory_iterator(folder())) fs::remove(e.path());
-    run(std::string("--device 0 render --grid 20 --width 96 --height 96 --turntable 40 -q "
-                    "-o frame_%02d.png"),
-        std::string("timeout -s KILL ") + delay);
+    // The render goes on in the background until the event, then is killed outright; kill -0
+    // ends the wait should the render finish first (then nothing was cut short).
+    const CommandRun r = shell(
+        "'" + std::string(LIC3D_EXECUTABLE) +
+        "' --device 0 render --grid 20 --width 96 --height 96 --turntable 40 -q "
+        "-o frame_%02d.png & pid=$!; until " +
+        event + "; do kill -0 $pid 2>/dev/null || break; sleep 0.005; done; kill -KILL $pid; " +
+        "wait $pid; true");
+    int here = 0;
     for (const fs::directory_entry& e : fs::directory_iterator(folder())) {
       const std::string name = e.path().filename().string();
       if (name.rfind("frame_", 0) != 0 || e.path().extension() != ".png") continue;
       const test::RgbaPixels frame = test::readRgbaPng(e.path());
-      EXPECT_EQ(frame.width, 96) << name << " is not a complete PNG (killed after " << delay
-                                 << " s)";
-      ++complete;
+      EXPECT_EQ(frame.width, 96) << name << " is not a complete PNG (killed at `" << event << "`)\n"
+                                 << r.output;
+      ++here;
     }
+    complete += here;
   }
-  EXPECT_GT(complete, 0) << "no frame was finished before the kills: lengthen the delays";
+  EXPECT_GT(complete, 0) << "no frame was complete: the render failed";
 }
 
 // --axes draws the box's outline and the axis ranges over the picture: a few percent of the

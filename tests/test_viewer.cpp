@@ -51,13 +51,15 @@ class ViewerTest : public test::TempFolderTest {
       FAIL() << "xvfb-run is missing: install xvfb and xauth (cmake/install-deps.sh does)";
   }
 
-  // lic3d-view in a fresh virtual screen, in the test's folder.
+  // lic3d-view in a fresh virtual screen, in the test's folder. The X authority file lies in the
+  // test's folder (-f): without it xvfb-run makes a temporary folder of its own, and under load
+  // its removal can fail after the app has exited, turning the app's status into xvfb-run's 5.
   // `environment`: assignments put before the command (test hooks).
   CommandRun view(const std::string& args, const std::string& size = "",
                   const std::string& environment = "") const {
     return runShell("cd '" + folder().string() + "' && " + environment +
-                    " xvfb-run -a -s '-screen 0 1280x800x24' '" + std::string(LIC3D_VIEWER) +
-                    "' --validation --window-size " +
+                    " xvfb-run -a -f .Xauthority -s '-screen 0 1280x800x24' '" +
+                    std::string(LIC3D_VIEWER) + "' --validation --window-size " +
                     (size.empty() ? std::to_string(kWidth) + "x" + std::to_string(kHeight) : size) +
                     " " + args);
   }
@@ -302,7 +304,7 @@ TEST_F(ViewerTest, AFatalErrorSavesTheSessionToARecoveryFile) {
     std::filesystem::remove(path("shot.png"));
     const CommandRun failed =
         runShell("cd '" + folder().string() + "' && LIC3D_FAIL_ALLOCATION=" + std::to_string(n) +
-                 " xvfb-run -a -s '-screen 0 1280x800x24' sh -c '\"$0\" \"$@\"; "
+                 " xvfb-run -a -f .Xauthority -s '-screen 0 1280x800x24' sh -c '\"$0\" \"$@\"; "
                  "echo $? > status.txt' '" +
                  std::string(LIC3D_VIEWER) +
                  "' --window-size 640x480 --session in.json --frames 3 "
