@@ -22,7 +22,7 @@ namespace lic3d {
 namespace {
 
 // Values that are converted go through a buffer of at most this many bytes.
-constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
+constexpr std::size_t kPieceChunkBytes = std::size_t{8} << 20;
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are read as packed floats");
 
@@ -147,7 +147,7 @@ Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t fir
   // Interleaved: one span of every component. Planar: one span per component.
   const std::size_t spans = array.planar ? array.components : 1;
   const std::size_t perVoxel = array.planar ? bytes : bytes * array.components;
-  const std::size_t chunkVoxels = std::max<std::size_t>(1, kChunkBytes / perVoxel);
+  const std::size_t chunkVoxels = std::max<std::size_t>(1, kPieceChunkBytes / perVoxel);
   buffer.resize(std::min(count, chunkVoxels) * perVoxel);
   for (std::size_t span = 0; span < spans; ++span) {
     for (std::size_t done = 0; done < count;) {

@@ -18,6 +18,10 @@
 
 namespace lic3d {
 
+// Files are read and written piece by piece in chunks of this size: a multiple of every value
+// size, so chunks never split a value.
+inline constexpr std::size_t kFileChunkBytes = std::size_t{1} << 20;
+
 // Limits on grids read from untrusted files: each axis and the voxel count.
 inline constexpr std::uint64_t kMaxAxisSize = 16384;
 inline constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;

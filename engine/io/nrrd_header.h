@@ -19,9 +19,6 @@
 
 namespace lic3d::nrrd {
 
-// A multiple of every value size, so chunks never split a value.
-inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
-
 enum class Encoding { Raw, Gzip };
 
 // What the header says about the payload, after every check.

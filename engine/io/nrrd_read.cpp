@@ -26,7 +26,6 @@ namespace {
 
 using nrrd::Encoding;
 using nrrd::Expectation;
-using nrrd::kChunkBytes;
 using nrrd::Layout;
 using nrrd::Opened;
 
@@ -97,7 +96,7 @@ void forEachValue(NumberType type, const char* data, std::size_t bytes, Use&& us
 Result<void> readRaw(FileReader& reader, const Layout& layout, const ChunkSink& sink) {
   const std::size_t bytesPerValue = numberType(layout.type).bytes;
   std::uint64_t left = layout.payloadBytes();
-  std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, left)));
+  std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kFileChunkBytes, left)));
   while (left > 0) {
     const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), left));
     if (reader.read(chunk.data(), count) != count)
@@ -120,8 +119,9 @@ Result<void> readGzip(FileReader& reader, const Layout& layout, const ChunkSink&
   z_stream& zs = inflater.stream();
   // Small files get a small buffer: the data's size bounds what can be read.
   std::vector<unsigned char> input(
-      static_cast<std::size_t>(std::clamp<std::uint64_t>(reader.remaining(), 1, kChunkBytes)));
-  std::vector<char> output(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, total)));
+      static_cast<std::size_t>(std::clamp<std::uint64_t>(reader.remaining(), 1, kFileChunkBytes)));
+  std::vector<char> output(
+      static_cast<std::size_t>(std::min<std::uint64_t>(kFileChunkBytes, total)));
   std::uint64_t produced = 0;
   bool ended = false;
   // teem applies a gzip byte skip to the decompressed stream.

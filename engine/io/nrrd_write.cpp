@@ -18,8 +18,6 @@
 namespace lic3d {
 namespace {
 
-using nrrd::kChunkBytes;
-
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "vectors are written as packed floats");
 
 // Appends rather than "(" + ...: GCC 12 at -O3 gives a false -Wrestrict on prepending a literal.
@@ -36,8 +34,8 @@ bool writeLittleEndian(std::ostream& out, const void* data, std::size_t count,
   const char* bytes = static_cast<const char*>(data);
   if (std::endian::native == std::endian::little || bytesPerValue < 2)
     return static_cast<bool>(out.write(bytes, static_cast<std::streamsize>(count * bytesPerValue)));
-  std::vector<char> chunk(kChunkBytes);
-  const std::size_t perChunk = kChunkBytes / bytesPerValue;
+  std::vector<char> chunk(kFileChunkBytes);
+  const std::size_t perChunk = kFileChunkBytes / bytesPerValue;
   for (std::size_t first = 0; first < count && out; first += perChunk) {
     const std::size_t n = std::min(perChunk, count - first);
     std::memcpy(chunk.data(), bytes + first * bytesPerValue, n * bytesPerValue);

@@ -21,7 +21,6 @@ namespace {
 constexpr std::uint64_t kMaxSidecarBytes = 64 * 1024;
 // The sidecar is a flat object of short arrays; deeper nesting is refused while parsing.
 constexpr int kMaxJsonDepth = 4;
-constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 constexpr std::string_view kKnownKeys[] = {"dims",  "spacing", "origin", "components",
                                            "order", "type",    "endian"};
 
@@ -184,7 +183,8 @@ Result<VectorField> readVectorFieldRaw(const std::filesystem::path& path, FieldR
   field.dims = sidecar.dims;
   field.geometry = sidecar.geometry;
   resizeLarge(field.vectors, static_cast<std::size_t>(voxels));
-  std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, expected)));
+  std::vector<char> chunk(
+      static_cast<std::size_t>(std::min<std::uint64_t>(kFileChunkBytes, expected)));
   std::uint64_t next = 0;  // the index of the next value in the file
   const NumberType type = sidecar.valueBytes == 8 ? NumberType::Float64 : NumberType::Float32;
   for (std::uint64_t left = expected; left > 0;) {

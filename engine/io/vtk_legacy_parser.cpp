@@ -22,7 +22,6 @@ namespace {
 constexpr std::size_t kMaxLineBytes = 4096;
 constexpr std::size_t kMaxTokenBytes = 256;
 // A multiple of every value size, so chunks never split a value.
-constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 // ASCII values are delivered in chunks of this many.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
 
@@ -168,7 +167,8 @@ Result<void> Parser::readValues(std::uint64_t count, std::string_view typeName,
     if (__builtin_mul_overflow(count, bytesPerValue, &bytes) || bytes > reader_.remaining())
       return truncated(what, count, bytesPerValue);
     allocate();
-    std::vector<char> chunk(static_cast<std::size_t>(std::min<std::uint64_t>(kChunkBytes, bytes)));
+    std::vector<char> chunk(
+        static_cast<std::size_t>(std::min<std::uint64_t>(kFileChunkBytes, bytes)));
     const std::size_t perChunk = chunk.size() / bytesPerValue;
     std::vector<double> values(perChunk);
     for (std::uint64_t done = 0; done < count;) {

@@ -1,9 +1,12 @@
 # SPDX-License-Identifier: BSD-3-Clause
-# Runs one libFuzzer target for SECONDS (or $ENV{LIC3D_FUZZ_SECONDS} when set) from the seeds in
-# SEEDS, writing new inputs and crash reproducers under WORK (emptied first), never into the
-# committed corpus. Fails on any finding, naming each reproducer and how to replay it. What the
-# targets print (the command line's help and messages) is discarded; libFuzzer's own reports stay.
-foreach(variable FUZZER SEEDS WORK SECONDS)
+# Runs the libFuzzer targets one after another within ONE time box: SECONDS (or
+# $ENV{LIC3D_FUZZ_SECONDS} when set) for all of them together, shared equally. Each starts from
+# its seeds in SEEDS/<target>, writing new inputs and crash reproducers under WORK/<target>
+# (emptied first), never into the committed corpus. Every target runs even after one fails; the
+# test fails on any finding, naming each reproducer and how to replay it. What the targets print
+# (the command line's help and messages) is discarded; libFuzzer's own reports stay.
+#   FUZZERS: a list of target names; FUZZER_DIR: the folder with fuzz_<target> in it.
+foreach(variable FUZZERS FUZZER_DIR SEEDS WORK SECONDS)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "run_fuzzer.cmake needs -D${variable}=...")
   endif()
@@ -11,29 +14,48 @@ endforeach()
 if(DEFINED ENV{LIC3D_FUZZ_SECONDS})
   set(SECONDS $ENV{LIC3D_FUZZ_SECONDS})
 endif()
-if(NOT EXISTS ${FUZZER})
-  message(FATAL_ERROR "${FUZZER} is missing (was fuzz_build run? ctest runs it first)")
+string(REPLACE "," ";" FUZZERS "${FUZZERS}")
+list(LENGTH FUZZERS count)
+math(EXPR share "${SECONDS} / ${count}")
+if(share LESS 1)
+  set(share 1)
 endif()
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK}/corpus ${WORK}/artifacts)
-# libFuzzer stops itself after SECONDS; the process limit is for a fuzzer that does not.
-math(EXPR limit "${SECONDS} + 120")
-execute_process(
-  COMMAND ${FUZZER} -max_total_time=${SECONDS} -rss_limit_mb=1024 -timeout=5 -max_len=4096
-          -close_fd_mask=3 -print_final_stats=1 -artifact_prefix=${WORK}/artifacts/ ${WORK}/corpus ${SEEDS}
-  TIMEOUT ${limit}
-  RESULT_VARIABLE status)
-if(NOT status EQUAL 0)
-  file(GLOB findings ${WORK}/artifacts/*)
-  if(NOT findings)
-    message(FATAL_ERROR "${FUZZER} failed (${status}) and wrote no reproducer")
+# libFuzzer stops itself after its share; the process limit is for a fuzzer that does not.
+math(EXPR limit "${share} + 120")
+
+set(failed "")
+foreach(target ${FUZZERS})
+  set(fuzzer ${FUZZER_DIR}/fuzz_${target})
+  if(NOT EXISTS ${fuzzer})
+    message(FATAL_ERROR "${fuzzer} is missing (was fuzz_build run? ctest runs it first)")
   endif()
-  # NOTICE prints the lines as they are, so the paths can be copied whole.
-  set(report "${FUZZER} failed (${status}). Reproducers (removed by the next run of this test):")
-  foreach(finding ${findings})
-    string(APPEND report "\n  ${finding}")
-  endforeach()
-  list(GET findings 0 first)
-  message(NOTICE "${report}\nReplay one: ${FUZZER} ${first}")
-  message(FATAL_ERROR "the fuzzer found an input that crashes, leaks, hangs or runs out of memory: reproducers above")
+  set(work ${WORK}/${target})
+  file(REMOVE_RECURSE ${work})
+  file(MAKE_DIRECTORY ${work}/corpus ${work}/artifacts)
+  message(STATUS "fuzz_${target}: ${share} s")
+  execute_process(
+    COMMAND ${fuzzer} -max_total_time=${share} -rss_limit_mb=1024 -timeout=5 -max_len=4096
+            -close_fd_mask=3 -print_final_stats=1 -artifact_prefix=${work}/artifacts/
+            ${work}/corpus ${SEEDS}/${target}
+    TIMEOUT ${limit}
+    RESULT_VARIABLE status)
+  if(NOT status EQUAL 0)
+    list(APPEND failed ${target})
+    file(GLOB findings ${work}/artifacts/*)
+    if(NOT findings)
+      message(NOTICE "${fuzzer} failed (${status}) and wrote no reproducer")
+      continue()
+    endif()
+    # NOTICE prints the lines as they are, so the paths can be copied whole.
+    set(report "${fuzzer} failed (${status}). Reproducers (removed by the next run of this test):")
+    foreach(finding ${findings})
+      string(APPEND report "\n  ${finding}")
+    endforeach()
+    list(GET findings 0 first)
+    message(NOTICE "${report}\nReplay one: ${fuzzer} ${first}")
+  endif()
+endforeach()
+if(failed)
+  message(FATAL_ERROR "the fuzzers of ${failed} found an input that crashes, leaks, hangs or runs "
+                      "out of memory (reproducers above), or failed to run")
 endif()
