@@ -15,15 +15,15 @@
 
 #include "commands.h"
 #include "core/volume_compare.h"
-#include "gpu/gpu_timer.h"
 #include "gpu/shader_library.h"
-#include "inputs/bricks.h"
-#include "inputs/session_inputs.h"
+#include "gpu/timer.h"
 #include "io/file_util.h"
+#include "jobs/bricks.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
 #include "lic/sparsity.h"
-#include "passes/lic_renderer.h"
+#include "loading/session_inputs.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::cli {
 
@@ -92,7 +92,7 @@ std::uint64_t hostPeakBytes() {
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;
 }
 
-// A LIC larger than the device, made in bricks (inputs/bricks.h) as `lic3d compute` makes it, the
+// A LIC larger than the device, made in bricks (jobs/bricks.h) as `lic3d compute` makes it, the
 // field made on the device brick by brick and the bricks dropped once made: the sum of the
 // bricks' LIC dispatches (GPU timestamps) and the whole run's wall time, once.
 Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& options, int n,

@@ -14,7 +14,7 @@
 #include "gpu/shader_library.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::cli {
 namespace {

@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "core/session.h"
 #include "core/volume.h"
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d::cli {
 

@@ -12,7 +12,7 @@
 #include "command_line.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d::cli {
 

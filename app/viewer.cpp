@@ -17,7 +17,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/slice_geometry.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"

@@ -15,10 +15,10 @@
 
 #include "cli_options.h"
 #include "core/session.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
-#include "passes/lic_renderer.h"
+#include "loading/session_inputs.h"
+#include "render/lic_renderer.h"
 #include "viewer.h"
 #include "viewer_frames.h"
 #include "viewer_input.h"

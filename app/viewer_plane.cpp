@@ -5,7 +5,7 @@
 #include <chrono>
 
 #include "cli_options.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "lic/colouring.h"
 #include "lic/lic2d_reference.h"
 #include "lic/noise.h"

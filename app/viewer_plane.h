@@ -11,10 +11,10 @@
 
 #include "core/error.h"
 #include "core/session.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/plane_inputs.h"
 #include "lic/colouring.h"
+#include "loading/plane_inputs.h"
 #include "passes/lic2d_pass.h"
 
 namespace lic3d::viewer {

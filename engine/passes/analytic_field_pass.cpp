@@ -9,10 +9,10 @@
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_submit.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_push.h"
 #include "shared_layout.h"
@@ -20,92 +20,17 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the field.
-struct AnalyticSpecialization {
-  std::uint32_t field = 0;
-};
-static_assert(sizeof(AnalyticSpecialization) == 4);
-
-// constant_id 0: the field, 1: the phase (shaders/analytic_texels.comp).
+// constant_id 0: the field, 1: the phase (shaders/analytic_field.comp).
 struct TexelSpecialization {
   std::uint32_t field = 0;
   std::uint32_t phase = 0;
 };
 static_assert(sizeof(TexelSpecialization) == 8);
 
-// The slab buffer: at most this many bytes (and the device's storage buffer range), so that
-// memory stays bounded whatever the grid.
-constexpr VkDeviceSize kSlabBytes = VkDeviceSize{256} << 20;
-
 }  // namespace
 
-Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticField field,
-                                              Dims dims, double time) {
-  VectorField result;
-  result.dims = dims;
-  result.geometry = analyticGeometry(field, dims);
-  const VkDeviceSize layerBytes =
-      VkDeviceSize{3} * sizeof(float) * std::size_t(dims.x) * std::size_t(dims.y);
-  const VkDeviceSize limit =
-      std::min<VkDeviceSize>(kSlabBytes, context.properties().limits.maxStorageBufferRange);
-  if (layerBytes > limit)
-    return unsupportedError("a z layer of " + gridText(dims) +
-                            " does not fit one storage buffer of this device");
-  const int slab = static_cast<int>(std::min<VkDeviceSize>(limit / layerBytes, dims.z));
-
-  constexpr Binding bindings[] = {
-      {gpu::kAnalyticBindingVectors, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-  LIC3D_TRY_ASSIGN(const PipelineLayout layout,
-                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::AnalyticPushConstants), "analytic field"));
-  LIC3D_TRY_ASSIGN(const ShaderModule shader, loadShader(context, ShaderId::AnalyticField));
-  const Specialization<AnalyticSpecialization> constants(
-      AnalyticSpecialization{static_cast<std::uint32_t>(field)});
-  LIC3D_TRY_ASSIGN(const Pipeline pipeline,
-                   createComputePipeline(context, shader, layout, constants.info(),
-                                         "analytic field " + std::string(enumName(field))));
-  LIC3D_TRY_ASSIGN(const Buffer vectors,
-                   Buffer::create(context, layerBytes * static_cast<VkDeviceSize>(slab),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Readback,
-                                  "analytic field slab"));
-
-  result.vectors.resize(voxelCount(dims));
-  gpu::AnalyticPushConstants push{};
-  push.unitScale = glm::vec4(1.0f);
-  push.origin = glm::vec4(glm::vec3(result.geometry.origin), static_cast<float>(time));
-  push.spacing = glm::vec4(glm::vec3(result.geometry.spacing), 0.0f);
-  for (int z0 = 0; z0 < dims.z; z0 += slab) {
-    const int layers = std::min(slab, dims.z - z0);
-    push.dims = glm::ivec4(dims.x, dims.y, layers, z0);
-    DescriptorWrites writes;
-    writes.storageBuffer(gpu::kAnalyticBindingVectors, vectors);
-    LIC3D_TRY(submitAndWait(
-        context,
-        [&](VkCommandBuffer cmd) {
-          writes.push(context, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
-          vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                             &push);
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-          vkCmdDispatch(cmd, groupCount(dims.x, gpu::kAnalyticLocalSizeX),
-                        groupCount(dims.y, gpu::kAnalyticLocalSizeY),
-                        static_cast<std::uint32_t>(layers));
-          memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                        VK_ACCESS_2_HOST_READ_BIT);
-        },
-        "analytic field"));
-    // Three floats per voxel, x fastest: the layout of glm::vec3.
-    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    const std::size_t first = voxelIndex(dims, 0, 0, z0);
-    const std::size_t bytes =
-        static_cast<std::size_t>(layerBytes) * static_cast<std::size_t>(layers);
-    parallelCopy(result.vectors.data() + first, vectors.mapped(), bytes);
-  }
-  return result;
-}
-
-Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
-  AnalyticTexels pass;
+Result<AnalyticFieldPass> AnalyticFieldPass::create(const Context& context) {
+  AnalyticFieldPass pass;
   pass.context_ = &context;
   constexpr Binding bindings[] = {
       {gpu::kAnalyticBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -114,8 +39,8 @@ Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
                                           sizeof(gpu::AnalyticPushConstants), "analytic texels"));
-  const ShaderId ids[3] = {ShaderId::AnalyticTexels, ShaderId::AnalyticTexelsHalf,
-                           ShaderId::AnalyticTexelsByte};
+  const ShaderId ids[3] = {ShaderId::AnalyticField, ShaderId::AnalyticFieldHalf,
+                           ShaderId::AnalyticFieldByte};
   for (int variant = 0; variant < 3; ++variant) {
     LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
   }
@@ -132,7 +57,7 @@ Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
   return pass;
 }
 
-Result<VkPipeline> AnalyticTexels::pipeline(Key key) {
+Result<VkPipeline> AnalyticFieldPass::pipeline(Key key) {
   return pipelines_.get(key, [&](const Key& k) {
     const Specialization<TexelSpecialization> constants(TexelSpecialization{k.field, k.phase});
     return createComputePipeline(*context_, shaders_[k.variant], layout_, constants.info(),
@@ -149,8 +74,8 @@ GridGeometry AnalyticInputs::texelGeometry() const {
   return geometry;
 }
 
-Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
-                                                  FieldPrecision precision) const {
+Result<FieldTexture> AnalyticFieldPass::createTarget(const AnalyticInputs& inputs,
+                                                     FieldPrecision precision) const {
   const Dims dims = inputs.texelDims();
   LIC3D_TRY(checkVolumeDims(*context_, dims, "field"));
   // The texture and the LIC volume must fit (a CPU driver would otherwise accept the allocation
@@ -163,7 +88,7 @@ Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
                                     "analytic field and noise texture");
 }
 
-Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& target) {
+Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture& target) {
   const Dims dims = inputs.texelDims();
   if (target.dims != dims || !target.image)
     return inputError("the analytic field's texture must be made for its grid " + gridText(dims));

@@ -13,8 +13,8 @@
 
 #include "core/error.h"
 #include "core/lic_params.h"
-#include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "lic/sparsity.h"
 #include "passes/volume_textures.h"

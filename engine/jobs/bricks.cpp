@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/bricks.h"
+#include "jobs/bricks.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// LicRenderer's field texture (passes/lic_renderer.h): uploaded from a host field, made on the
+// LicRenderer's field texture (render/lic_renderer.h): uploaded from a host field, made on the
 // device from an analytic field, or interpolated between two resident steps of a time series.
 #include <cmath>
 #include <vector>
 
-#include "gpu/gpu_submit.h"
-#include "passes/lic_renderer.h"
+#include "gpu/submit.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 
@@ -47,7 +47,7 @@ Result<void> LicRenderer::setAnalyticInputs(const AnalyticInputs& inputs) {
   if (inputs.isBrick()) piece = FieldPiece{.wholeDims = inputs.dims, .offset = inputs.brickOffset};
   LIC3D_TRY(replaceField(dims, piece));
   if (!analytic_) {
-    LIC3D_TRY_ASSIGN(analytic_, AnalyticTexels::create(*context_));
+    LIC3D_TRY_ASSIGN(analytic_, AnalyticFieldPass::create(*context_));
   }
   if (!reuse) {
     field_ = FieldTexture();  // free the old texture before allocating the new one
@@ -85,7 +85,7 @@ Result<void> LicRenderer::setInputs(const VectorField& field, const NoiseVolume&
 Result<void> LicRenderer::setTimeNoise(const NoiseVolume& noise) {
   LIC3D_TRY(ensureScalarTexture());
   if (!interpolation_) {
-    LIC3D_TRY_ASSIGN(FieldInterpolation pass, FieldInterpolation::create(*context_));
+    LIC3D_TRY_ASSIGN(TimeBlendPass pass, TimeBlendPass::create(*context_));
     interpolation_.emplace(std::move(pass));
   }
   vkQueueWaitIdle(context_->queue());  // an interpolation may still read the old noise
@@ -113,7 +113,7 @@ Result<void> LicRenderer::setTimeStep(int index, const VectorField& step, int ke
   return {};
 }
 
-Result<void> LicRenderer::interpolateTime(int first, int second, double weight) {
+Result<void> LicRenderer::blendTime(int first, int second, double weight) {
   const FieldStep* a = nullptr;
   const FieldStep* b = nullptr;
   for (const FieldStep& step : timeSteps_) {
@@ -146,7 +146,7 @@ Result<void> LicRenderer::interpolateTime(int first, int second, double weight) 
     timeTexture_ = true;
   }
   interpolated_.reset();
-  LIC3D_TRY(interpolation_->interpolate(*a, *b, weight, field_));
+  LIC3D_TRY(interpolation_->blend(*a, *b, weight, field_));
   interpolated_ = key;
   fieldChanged_ = true;
   return {};

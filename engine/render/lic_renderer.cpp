@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include "core/look.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "lic/legend.h"
 

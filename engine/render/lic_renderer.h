@@ -20,17 +20,17 @@
 #include "core/rgba_image.h"
 #include "core/view_params.h"
 #include "core/volume.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/resources.h"
+#include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
 #include "lic/legend.h"
 #include "lic/lic_reference.h"
 #include "lic/sparsity.h"
 #include "passes/analytic_field_pass.h"
-#include "passes/field_interpolation.h"
-#include "passes/lic_histogram.h"
+#include "passes/lic_histogram_pass.h"
 #include "passes/lic_pass.h"
 #include "passes/slice_pass.h"
+#include "passes/time_blend_pass.h"
 #include "passes/volume_textures.h"
 
 namespace lic3d {
@@ -82,7 +82,7 @@ class LicRenderer {
   // texture (passes/analytic_field_pass.h): no host arrays at all. A texture of the same grid is
   // rewritten in place (a time animation of the tornado).
   Result<void> setAnalyticInputs(const AnalyticInputs& inputs);
-  // What colour and opacity follow when not the speed (inputs/scalars.h): scalars on the field's
+  // What colour and opacity follow when not the speed (loading/scalars.h): scalars on the field's
   // grid, null for the speed. Kept until set again or until a field of another grid is set.
   // Redraws only; waits for the device to be idle.
   Result<void> setScalars(const PointScalars* color, const PointScalars* opacity);
@@ -149,10 +149,10 @@ class LicRenderer {
 
   // ---- Unsteady fields (docs/TIME.md) -----------------------------------------------------------
   // A time series keeps two of its steps resident and makes the field texture from them on the
-  // GPU (FieldInterpolation). A new field recomputes the LIC volume at the next updateLic or
+  // GPU (TimeBlendPass). A new field recomputes the LIC volume at the next updateLic or
   // requestLic; the shown volume stays until then, so a time slider never blanks the picture.
 
-  // Starts a series: its noise, on the steps' grid, set before the first interpolateTime. The
+  // Starts a series: its noise, on the steps' grid, set before the first blendTime. The
   // steps resident from an earlier series are dropped.
   Result<void> setTimeNoise(const NoiseVolume& noise);
   // Uploads `step` as step `index` of the series into the resident slot that does not hold step
@@ -160,7 +160,7 @@ class LicRenderer {
   Result<void> setTimeStep(int index, const VectorField& step, int keep);
   bool hasTimeStep(int index) const;
   // The field becomes (1 - w) step `first` + w step `second`, both resident.
-  Result<void> interpolateTime(int first, int second, double weight);
+  Result<void> blendTime(int first, int second, double weight);
   // GPU milliseconds of the last blend (0 before any or without timestamp queries).
   double lastBlendMilliseconds() const {
     return interpolation_ ? interpolation_->lastMilliseconds() : 0.0;
@@ -248,7 +248,7 @@ class LicRenderer {
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
   std::uint64_t maskBuilds_ = 0;
   // Unsteady fields: the pass, the two resident steps and what the field texture was made from.
-  std::optional<FieldInterpolation> interpolation_;
+  std::optional<TimeBlendPass> interpolation_;
   FieldStep timeSteps_[2];
   struct TimeKey {
     int first, second;
@@ -258,7 +258,7 @@ class LicRenderer {
   std::optional<TimeKey> interpolated_;
   bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
   bool timeTexture_ = false;   // field_ is written by interpolation_ (not uploaded)
-  std::optional<AnalyticTexels> analytic_;
+  std::optional<AnalyticFieldPass> analytic_;
   bool analyticTexture_ = false;  // field_ is written by analytic_ (not uploaded)
   Image target_;
   Buffer targetReadback_;
