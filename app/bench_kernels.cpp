@@ -70,7 +70,7 @@ struct KernelRun {
 
 // Times one kernel; the volume is kept for the correlations when asked.
 Result<KernelRun> runKernel(const BenchOptions& options, double& budgetLeft, Renderer& renderers,
-                            FieldPrecision precision, bool naive, const LicLaunch& launch,
+                            FieldPrecision precision, bool naive, const LicSpecialization& launch,
                             const LicParams& params, bool keepVolume) {
   KernelRun run;
   LIC3D_TRY_ASSIGN(LicRenderer * renderer, renderers.get(precision, naive, run.skipped));
@@ -124,7 +124,7 @@ nlohmann::json statisticsJson(const KernelRun& run) {
   return statistics;
 }
 
-std::string launchName(const LicLaunch& l) {
+std::string launchName(const LicSpecialization& l) {
   return std::to_string(l.localSizeX) + "x" + std::to_string(l.localSizeY) + "x" +
          std::to_string(l.localSizeZ) + (l.interleave ? ", both directions" : ", one by one");
 }
@@ -135,7 +135,7 @@ Result<void> kernelTable(const Context& context, const BenchOptions& options, do
                          Renderer& renderers, const VectorField& field, int length,
                          nlohmann::json& rows) {
   const FieldPrecision automatic = resolvePrecision(context, FieldPrecision::Auto);
-  const LicLaunch launch = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization launch = licLaunchFor(context.deviceInfo().type);
   const LicParams defaults;
   // In groups of one texture each, which share an upload.
   const std::vector<KernelVariant> variants{
@@ -208,7 +208,7 @@ Result<void> kernelTable(const Context& context, const BenchOptions& options, do
 Result<void> maskTable(const Context& context, const BenchOptions& options, double& budgetLeft,
                        Renderer& renderers, const VectorField& field, int length,
                        nlohmann::json& rows) {
-  const LicLaunch launch = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization launch = licLaunchFor(context.deviceInfo().type);
   const int n = field.dims.x;
   std::printf("\n%d^3, L = %d, sparsity halton (automatic amount)\n%-26s %12s %12s %7s %8s %13s\n",
               n, length, "kernel", "unmasked ms", "masked ms", "ratio", "hidden", "regs (masked)");
@@ -257,7 +257,7 @@ Result<void> launchTable(const Context& context, const BenchOptions& options, do
                          Renderer& renderers, const VectorField& field, int length,
                          nlohmann::json& rows) {
   const int n = field.dims.x;
-  const LicLaunch chosen = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization chosen = licLaunchFor(context.deviceInfo().type);
   std::printf(
       "\n%d^3, L = %d, launch shapes (* = the one this device type gets)\n%-14s %-34s %10s %5s\n",
       n, length, "scheme", "workgroup, walk", "median ms", "regs");
@@ -268,7 +268,7 @@ Result<void> launchTable(const Context& context, const BenchOptions& options, do
   for (const StepScheme scheme : schemes) {
     for (const bool interleave : {true, false}) {
       for (const auto& shape : shapes) {
-        const LicLaunch launch{shape[0], shape[1], shape[2], interleave};
+        const LicSpecialization launch = licLaunch(shape[0], shape[1], shape[2], interleave);
         LicParams params;
         params.length = length;
         params.scheme = scheme;

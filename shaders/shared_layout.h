@@ -35,10 +35,22 @@ LIC3D_CONST kLicConstLocalSizeX = 4;
 LIC3D_CONST kLicConstLocalSizeY = 5;
 LIC3D_CONST kLicConstLocalSizeZ = 6;
 LIC3D_CONST kLicConstSparsity = 7;
-LIC3D_CONST kLicConstScheme = 8;   // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
-LIC3D_CONST kLicConstPacking = 9;  // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
-LIC3D_CONST kLicConstInterleave =
-    10;  // 1: both directions in one loop (GPUs), 0: one after the other
+LIC3D_CONST kLicConstScheme = 8;       // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
+LIC3D_CONST kLicConstPacking = 9;      // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
+LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop, 0: one after the other
+// Their one default each, which lic.comp and LicSpecialization both take: LicParams' defaults
+// and the launch of CPU drivers (licLaunchFor).
+LIC3D_CONST kLicDefaultIntegrator = 1;   // rk2
+LIC3D_CONST kLicDefaultKernel = 0;       // box
+LIC3D_CONST kLicDefaultNoiseFilter = 1;  // trilinear
+LIC3D_CONST kLicDefaultDirection = 0;    // u/|u|
+LIC3D_CONST kLicDefaultLocalSizeX = 8;
+LIC3D_CONST kLicDefaultLocalSizeY = 8;
+LIC3D_CONST kLicDefaultLocalSizeZ = 1;
+LIC3D_CONST kLicDefaultSparsity = 0;
+LIC3D_CONST kLicDefaultScheme = 0;
+LIC3D_CONST kLicDefaultPacking = 0;
+LIC3D_CONST kLicDefaultInterleave = 0;  // one after the other everywhere (lic_pass.cpp says why)
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch

@@ -51,7 +51,7 @@ struct RendererOptions {
   // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
   bool naiveLicKernel = false;
   // Replaces the device type's workgroup shape and walk of the LIC pass (licLaunchFor).
-  std::optional<LicLaunch> licLaunch;
+  std::optional<LicSpecialization> licLaunch;
 };
 
 // What one recordLicWork() call did.
@@ -105,7 +105,7 @@ class LicRenderer {
 
   Result<ScalarVolume> readLicVolume() const;
   // The LIC pass' workgroup shape and walk from now on (the benchmark's comparisons).
-  void setLicLaunch(const LicLaunch& launch) { licPass_.setLaunch(launch); }
+  void setLicLaunch(const LicSpecialization& launch) { licPass_.setLaunch(launch); }
   // The driver's statistics of the LIC pipeline last used for `params` (LicPass::statistics).
   std::vector<std::pair<std::string, std::string>> licPipelineStatistics(
       const LicParams& params) const {
