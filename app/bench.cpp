@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "core/volume_compare.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "gpu/timer.h"
 #include "io/file_util.h"
 #include "jobs/bricks.h"
@@ -80,6 +81,42 @@ double residentBytes(int n, FieldPrecision precision) {
   return static_cast<double>(n) * n * n * (2.0 * texel + 2.0);
 }
 
+// GPU timestamps, one region, where the device has them (an invalid timer otherwise: the
+// timings below then report that the device has no timestamp queries).
+Result<GpuTimer> benchTimer(const Context& context) {
+  if (!context.supportsTimestamps()) return GpuTimer();
+  return GpuTimer::create(context, 1, "bench timestamps");
+}
+
+// GPU milliseconds of one LIC dispatch over the whole volume (always dispatched).
+Result<double> timeLic(const Context& context, LicRenderer& renderer, const GpuTimer& timer,
+                       const LicParams& params) {
+  return timeLicDispatch(context, renderer.licJob(), renderer.fieldTextures(), timer, params);
+}
+
+// GPU milliseconds of one frame's draw into `target` (no read-back).
+Result<double> timeFrame(const Context& context, LicRenderer& renderer, OffscreenTarget& target,
+                         const GpuTimer& timer, const ViewParams& view) {
+  if (!timer.valid()) return unsupportedError("the device has no timestamp queries");
+  if (!renderer.hasVolume()) return inputError("no LIC volume has been computed");
+  LIC3D_TRY(validate(view));
+  LIC3D_TRY(target.resize(view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width,
+                          view.height));
+  Result<void> status;
+  LIC3D_TRY(submitAndWait(
+      context,
+      [&](VkCommandBuffer cmd) {
+        timer.reset(cmd, 0);
+        timer.begin(cmd, 0);
+        status = renderer.recordFrame(cmd, target, view);
+        timer.end(cmd, 0);
+        target.recordUnread(cmd);
+      },
+      "frame timing"));
+  LIC3D_TRY(std::move(status));
+  return timer.milliseconds(0);
+}
+
 Result<void> setVolume(LicRenderer& renderer, AnalyticField field, int n, std::uint64_t seed) {
   const Dims dims(n);
   return renderer.setInputs(makeAnalyticField(field, dims), makeWhiteNoise(dims, seed));
@@ -132,6 +169,48 @@ Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& 
                         {"host_peak_bytes", hostPeakBytes()}};
 }
 
+// The frame table's rows for a volume of n^3 in `renderer`: each buffer format at each size.
+Result<void> frameRows(const Context& context, const BenchOptions& options, double& budgetLeft,
+                       LicRenderer& renderer, const GpuTimer& timer, int n,
+                       const std::vector<int>& frameSizes, nlohmann::json& rows) {
+  LIC3D_TRY_ASSIGN(OffscreenTarget target,
+                   OffscreenTarget::create(context, FramePrecision::Float16));
+  // Each buffer format at each size with one slice per voxel, then with a quarter of them:
+  // how the time splits between what each slice costs and what each frame costs.
+  for (const int slices : {n, std::max(1, n / 4)}) {
+    for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
+                                       FramePrecision::Unorm10, FramePrecision::Unorm8}) {
+      LIC3D_TRY(target.setPrecision(frame));
+      const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
+                               : frame == FramePrecision::Unorm16 ? "rgba16"
+                               : frame == FramePrecision::Unorm10 ? "rgb10a2"
+                                                                  : "rgba8";
+      for (const int size : frameSizes) {
+        ViewParams view;
+        view.width = view.height = size;
+        view.slices = slices;
+        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
+                           return timeFrame(context, renderer, target, timer, view);
+                         }));
+        nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
+        if (t.measured) {
+          std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
+                      t.minMs);
+          row["median_ms"] = t.medianMs;
+          row["min_ms"] = t.minMs;
+        } else {
+          std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
+                      t.skipped.c_str());
+          row["skipped"] = t.skipped;
+        }
+        std::fflush(stdout);
+        rows.push_back(row);
+      }
+    }
+  }
+  return {};
+}
+
 Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions& options) {
   LIC3D_TRY_ASSIGN(const std::vector<int> sizes, parseIntList(options.sizes, "--sizes", 4, 4096));
   LIC3D_TRY_ASSIGN(const std::vector<int> lengths,
@@ -161,6 +240,7 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   std::printf("%8s %6s %12s %12s %14s\n", "volume", "L", "median ms", "min ms", "Gsamples/s");
 
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
+  LIC3D_TRY_ASSIGN(const GpuTimer timer, benchTimer(context));
   const FieldPrecision precision = renderer.fieldPrecision();
   report["field_precision"] = fieldTextureFormatName(precision);
   report["scheme"] = enumName(defaults.scheme);
@@ -178,8 +258,9 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
     for (const int length : lengths) {
       LicParams params;
       params.length = length;
-      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft,
-                                               [&] { return renderer.timeLicDispatch(params); }));
+      LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
+                         return timeLic(context, renderer, timer, params);
+                       }));
       nlohmann::json row{{"n", n}, {"length", length}};
       if (t.measured) {
         const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
@@ -205,39 +286,10 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
     report["frame"]["skipped"] = "device memory";
   } else {
     LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms, renderer.timeLicDispatch(LicParams{}));
-    // Each buffer format at each size with one slice per voxel, then with a quarter of them:
-    // how the time splits between what each slice costs and what each frame costs.
-    for (const int slices : {n, std::max(1, n / 4)}) {
-      for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
-                                         FramePrecision::Unorm10, FramePrecision::Unorm8}) {
-        LIC3D_TRY(renderer.setFramePrecision(frame));
-        const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
-                                 : frame == FramePrecision::Unorm16 ? "rgba16"
-                                 : frame == FramePrecision::Unorm10 ? "rgb10a2"
-                                                                    : "rgba8";
-        for (const int size : frameSizes) {
-          ViewParams view;
-          view.width = view.height = size;
-          view.slices = slices;
-          LIC3D_TRY_ASSIGN(const Timing t,
-                           measure(options, budgetLeft, [&] { return renderer.timeFrame(view); }));
-          nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
-          if (t.measured) {
-            std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
-                        t.minMs);
-            row["median_ms"] = t.medianMs;
-            row["min_ms"] = t.minMs;
-          } else {
-            std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
-                        t.skipped.c_str());
-            row["skipped"] = t.skipped;
-          }
-          std::fflush(stdout);
-          report["frame"]["rows"].push_back(row);
-        }
-      }
-    }
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const double ms,
+                     timeLic(context, renderer, timer, LicParams{}));
+    LIC3D_TRY(frameRows(context, options, budgetLeft, renderer, timer, n, frameSizes,
+                        report["frame"]["rows"]));
   }
   return report;
 }
@@ -315,14 +367,19 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   LIC3D_TRY_ASSIGN(LicRenderer runtime, LicRenderer::create(context, runtimeOptions));
   LIC3D_TRY(setVolume(specialized, *fieldKind, n, options.seed));
   LIC3D_TRY(setVolume(runtime, *fieldKind, n, options.seed));
+  LIC3D_TRY_ASSIGN(const GpuTimer timer, benchTimer(context));
+  LIC3D_TRY_ASSIGN(OffscreenTarget target,
+                   OffscreenTarget::create(context, FramePrecision::Float16));
   double budgetLeft = options.budgetSeconds;
   for (const Variant& v : variants) {
     LIC3D_TRY_ASSIGN([[maybe_unused]] const bool a, specialized.updateLic(v.lic));
     LIC3D_TRY_ASSIGN([[maybe_unused]] const bool b, runtime.updateLic(v.lic));
-    LIC3D_TRY_ASSIGN(const Timing fast,
-                     measure(options, budgetLeft, [&] { return specialized.timeFrame(v.view); }));
-    LIC3D_TRY_ASSIGN(const Timing slow,
-                     measure(options, budgetLeft, [&] { return runtime.timeFrame(v.view); }));
+    LIC3D_TRY_ASSIGN(const Timing fast, measure(options, budgetLeft, [&] {
+                       return timeFrame(context, specialized, target, timer, v.view);
+                     }));
+    LIC3D_TRY_ASSIGN(const Timing slow, measure(options, budgetLeft, [&] {
+                       return timeFrame(context, runtime, target, timer, v.view);
+                     }));
     nlohmann::json row{{"modes", v.name}};
     if (fast.measured && slow.measured) {
       std::printf("%-30s %15.3f %15.3f %8.2f\n", v.name, fast.medianMs, slow.medianMs,
@@ -337,6 +394,45 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
     report["rows"].push_back(row);
   }
   return report;
+}
+
+// A sparsity change of distribution `d` end to end (wall clock) and the LIC pass alone; the
+// first change is skipped when `predicted` seconds do not fit the budget left.
+Result<nlohmann::json> recomputeRow(const Context& context, const BenchOptions& options,
+                                    double& budgetLeft, LicRenderer& renderer,
+                                    const GpuTimer& timer, SparsityDistribution d,
+                                    std::string_view name, double predicted) {
+  std::vector<double> wall;
+  LicParams lic;
+  lic.sparsity.distribution = d;
+  for (int i = 0; i < options.repeats && budgetLeft > 0.0 && predicted <= budgetLeft; ++i) {
+    lic.sparsity.seed = static_cast<std::uint64_t>(i + 2);  // a new mask every time
+    const auto start = std::chrono::steady_clock::now();
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
+    wall.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    budgetLeft -= wall.back() / 1000.0;
+    predicted = wall.back() / 1000.0;
+  }
+  nlohmann::json row{{"distribution", name}};
+  if (wall.empty()) {
+    std::printf("%-16s %14s %14s (skipped: over the time budget)\n", std::string(name).c_str(), "-",
+                "-");
+    row["skipped"] = "over the time budget";
+  } else {
+    // The pass on its own, warmed up like every other GPU time here: a single dispatch right
+    // after the host made a mask meets a GPU whose clocks dropped while it idled (on the H100
+    // that read 14-19 ms for a 3.4 ms pass).
+    LIC3D_TRY_ASSIGN(const Timing pass, measure(options, budgetLeft, [&] {
+                       return timeLic(context, renderer, timer, lic);
+                     }));
+    const double passMs = pass.measured ? pass.medianMs : 0.0;
+    std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), passMs);
+    row["wall_ms"] = median(wall);
+    if (pass.measured) row["lic_ms"] = passMs;
+  }
+  return row;
 }
 
 // Thesis Figure 6.4 today: how long each distribution takes to make its points (and mask), and
@@ -412,44 +508,18 @@ Result<nlohmann::json> runDistributions(const Context& context, const BenchOptio
       device.name.c_str(), options.repeats);
   std::printf("%-16s %14s %14s\n", "distribution", "wall ms", "LIC pass ms");
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {options.precision}));
+  LIC3D_TRY_ASSIGN(const GpuTimer timer, benchTimer(context));
   const auto fieldKind = parseEnum<AnalyticField>(options.field);
   if (!fieldKind) return inputError("bench: --field must be an analytic field");
   LIC3D_TRY(setVolume(renderer, *fieldKind, n, options.seed));
   report["recompute"] = nlohmann::json::array();
   for (const auto& [d, name] : enumNames<SparsityDistribution>()) {
     if (d == SparsityDistribution::None) continue;
-    std::vector<double> wall;
     // The automatic parameters blacken about kDefaultBlackFraction of the voxels: the first
     // change is predicted from the generation table, later ones from the changes measured.
-    double predicted = predictedSeconds(d, kDefaultBlackFraction * voxels);
-    LicParams lic;
-    lic.sparsity.distribution = d;
-    for (int i = 0; i < options.repeats && budgetLeft > 0.0 && predicted <= budgetLeft; ++i) {
-      lic.sparsity.seed = static_cast<std::uint64_t>(i + 2);  // a new mask every time
-      const auto start = std::chrono::steady_clock::now();
-      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(lic));
-      wall.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count());
-      budgetLeft -= wall.back() / 1000.0;
-      predicted = wall.back() / 1000.0;
-    }
-    nlohmann::json row{{"distribution", name}};
-    if (wall.empty()) {
-      std::printf("%-16s %14s %14s (skipped: over the time budget)\n", std::string(name).c_str(),
-                  "-", "-");
-      row["skipped"] = "over the time budget";
-    } else {
-      // The pass on its own, warmed up like every other GPU time here: a single dispatch right
-      // after the host made a mask meets a GPU whose clocks dropped while it idled (on the H100
-      // that read 14-19 ms for a 3.4 ms pass).
-      LIC3D_TRY_ASSIGN(const Timing pass,
-                       measure(options, budgetLeft, [&] { return renderer.timeLicDispatch(lic); }));
-      const double passMs = pass.measured ? pass.medianMs : 0.0;
-      std::printf("%-16s %14.1f %14.2f\n", std::string(name).c_str(), median(wall), passMs);
-      row["wall_ms"] = median(wall);
-      if (pass.measured) row["lic_ms"] = passMs;
-    }
+    LIC3D_TRY_ASSIGN(const nlohmann::json row,
+                     recomputeRow(context, options, budgetLeft, renderer, timer, d, name,
+                                  predictedSeconds(d, kDefaultBlackFraction * voxels)));
     std::fflush(stdout);
     report["recompute"].push_back(row);
   }

@@ -36,6 +36,9 @@ class Renderer {
       options.fieldPrecision = precision;
       options.naiveLicKernel = naive;
       LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context_, options));
+      if (!timer_.valid() && context_.supportsTimestamps()) {
+        LIC3D_TRY_ASSIGN(timer_, GpuTimer::create(context_, 1, "bench timestamps"));
+      }
       precision_ = precision;
       naive_ = naive;
       if (Result<void> r = renderer.setInputs(field_, noise_); !r) {
@@ -49,11 +52,19 @@ class Renderer {
     return &*renderer_;
   }
 
+  // GPU milliseconds of one LIC dispatch of the current renderer with `launch` (always dispatched).
+  Result<double> timeLic(const LicSpecialization& launch, const LicParams& params) {
+    renderer_->licJob().setLaunch(launch);
+    return timeLicDispatch(context_, renderer_->licJob(), renderer_->fieldTextures(), timer_,
+                           params);
+  }
+
  private:
   const Context& context_;
   const VectorField& field_;
   const NoiseVolume& noise_;
   std::optional<LicRenderer> renderer_;
+  GpuTimer timer_;
   FieldPrecision precision_ = FieldPrecision::Auto;
   bool naive_ = false;
   std::string setupError_;
@@ -76,15 +87,14 @@ Result<KernelRun> runKernel(const BenchOptions& options, double& budgetLeft, Ren
   LIC3D_TRY_ASSIGN(LicRenderer * renderer, renderers.get(precision, naive, run.skipped));
   run.precision = renderer->fieldPrecision();
   if (!run.skipped.empty()) return run;
-  renderer->setLicLaunch(launch);
   LIC3D_TRY_ASSIGN(run.timing,
-                   measure(options, budgetLeft, [&] { return renderer->timeLicDispatch(params); }));
+                   measure(options, budgetLeft, [&] { return renderers.timeLic(launch, params); }));
   if (!run.timing.measured) {
     run.skipped = run.timing.skipped;
     return run;
   }
   run.hidden = renderer->hiddenFraction();
-  run.statistics = renderer->licPipelineStatistics(params);
+  run.statistics = renderer->licJob().pipelineStatistics(params, renderer->fieldPrecision());
   if (keepVolume) {
     LIC3D_TRY_ASSIGN(ScalarVolume volume, renderer->readLicVolume());
     run.volume = std::move(volume);

@@ -322,7 +322,7 @@ TEST_F(GpuTest, PipelineVariantsAreCreatedOnceAndCached) {
     ASSERT_TRUE(renderer->updateLic(changed).ok());
   }
   EXPECT_EQ(renderer->licDispatchCount(), 4u);
-  EXPECT_EQ(renderer->licPass().variantCount(), 2u);
+  EXPECT_EQ(renderer->licJob().variantCount(), 2u);
 }
 
 TEST_F(GpuTest, ProgressSplitsTheWorkAndReachesOne) {

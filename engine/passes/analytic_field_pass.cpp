@@ -88,7 +88,9 @@ Result<FieldTexture> AnalyticFieldPass::createTarget(const AnalyticInputs& input
                                     "analytic field and noise texture");
 }
 
-Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture& target) {
+namespace {
+
+Result<void> checkTarget(const AnalyticInputs& inputs, const FieldTexture& target) {
   const Dims dims = inputs.texelDims();
   if (target.dims != dims || !target.image)
     return inputError("the analytic field's texture must be made for its grid " + gridText(dims));
@@ -96,15 +98,12 @@ Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture
                            glm::any(glm::greaterThan(inputs.brickOffset + dims, inputs.dims))))
     return inputError("the brick " + gridText(dims) + " at " + gridText(inputs.brickOffset) +
                       " is not inside the grid " + gridText(inputs.dims));
-  const StageTimer timer("field and noise (on the device)");
-  const auto field = static_cast<std::uint32_t>(inputs.field);
-  const int variant = fieldTexelVariant(target.precision);
-  LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
-  LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
+  return {};
+}
 
-  // Positions from the whole grid's origin, so that a brick's are the whole grid's there.
+// Positions from the whole grid's origin, so that a brick's are the whole grid's there.
+gpu::AnalyticPushConstants measurePush(const AnalyticInputs& inputs, const glm::dvec3& unit) {
   const GridGeometry geometry = analyticGeometry(inputs.field, inputs.dims);
-  const glm::dvec3 unit = voxelUnitScale(geometry);
   gpu::AnalyticPushConstants push{};
   push.dims = glm::ivec4(inputs.dims, 0);
   push.whole = glm::ivec4(inputs.dims, 0);
@@ -113,64 +112,42 @@ Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture
   push.unitScale = glm::vec4(glm::vec3(unit), 0.0f);
   push.seed = glm::uvec4(static_cast<std::uint32_t>(inputs.noiseSeed),
                          static_cast<std::uint32_t>(inputs.noiseSeed >> 32), 0u, 0u);
-  DescriptorWrites writes;
-  writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
-      .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
-  // Phase 0 measures the whole grid; phase 1 writes the texels' part of it.
-  gpu::AnalyticPushConstants texels = push;
-  texels.dims = glm::ivec4(dims, 0);
-  texels.offset = glm::ivec4(inputs.brickOffset, 0);
-  const auto groups = [](Dims d) {
-    return glm::uvec3(groupCount(d.x, gpu::kAnalyticLocalSizeX),
-                      groupCount(d.y, gpu::kAnalyticLocalSizeY),
-                      groupCount(d.z, gpu::kAnalyticLayersPerGroup));
-  };
-  const glm::uvec3 measureGroups = groups(inputs.dims);
-  const glm::uvec3 writeGroups = groups(dims);
-  constexpr VkPipelineStageFlags2 kReaders =
-      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-  LIC3D_TRY(submitAndWait(
-      *context_,
-      [&](VkCommandBuffer cmd) {
-        // max |u|, max |v| and the counts start at 0, min |v| at the largest float.
-        constexpr VkDeviceSize word = sizeof(std::uint32_t);
-        constexpr VkDeviceSize minimum = gpu::kAnalyticMinMagnitude * word;
-        vkCmdFillBuffer(cmd, statistics_.handle(), 0, minimum, 0u);
-        vkCmdFillBuffer(cmd, statistics_.handle(), minimum, word, 0x7F7FFFFFu);
-        vkCmdFillBuffer(cmd, statistics_.handle(), minimum + word, VK_WHOLE_SIZE, 0u);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        // The old contents are replaced whole: earlier readers must be done.
-        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     kReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
-        vkCmdDispatch(cmd, measureGroups.x, measureGroups.y, measureGroups.z);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(texels),
-                           &texels);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
-        vkCmdDispatch(cmd, writeGroups.x, writeGroups.y, writeGroups.z);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-        const VkBufferCopy copy{0, 0, statistics_.size()};
-        vkCmdCopyBuffer(cmd, statistics_.handle(), readback_.handle(), 1, &copy);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     kReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-      },
-      "analytic field texels"));
+  return push;
+}
 
+glm::uvec3 groupsOf(Dims d) {
+  return glm::uvec3(groupCount(d.x, gpu::kAnalyticLocalSizeX),
+                    groupCount(d.y, gpu::kAnalyticLocalSizeY),
+                    groupCount(d.z, gpu::kAnalyticLayersPerGroup));
+}
+
+constexpr VkPipelineStageFlags2 kTextureReaders =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+}  // namespace
+
+void AnalyticFieldPass::recordClearStatistics(VkCommandBuffer cmd) const {
+  // max |u|, max |v| and the counts start at 0, min |v| at the largest float.
+  constexpr VkDeviceSize word = sizeof(std::uint32_t);
+  constexpr VkDeviceSize minimum = gpu::kAnalyticMinMagnitude * word;
+  vkCmdFillBuffer(cmd, statistics_.handle(), 0, minimum, 0u);
+  vkCmdFillBuffer(cmd, statistics_.handle(), minimum, word, 0x7F7FFFFFu);
+  vkCmdFillBuffer(cmd, statistics_.handle(), minimum + word, VK_WHOLE_SIZE, 0u);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void AnalyticFieldPass::recordStatisticsReadback(VkCommandBuffer cmd) const {
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy copy{0, 0, statistics_.size()};
+  vkCmdCopyBuffer(cmd, statistics_.handle(), readback_.handle(), 1, &copy);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
+void AnalyticFieldPass::readStatistics(const glm::dvec3& unit, FieldTexture& target) const {
   std::array<std::uint32_t, gpu::kAnalyticStatisticsWords> words{};
   std::memcpy(words.data(), readback_.mapped(), sizeof(words));
   const auto asFloat = [&](std::uint32_t index) {
@@ -188,6 +165,56 @@ Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture
       histogramOfCounts(std::span<const std::uint32_t>(words).subspan(gpu::kAnalyticFirstBin),
                         target.minMagnitude, target.maxMagnitude));
   target.unit.clear();
+}
+
+Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture& target) {
+  LIC3D_TRY(checkTarget(inputs, target));
+  const Dims dims = inputs.texelDims();
+  const StageTimer timer("field and noise (on the device)");
+  const auto field = static_cast<std::uint32_t>(inputs.field);
+  const int variant = fieldTexelVariant(target.precision);
+  LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
+  LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
+
+  const glm::dvec3 unit = voxelUnitScale(analyticGeometry(inputs.field, inputs.dims));
+  const gpu::AnalyticPushConstants push = measurePush(inputs, unit);
+  DescriptorWrites writes;
+  writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
+      .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
+  // Phase 0 measures the whole grid; phase 1 writes the texels' part of it.
+  gpu::AnalyticPushConstants texels = push;
+  texels.dims = glm::ivec4(dims, 0);
+  texels.offset = glm::ivec4(inputs.brickOffset, 0);
+  const glm::uvec3 measureGroups = groupsOf(inputs.dims);
+  const glm::uvec3 writeGroups = groupsOf(dims);
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        recordClearStatistics(cmd);
+        // The old contents are replaced whole: earlier readers must be done.
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     kTextureReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
+        vkCmdDispatch(cmd, measureGroups.x, measureGroups.y, measureGroups.z);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(texels),
+                           &texels);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
+        vkCmdDispatch(cmd, writeGroups.x, writeGroups.y, writeGroups.z);
+        recordStatisticsReadback(cmd);
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     kTextureReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      },
+      "analytic field texels"));
+  readStatistics(unit, target);
   return {};
 }
 

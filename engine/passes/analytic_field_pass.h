@@ -58,6 +58,9 @@ class AnalyticFieldPass {
     bool operator==(const Key&) const = default;
   };
   Result<VkPipeline> pipeline(Key key);
+  void recordClearStatistics(VkCommandBuffer cmd) const;
+  void recordStatisticsReadback(VkCommandBuffer cmd) const;
+  void readStatistics(const glm::dvec3& unit, FieldTexture& target) const;
 
   const Context* context_ = nullptr;
   PipelineLayout layout_;
