@@ -21,11 +21,11 @@ namespace lic3d {
 namespace {
 
 // constant_id 0: the field, 1: the phase (shaders/analytic_field.comp).
-struct TexelSpecialization {
+struct AnalyticFieldSpecialization {
   std::uint32_t field = 0;
   std::uint32_t phase = 0;
 };
-static_assert(sizeof(TexelSpecialization) == 8);
+static_assert(sizeof(AnalyticFieldSpecialization) == 8);
 
 }  // namespace
 
@@ -38,7 +38,7 @@ Result<AnalyticFieldPass> AnalyticFieldPass::create(const Context& context) {
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::AnalyticPushConstants), "analytic texels"));
+                                          sizeof(gpu::AnalyticPushConstants), "analytic field"));
   const ShaderId ids[3] = {ShaderId::AnalyticField, ShaderId::AnalyticFieldHalf,
                            ShaderId::AnalyticFieldByte};
   for (int variant = 0; variant < 3; ++variant) {
@@ -59,9 +59,10 @@ Result<AnalyticFieldPass> AnalyticFieldPass::create(const Context& context) {
 
 Result<VkPipeline> AnalyticFieldPass::pipeline(Key key) {
   return pipelines_.get(key, [&](const Key& k) {
-    const Specialization<TexelSpecialization> constants(TexelSpecialization{k.field, k.phase});
+    const Specialization<AnalyticFieldSpecialization> constants(
+        AnalyticFieldSpecialization{k.field, k.phase});
     return createComputePipeline(*context_, shaders_[k.variant], layout_, constants.info(),
-                                 std::string("analytic texels ") +
+                                 std::string("analytic field ") +
                                      (k.phase == 0 ? "measure " : "write ") +
                                      std::string(enumName(static_cast<AnalyticField>(k.field))) +
                                      " " + kFieldTexelVariantNames[k.variant]);
@@ -213,7 +214,7 @@ Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      kTextureReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
       },
-      "analytic field texels"));
+      "analytic field"));
   readStatistics(unit, target);
   return {};
 }

@@ -77,13 +77,13 @@ Result<TimeBlendPass> TimeBlendPass::create(const Context& context) {
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::TimeBlendPushConstants), "field lerp"));
+                                          sizeof(gpu::TimeBlendPushConstants), "time blend"));
   const ShaderId ids[3] = {ShaderId::TimeBlend, ShaderId::TimeBlendHalf, ShaderId::TimeBlendByte};
   for (int variant = 0; variant < 3; ++variant) {
     LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
     for (std::uint32_t phase : {0u, 1u}) {
       const Specialization<TimeBlendSpecialization> constants(TimeBlendSpecialization{phase});
-      const std::string name = std::string("field lerp ") + (phase == 0 ? "measure " : "write ") +
+      const std::string name = std::string("time blend ") + (phase == 0 ? "measure " : "write ") +
                                kFieldTexelVariantNames[variant];
       LIC3D_TRY_ASSIGN(Pipeline pipeline,
                        createComputePipeline(context, pass.shaders_[variant], pass.layout_,
@@ -92,18 +92,18 @@ Result<TimeBlendPass> TimeBlendPass::create(const Context& context) {
     }
   }
   LIC3D_TRY_ASSIGN(pass.nearest_,
-                   Sampler::create(context, VK_FILTER_NEAREST, "field lerp sampler"));
+                   Sampler::create(context, VK_FILTER_NEAREST, "time blend sampler"));
   const VkDeviceSize rangeBytes = gpu::kTimeBlendRangeCount * sizeof(std::uint32_t);
   LIC3D_TRY_ASSIGN(pass.ranges_, Buffer::create(context, rangeBytes,
                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                                MemoryUse::DeviceLocal, "field lerp ranges"));
+                                                MemoryUse::DeviceLocal, "time blend ranges"));
   LIC3D_TRY_ASSIGN(pass.readback_,
                    Buffer::create(context, rangeBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  MemoryUse::Readback, "field lerp ranges readback"));
+                                  MemoryUse::Readback, "time blend ranges readback"));
   if (context.supportsTimestamps()) {
-    LIC3D_TRY_ASSIGN(pass.timer_, GpuTimer::create(context, 1, "field lerp timestamps"));
+    LIC3D_TRY_ASSIGN(pass.timer_, GpuTimer::create(context, 1, "time blend timestamps"));
   }
   return pass;
 }
@@ -111,7 +111,7 @@ Result<TimeBlendPass> TimeBlendPass::create(const Context& context) {
 Result<FieldTexture> TimeBlendPass::createTarget(Dims dims, const GridGeometry& geometry,
                                                  FieldPrecision precision) const {
   return createWritableFieldTexture(*context_, dims, geometry, precision,
-                                    "interpolated field and noise texture");
+                                    "blended field and noise texture");
 }
 
 Result<void> TimeBlendPass::setNoise(const NoiseVolume& noise) {
