@@ -14,7 +14,7 @@
 # SPDX identifier in its first lines.
 cmake_minimum_required(VERSION 3.25)
 
-set(layers core io lic gpu passes inputs)
+set(layers core io lic gpu passes render loading jobs)
 set(first_vulkan_layer 3)  # gpu
 set(max_lines 700)
 

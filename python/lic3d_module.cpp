@@ -19,12 +19,12 @@
 #include "core/parameter_ranges.h"
 #include "core/text.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/bricks.h"
-#include "inputs/scalars.h"
-#include "inputs/session_inputs.h"
+#include "jobs/bricks.h"
 #include "lic/lic_reference.h"
+#include "loading/scalars.h"
+#include "loading/session_inputs.h"
 #include "options/command_line.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace py = pybind11;
 

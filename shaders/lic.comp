@@ -8,30 +8,35 @@
 #include "lic_kernel.h"
 #include "shared_layout.h"
 
-layout(local_size_x_id = kLicConstLocalSizeX, local_size_y_id = kLicConstLocalSizeY,
-       local_size_z_id = kLicConstLocalSizeZ) in;
+layout(local_size_x = kLicDefaultLocalSizeX, local_size_x_id = kLicConstLocalSizeX,
+       local_size_y = kLicDefaultLocalSizeY, local_size_y_id = kLicConstLocalSizeY,
+       local_size_z = kLicDefaultLocalSizeZ, local_size_z_id = kLicConstLocalSizeZ) in;
 
-layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = 1;     // 0 euler, 1 rk2, 2 rk4
-layout(constant_id = kLicConstKernel) const uint KERNEL = 0;             // 0 box, 1 hann, 2 gauss
-layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = 1;  // 0 nearest, 1 trilinear
-layout(constant_id = kLicConstDirection) const uint DIRECTION = 0;       // 0 u/|u|, 1 u/max|u|
+// 0 euler, 1 rk2, 2 rk4
+layout(constant_id = kLicConstIntegrator) const uint INTEGRATOR = kLicDefaultIntegrator;
+// 0 box, 1 hann, 2 gauss
+layout(constant_id = kLicConstKernel) const uint KERNEL = kLicDefaultKernel;
+// 0 nearest, 1 trilinear
+layout(constant_id = kLicConstNoiseFilter) const uint NOISE_FILTER = kLicDefaultNoiseFilter;
+// 0 u/|u|, 1 u/max|u|
+layout(constant_id = kLicConstDirection) const uint DIRECTION = kLicDefaultDirection;
 // Thesis 5.1.4: a voxel is not drawn if its streamline touches a black voxel of the mask.
-layout(constant_id = kLicConstSparsity) const uint SPARSITY = 0;
+layout(constant_id = kLicConstSparsity) const uint SPARSITY = kLicDefaultSparsity;
 // 0 exact: every RK2 step of h fetches its midpoint and its end (two fetches per sample).
 // 1 ab2: after a first RK2 step, two-step Adams-Bashforth steps of h (one fetch per sample).
 // 2 fused: RK2 steps of 2h whose midpoint is a sample (one fetch per sample, nothing else).
 // Only RK2 has a choice: Euler already fetches once per sample, RK4 stays as it is
 // (docs/LIC_SEMANTICS.md).
-layout(constant_id = kLicConstScheme) const uint SCHEME = 0;
+layout(constant_id = kLicConstScheme) const uint SCHEME = kLicDefaultScheme;
 // 0: texel xyz = u / max|u|, w = noise (RGBA16F/32F). 1: RGBA8 SNORM, xyz = e with
 // e |e| = u / max|u| (square-root magnitude, so slow flow keeps its direction in 8 bits) and
 // w = (255 noise - 128) / 127 (engine/volume_textures.h).
-layout(constant_id = kLicConstPacking) const uint PACKING = 0;
+layout(constant_id = kLicConstPacking) const uint PACKING = kLicDefaultPacking;
 // How the two directions are walked (the same samples either way): 1 in one loop, so an
 // invocation waits on two independent fetches at a time; 0 one after the other, which needs
-// fewer registers. LicLaunch picks it per device type (0 everywhere, by measurement:
+// fewer registers. licLaunchFor keeps the default, 0, on every device type (by measurement:
 // docs/BENCHMARKS.md, "Launch shapes").
-layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = 1;
+layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = kLicDefaultInterleave;
 
 // The field u in voxel units and the noise (engine/volume_textures.h): integrating u in voxel
 // coordinates follows the physical field on anisotropic grids.

@@ -35,10 +35,22 @@ LIC3D_CONST kLicConstLocalSizeX = 4;
 LIC3D_CONST kLicConstLocalSizeY = 5;
 LIC3D_CONST kLicConstLocalSizeZ = 6;
 LIC3D_CONST kLicConstSparsity = 7;
-LIC3D_CONST kLicConstScheme = 8;   // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
-LIC3D_CONST kLicConstPacking = 9;  // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
-LIC3D_CONST kLicConstInterleave =
-    10;  // 1: both directions in one loop (GPUs), 0: one after the other
+LIC3D_CONST kLicConstScheme = 8;       // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
+LIC3D_CONST kLicConstPacking = 9;      // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
+LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop, 0: one after the other
+// Their one default each, which lic.comp and LicSpecialization both take: LicParams' defaults
+// and the launch of CPU drivers (licLaunchFor).
+LIC3D_CONST kLicDefaultIntegrator = 1;   // rk2
+LIC3D_CONST kLicDefaultKernel = 0;       // box
+LIC3D_CONST kLicDefaultNoiseFilter = 1;  // trilinear
+LIC3D_CONST kLicDefaultDirection = 0;    // u/|u|
+LIC3D_CONST kLicDefaultLocalSizeX = 8;
+LIC3D_CONST kLicDefaultLocalSizeY = 8;
+LIC3D_CONST kLicDefaultLocalSizeZ = 1;
+LIC3D_CONST kLicDefaultSparsity = 0;
+LIC3D_CONST kLicDefaultScheme = 0;
+LIC3D_CONST kLicDefaultPacking = 0;
+LIC3D_CONST kLicDefaultInterleave = 0;  // one after the other everywhere (lic_pass.cpp says why)
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch
@@ -159,32 +171,33 @@ struct Lic2DPushConstants {
   float pad1;
 };
 
-// ---- Time interpolation of the field texture (field_lerp.comp) ----------------------------------
-LIC3D_CONST kLerpBindingStepA = 0;   // sampler3D: time step A, xyz = v / max|v| of that step
-LIC3D_CONST kLerpBindingStepB = 1;   // sampler3D: time step B, likewise
-LIC3D_CONST kLerpBindingNoise = 2;   // sampler3D r32f: the noise
-LIC3D_CONST kLerpBindingTarget = 3;  // image3D: the field texture (RGBA16F or RGBA32F) written
-LIC3D_CONST kLerpBindingRanges = 4;  // buffer of kLerpRangeCount uints, float bits (see below)
-LIC3D_CONST kLerpConstPhase = 0;     // 0: measure the interpolated field, 1: write the texture
-LIC3D_CONST kLerpLocalSizeX = 8;
-LIC3D_CONST kLerpLocalSizeY = 8;
+// ---- Time interpolation of the field texture (time_blend.comp) ----------------------------------
+LIC3D_CONST kTimeBlendBindingStepA = 0;   // sampler3D: time step A, xyz = v / max|v| of that step
+LIC3D_CONST kTimeBlendBindingStepB = 1;   // sampler3D: time step B, likewise
+LIC3D_CONST kTimeBlendBindingNoise = 2;   // sampler3D r32f: the noise
+LIC3D_CONST kTimeBlendBindingTarget = 3;  // image3D: the field texture (RGBA16F or RGBA32F) written
+LIC3D_CONST kTimeBlendBindingRanges =
+    4;  // buffer of kTimeBlendRangeCount uints, float bits (see below)
+LIC3D_CONST kTimeBlendConstPhase = 0;  // 0: measure the interpolated field, 1: write the texture
+LIC3D_CONST kTimeBlendLocalSizeX = 8;
+LIC3D_CONST kTimeBlendLocalSizeY = 8;
 // The ranges buffer: non-negative floats as uint bits (their order is the floats' order).
-LIC3D_CONST kLerpRangeMaxSpeed = 0;      // max |u| over the voxels (u: v in voxel units)
-LIC3D_CONST kLerpRangeMaxMagnitude = 1;  // max |v|
-LIC3D_CONST kLerpRangeMinMagnitude = 2;  // min |v|
-LIC3D_CONST kLerpRangeCount = 4;
+LIC3D_CONST kTimeBlendRangeMaxSpeed = 0;      // max |u| over the voxels (u: v in voxel units)
+LIC3D_CONST kTimeBlendRangeMaxMagnitude = 1;  // max |v|
+LIC3D_CONST kTimeBlendRangeMinMagnitude = 2;  // min |v|
+LIC3D_CONST kTimeBlendRangeCount = 4;
 
-struct LerpPushConstants {
+struct TimeBlendPushConstants {
   ivec4 dims;       // xyz: grid size; w: unused
   vec4 unitScale;   // xyz: voxelUnitScale of the grid; w: the weight of step B, in [0,1]
   vec4 stepScales;  // x: step A's max|v| (its texels' scale), y: step B's; zw: unused
 };
 
 // Analytic fields made on the device (shaders/analytic_fields.glsl, passes/analytic_field_pass.h).
-// analytic_field.comp writes the vectors of one slab of z layers per dispatch, three floats per
+// analytic_vectors.comp writes the vectors of one slab of z layers per dispatch, three floats per
 // voxel, x fastest (the oracle's layout: tests, and hosts that need the field).
-// analytic_texels.comp writes the packed field and noise texture (passes/volume_textures.h) in two
-// phases, as field_lerp.comp does: phase 0 measures max |u| (u: v in voxel units) and min and max
+// analytic_field.comp writes the packed field and noise texture (passes/volume_textures.h) in two
+// phases, as time_blend.comp does: phase 0 measures max |u| (u: v in voxel units) and min and max
 // |v|; phase 1 writes the texels normalised by phase 0's max |u|, the noise of lic/noise.h hashed
 // from each voxel's index in the grid, and the histogram of |v| over [min, max]. For a brick of a
 // larger grid (bricked LIC), phase 0 runs over the whole grid and phase 1 over the brick, at
@@ -193,7 +206,7 @@ LIC3D_CONST kAnalyticBindingVectors = 0;     // buffer of 3 floats per voxel of 
 LIC3D_CONST kAnalyticBindingTexels = 0;      // image3D: the field and noise texture
 LIC3D_CONST kAnalyticBindingStatistics = 1;  // AnalyticStatistics
 LIC3D_CONST kAnalyticConstField = 0;         // the AnalyticField
-LIC3D_CONST kAnalyticConstPhase = 1;         // analytic_texels.comp: 0 measure, 1 write
+LIC3D_CONST kAnalyticConstPhase = 1;         // analytic_field.comp: 0 measure, 1 write
 LIC3D_CONST kAnalyticLocalSizeX = 8;
 LIC3D_CONST kAnalyticLocalSizeY = 8;
 LIC3D_CONST kAnalyticLayersPerGroup = 16;   // z layers one texel workgroup walks
@@ -221,7 +234,7 @@ LIC3D_CONST kAnalyticStatisticsWords = kAnalyticFirstBin + kAnalyticHistogramBin
 static_assert(sizeof(AnalyticPushConstants) == 112);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
-static_assert(sizeof(LerpPushConstants) == 48);
+static_assert(sizeof(TimeBlendPushConstants) == 48);
 static_assert(sizeof(SliceUniforms) == 2 * 64 + 21 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST

@@ -16,7 +16,7 @@
 #include "core/view_params.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::test {
 

@@ -11,12 +11,13 @@
 
 #include "core/enum_names.h"
 #include "core/volume_compare.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu_test_support.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
 #include "passes/analytic_field_pass.h"
-#include "passes/lic_renderer.h"
+#include "passes/analytic_vectors_pass.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -73,11 +74,11 @@ std::vector<float> texelsOf(const Context& context, const FieldTexture& texture)
   return values;
 }
 
-TEST_F(GpuTest, AnalyticTexelsOnTheDeviceMatchTheHostPackedTexture) {
+TEST_F(GpuTest, AnalyticFieldPassOnTheDeviceMatchTheHostPackedTexture) {
   // The field and its white noise made on the device straight into the texture (the front ends'
   // path for analytic fields) against the oracle's field and noise packed on the host.
   const Dims dims{37, 29, 41};  // odd sizes, three workgroups of z layers
-  Result<AnalyticTexels> pass = AnalyticTexels::create(context());
+  Result<AnalyticFieldPass> pass = AnalyticFieldPass::create(context());
   ASSERT_TRUE(pass) << pass.error().message;
   for (const AnalyticField field : {AnalyticField::Tornado, AnalyticField::Abc}) {
     const AnalyticInputs inputs{field, dims, field == AnalyticField::Tornado ? 123.4 : 0.0, 77};

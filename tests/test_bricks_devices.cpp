@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Bricks spread over devices (inputs/bricks.h, gpu/device_choice.h): which devices --devices
+// Bricks spread over devices (jobs/bricks.h, gpu/device_choice.h): which devices --devices
 // names, how workers share the bricks, analytic bricks made on the device, and two contexts on
 // lavapipe giving one context's volume.
 #include <gtest/gtest.h>
@@ -13,12 +13,12 @@
 
 #include "gpu/device_choice.h"
 #include "gpu_test_support.h"
-#include "inputs/bricks.h"
-#include "inputs/session_inputs.h"
+#include "jobs/bricks.h"
 #include "lic/analytic_fields.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d {
 namespace {

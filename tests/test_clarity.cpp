@@ -12,7 +12,7 @@
 #include "lic/analytic_fields.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -557,7 +557,7 @@ TEST_F(GpuTest, EachDisplayVariantIsItsOwnCachedPipeline) {
   const Dims dims{8, 8, 8};
   LicRenderer renderer = rendererWithVolume(context(), dims, [](int, int, int) { return 0.5f; });
   ViewParams view = opaqueView(32);
-  const std::size_t before = renderer.slicePass().variantCount();
+  const std::size_t before = renderer.drawVariantCount();
   ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
   view.fog = true;
   ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
@@ -566,7 +566,7 @@ TEST_F(GpuTest, EachDisplayVariantIsItsOwnCachedPipeline) {
   view.fog = false;
   view.color = ColorMode::None;
   ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
-  EXPECT_EQ(renderer.slicePass().variantCount(), before + 3);
+  EXPECT_EQ(renderer.drawVariantCount(), before + 3);
 }
 
 }  // namespace

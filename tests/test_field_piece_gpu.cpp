@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "gpu_test_support.h"
-#include "inputs/bricks.h"
+#include "jobs/bricks.h"
 #include "lic/analytic_fields.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
 #include "piece_support.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -67,7 +67,7 @@ TEST_F(GpuTest, GpuPiecesMatchWithMagnitudeStepsAndSparsity) {
   EXPECT_LE(run.hiddenMismatches, voxelCount(tornado.dims) / 1000);
 }
 
-// Bricks (inputs/bricks.h) are pieces that tile the grid: the plan covers every voxel once, the
+// Bricks (jobs/bricks.h) are pieces that tile the grid: the plan covers every voxel once, the
 // CPU reference in bricks gives the whole field's LIC, and on the device the bricked LIC that a
 // budget forces stays as close to the whole one as the pieces above.
 TEST(Bricks, ThePlanCoversEveryVoxelOnceWithGhostLayersInsideTheGrid) {

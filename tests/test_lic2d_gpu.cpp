@@ -9,16 +9,16 @@
 #include <glm/gtc/packing.hpp>
 #include <tuple>
 
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu_test_support.h"
 #include "lic/analytic_fields.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
 #include "lic/time_series.h"
-#include "passes/field_interpolation.h"
 #include "passes/lic2d_pass.h"
-#include "passes/lic_renderer.h"
+#include "passes/time_blend_pass.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 namespace {
@@ -121,7 +121,7 @@ TEST_F(GpuTest, TimeInterpolationOnTheGpuMatchesTheCpuBlend) {
   const VectorField blend = *interpolateFields(a, b, weight);
   const std::vector<glm::vec4> expected = packedTexels(blend, noise);
 
-  Result<FieldInterpolation> pass = FieldInterpolation::create(context());
+  Result<TimeBlendPass> pass = TimeBlendPass::create(context());
   ASSERT_TRUE(pass.ok()) << pass.error().message;
   ASSERT_TRUE(pass->setNoise(noise).ok());
   for (const FieldPrecision precision : {FieldPrecision::Float, FieldPrecision::Half}) {
@@ -131,7 +131,7 @@ TEST_F(GpuTest, TimeInterpolationOnTheGpuMatchesTheCpuBlend) {
     ASSERT_TRUE(stepA.ok() && stepB.ok());
     Result<FieldTexture> target = pass->createTarget(a.dims, a.geometry, precision);
     ASSERT_TRUE(target.ok()) << target.error().message;
-    ASSERT_TRUE(pass->interpolate(*stepA, *stepB, weight, *target).ok());
+    ASSERT_TRUE(pass->blend(*stepA, *stepB, weight, *target).ok());
     // The measured scales are the blend's (half steps hold 11 significant bits).
     const double relative = half ? 1e-3 : 1e-5;
     EXPECT_NEAR(target->maxVoxelSpeed, maxVoxelSpeed(blend), relative * maxVoxelSpeed(blend));
@@ -177,7 +177,7 @@ TEST_F(GpuTest, LicOfATimeSeriesIsTheLicOfTheBlendedField) {
       const int keep = k == b.first ? b.second : b.first;
       ASSERT_TRUE(renderer->setTimeStep(k, *series->loadStep(k), keep).ok());
     }
-    ASSERT_TRUE(renderer->interpolateTime(b.first, b.second, b.weight).ok());
+    ASSERT_TRUE(renderer->blendTime(b.first, b.second, b.weight).ok());
     EXPECT_TRUE(renderer->needsLic(params));
     ASSERT_TRUE(renderer->updateLic(params).ok());
     EXPECT_FALSE(renderer->needsLic(params));
@@ -214,7 +214,7 @@ TEST_F(GpuTest, ANewSeriesDoesNotReuseTheLastSeriesSteps) {
     EXPECT_FALSE(renderer->hasTimeStep(0));
     ASSERT_TRUE(renderer->setTimeStep(0, *series->loadStep(0), 1).ok());
     ASSERT_TRUE(renderer->setTimeStep(1, *series->loadStep(1), 0).ok());
-    ASSERT_TRUE(renderer->interpolateTime(0, 1, 0.5).ok());
+    ASSERT_TRUE(renderer->blendTime(0, 1, 0.5).ok());
     ASSERT_TRUE(renderer->updateLic(params).ok());
     const Result<ScalarVolume> gpu = renderer->readLicVolume();
     ASSERT_TRUE(gpu.ok());

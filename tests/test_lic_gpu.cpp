@@ -8,13 +8,13 @@
 #include <glm/gtc/packing.hpp>
 #include <tuple>
 
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu_test_support.h"
 #include "io/field_io.h"
 #include "lic/analytic_fields.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -322,7 +322,7 @@ TEST_F(GpuTest, PipelineVariantsAreCreatedOnceAndCached) {
     ASSERT_TRUE(renderer->updateLic(changed).ok());
   }
   EXPECT_EQ(renderer->licDispatchCount(), 4u);
-  EXPECT_EQ(renderer->licPass().variantCount(), 2u);
+  EXPECT_EQ(renderer->licJob().variantCount(), 2u);
 }
 
 TEST_F(GpuTest, ProgressSplitsTheWorkAndReachesOne) {

@@ -15,7 +15,7 @@
 #include "lic/analytic_fields.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 #include "test_support.h"
 
 namespace lic3d {
@@ -152,8 +152,8 @@ TEST_F(GpuTest, EveryLaunchGivesTheSameVolume) {
     params.length = 9;
     params.sparsity.distribution = SparsityDistribution::Halton;
     std::optional<ScalarVolume> first;
-    for (const LicLaunch& launch : {LicLaunch{8, 8, 1, true}, LicLaunch{4, 4, 4, false},
-                                    LicLaunch{16, 2, 2, true}, LicLaunch{8, 4, 2, false}}) {
+    for (const LicSpecialization& launch : {licLaunch(8, 8, 1, true), licLaunch(4, 4, 4, false),
+                                            licLaunch(16, 2, 2, true), licLaunch(8, 4, 2, false)}) {
       RendererOptions options;
       options.licLaunch = launch;
       Result<LicRenderer> renderer = LicRenderer::create(context(), options);

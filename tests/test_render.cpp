@@ -10,7 +10,7 @@
 #include "gpu_test_support.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 namespace {

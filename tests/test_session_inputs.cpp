@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The engine's one loader of a session's inputs (inputs/session_inputs.h), which the CLI, the
+// The engine's one loader of a session's inputs (loading/session_inputs.h), which the CLI, the
 // desktop app and the ParaView plugin call: what it makes of each kind of field, and the field
 // it brings the renderer to at a time.
 #include <gtest/gtest.h>
 
 #include "gpu_test_support.h"
-#include "inputs/session_inputs.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d {
 namespace {

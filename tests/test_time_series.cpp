@@ -10,7 +10,7 @@
 #include "io/nrrd.h"
 #include "lic/analytic_fields.h"
 #include "lic/time_series.h"
-#include "passes/field_interpolation.h"
+#include "passes/time_blend_pass.h"
 #include "test_support.h"
 
 namespace lic3d {

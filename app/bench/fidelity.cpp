@@ -18,7 +18,7 @@
 #include "lic/analytic_fields.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::cli {
 namespace {

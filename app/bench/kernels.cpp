@@ -13,7 +13,7 @@
 #include "gpu/shader_library.h"
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::cli {
 namespace {
@@ -35,6 +35,9 @@ class Renderer {
       options.fieldPrecision = precision;
       options.naiveLicKernel = naive;
       LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context_, options));
+      if (!timer_.valid() && context_.supportsTimestamps()) {
+        LIC3D_TRY_ASSIGN(timer_, GpuTimer::create(context_, 1, "bench timestamps"));
+      }
       precision_ = precision;
       naive_ = naive;
       if (Result<void> r = renderer.setInputs(field_, noise_); !r) {
@@ -48,11 +51,19 @@ class Renderer {
     return &*renderer_;
   }
 
+  // GPU milliseconds of one LIC dispatch of the current renderer with `launch` (always dispatched).
+  Result<double> timeLic(const LicSpecialization& launch, const LicParams& params) {
+    renderer_->licJob().setLaunch(launch);
+    return timeLicDispatch(context_, renderer_->licJob(), renderer_->fieldTextures(), timer_,
+                           params);
+  }
+
  private:
   const Context& context_;
   const VectorField& field_;
   const NoiseVolume& noise_;
   std::optional<LicRenderer> renderer_;
+  GpuTimer timer_;
   FieldPrecision precision_ = FieldPrecision::Auto;
   bool naive_ = false;
   std::string setupError_;
@@ -69,21 +80,20 @@ struct KernelRun {
 
 // Times one kernel; the volume is kept for the correlations when asked.
 Result<KernelRun> runKernel(const BenchOptions& options, double& budgetLeft, Renderer& renderers,
-                            FieldPrecision precision, bool naive, const LicLaunch& launch,
+                            FieldPrecision precision, bool naive, const LicSpecialization& launch,
                             const LicParams& params, bool keepVolume) {
   KernelRun run;
   LIC3D_TRY_ASSIGN(LicRenderer * renderer, renderers.get(precision, naive, run.skipped));
   run.precision = renderer->fieldPrecision();
   if (!run.skipped.empty()) return run;
-  renderer->setLicLaunch(launch);
   LIC3D_TRY_ASSIGN(run.timing,
-                   measure(options, budgetLeft, [&] { return renderer->timeLicDispatch(params); }));
+                   measure(options, budgetLeft, [&] { return renderers.timeLic(launch, params); }));
   if (!run.timing.measured) {
     run.skipped = run.timing.skipped;
     return run;
   }
   run.hidden = renderer->hiddenFraction();
-  run.statistics = renderer->licPipelineStatistics(params);
+  run.statistics = renderer->licJob().pipelineStatistics(params, renderer->fieldPrecision());
   if (keepVolume) {
     LIC3D_TRY_ASSIGN(ScalarVolume volume, renderer->readLicVolume());
     run.volume = std::move(volume);
@@ -123,7 +133,7 @@ nlohmann::json statisticsJson(const KernelRun& run) {
   return statistics;
 }
 
-std::string launchName(const LicLaunch& l) {
+std::string launchName(const LicSpecialization& l) {
   return std::to_string(l.localSizeX) + "x" + std::to_string(l.localSizeY) + "x" +
          std::to_string(l.localSizeZ) + (l.interleave ? ", both directions" : ", one by one");
 }
@@ -134,7 +144,7 @@ Result<void> kernelTable(const Context& context, const BenchOptions& options, do
                          Renderer& renderers, const VectorField& field, int length,
                          nlohmann::json& rows) {
   const FieldPrecision automatic = resolvePrecision(context, FieldPrecision::Auto);
-  const LicLaunch launch = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization launch = licLaunchFor(context.deviceInfo().type);
   const LicParams defaults;
   // In groups of one texture each, which share an upload.
   const std::vector<KernelVariant> variants{
@@ -207,7 +217,7 @@ Result<void> kernelTable(const Context& context, const BenchOptions& options, do
 Result<void> maskTable(const Context& context, const BenchOptions& options, double& budgetLeft,
                        Renderer& renderers, const VectorField& field, int length,
                        nlohmann::json& rows) {
-  const LicLaunch launch = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization launch = licLaunchFor(context.deviceInfo().type);
   const int n = field.dims.x;
   std::printf("\n%d^3, L = %d, sparsity halton (automatic amount)\n%-26s %12s %12s %7s %8s %13s\n",
               n, length, "kernel", "unmasked ms", "masked ms", "ratio", "hidden", "regs (masked)");
@@ -256,7 +266,7 @@ Result<void> launchTable(const Context& context, const BenchOptions& options, do
                          Renderer& renderers, const VectorField& field, int length,
                          nlohmann::json& rows) {
   const int n = field.dims.x;
-  const LicLaunch chosen = licLaunchFor(context.deviceInfo().type);
+  const LicSpecialization chosen = licLaunchFor(context.deviceInfo().type);
   std::printf(
       "\n%d^3, L = %d, launch shapes (* = the one this device type gets)\n%-14s %-34s %10s %5s\n",
       n, length, "scheme", "workgroup, walk", "median ms", "regs");
@@ -267,7 +277,7 @@ Result<void> launchTable(const Context& context, const BenchOptions& options, do
   for (const StepScheme scheme : schemes) {
     for (const bool interleave : {true, false}) {
       for (const auto& shape : shapes) {
-        const LicLaunch launch{shape[0], shape[1], shape[2], interleave};
+        const LicSpecialization launch = licLaunch(shape[0], shape[1], shape[2], interleave);
         LicParams params;
         params.length = length;
         params.scheme = scheme;

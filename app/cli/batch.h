@@ -12,9 +12,9 @@
 
 #include "core/rgba_image.h"
 #include "core/volume.h"
-#include "inputs/bricks.h"
 #include "io/png_writer.h"
 #include "io/volume_io.h"
+#include "jobs/bricks.h"
 #include "options/batch_options.h"
 #include "options/session_options.h"
 #include "passes/slice_pass.h"
@@ -135,7 +135,7 @@ struct RunSummary {
   std::optional<double> hiddenFraction;
   // compute on a device: the bricks the LIC was made in (1: the grid in one piece).
   std::optional<int> bricks;
-  // ... and each device's share of that work (inputs/bricks.h).
+  // ... and each device's share of that work (jobs/bricks.h).
   std::vector<DeviceShare> shares;
   // render of a LIC too large to draw whole: every `reduction`-th voxel of it (reduced_volume.h).
   int reduction = 0;

@@ -10,7 +10,7 @@
 #include "cli/batch.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 #include "options/session_options.h"
 
 namespace lic3d::cli {

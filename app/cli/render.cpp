@@ -16,20 +16,20 @@
 #include "core/stage_times.h"
 #include "gpu/device_choice.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/bricks.h"
-#include "inputs/plane_inputs.h"
-#include "inputs/reduced_volume.h"
-#include "inputs/scalars.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
+#include "jobs/bricks.h"
+#include "jobs/reduced_volume.h"
 #include "lic/analytic_fields.h"
 #include "lic/colouring.h"
 #include "lic/derived_fields.h"
 #include "lic/lic_reference.h"
 #include "lic/noise.h"
 #include "lic/time_series.h"
+#include "loading/plane_inputs.h"
+#include "loading/scalars.h"
 #include "options/progress.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::cli {
 namespace {
@@ -78,7 +78,7 @@ std::string ordinal(int n) {
 
 // The LIC of `inputs` made in bricks over `contexts`: whole when the first device can draw it
 // (`drawable`), else every factor-th voxel of it for the smallest factor it can draw
-// (inputs/reduced_volume.h), with the field on that grid.
+// (jobs/reduced_volume.h), with the field on that grid.
 Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOptions& options,
                                   const std::vector<Context>& contexts, SessionInputs& inputs,
                                   bool drawable) {

@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/session.h"
 #include "core/volume.h"
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 
 // CLI11 is heavy to compile: only the files that declare options include it (options/flags.h).
 namespace CLI {

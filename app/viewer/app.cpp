@@ -18,7 +18,7 @@
 
 #include "core/slice_geometry.h"
 #include "core/stage_times.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"

@@ -14,11 +14,11 @@
 #include <utility>
 
 #include "core/session.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 #include "options/session_options.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 #include "viewer/frames.h"
 #include "viewer/input.h"
 #include "viewer/loading.h"

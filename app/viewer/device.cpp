@@ -17,12 +17,12 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/slice_geometry.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
-#include "inputs/scalars.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"
 #include "lic/legend.h"
+#include "loading/scalars.h"
 
 namespace lic3d::viewer {
 namespace {

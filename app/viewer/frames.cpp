@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 
 namespace lic3d::viewer {

@@ -15,8 +15,8 @@
 
 #include "core/error.h"
 #include "core/rgba_image.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_timer.h"
+#include "gpu/resources.h"
+#include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
 #include "viewer/swapchain.h"
 

@@ -94,7 +94,7 @@ Result<bool> FieldLoader::updateTime(LicRenderer& renderer, const Session& sessi
   // The time moves on once the volume of the last blend is shown: a new blend restarts the LIC,
   // and where a volume takes more than a frame, blending every frame would never show one.
   if (blended_ && renderer.licStatus().pending) return false;
-  if (auto r = renderer.interpolateTime(b.first, b.second, b.weight); !r) {
+  if (auto r = renderer.blendTime(b.first, b.second, b.weight); !r) {
     message = r.error().message;
     return false;
   }

@@ -3,7 +3,7 @@
 // The desktop app's field (docs/TIME.md): read or made on a worker thread so the window stays
 // responsive; for a time series, the steps around the session's time read on a worker thread
 // and blended on the GPU, two resident at a time. The engine's inputs module
-// (inputs/session_inputs.h) does the reading; this class does it off the drawing thread.
+// (loading/session_inputs.h) does the reading; this class does it off the drawing thread.
 
 #include <future>
 #include <optional>
@@ -13,8 +13,8 @@
 
 #include "core/error.h"
 #include "core/session.h"
-#include "inputs/session_inputs.h"
-#include "passes/lic_renderer.h"
+#include "loading/session_inputs.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d::viewer {
 

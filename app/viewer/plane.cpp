@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "lic/lic2d_reference.h"
 
 namespace lic3d::viewer {

@@ -10,9 +10,9 @@
 
 #include "core/error.h"
 #include "core/session.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/plane_picture.h"
+#include "jobs/plane_picture.h"
 
 namespace lic3d::viewer {
 

@@ -35,7 +35,7 @@ struct Stats {
   std::string alert;    // a refused request or a lost device, shown in a dialog until dismissed
   std::string alertTitle;
   float minMagnitude = 0.0f, maxMagnitude = 1.0f;
-  // What colour and opacity can follow (inputs/scalars.h), and the values of the ones they
+  // What colour and opacity can follow (loading/scalars.h), and the values of the ones they
   // follow (the transfer function editor's histograms).
   std::vector<std::string> scalarChoices;
   std::shared_ptr<const ValueHistogram> colorValues;

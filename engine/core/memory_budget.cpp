@@ -99,7 +99,7 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
   add("field vectors (host)", voxels * 12, host);
   add("noise (host)", voxels, host);
   if (r.timeSeries) {
-    // Steps keep 16 bits per component at least (field_interpolation.h); one is read and
+    // Steps keep 16 bits per component at least (time_blend_pass.h); one is read and
     // uploaded at a time, and the noise goes up once as float.
     const std::uint64_t step = r.precision == FieldPrecision::Float ? 16 : 8;
     const char* format = r.precision == FieldPrecision::Float ? "RGBA32F" : "RGBA16F";

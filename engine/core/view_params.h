@@ -93,7 +93,7 @@ struct ViewParams {
   ColorMode color = ColorMode::None;
   Colormap colormap = Colormap::Thesis;
   // What colour and opacity follow: "speed" (|v|), "vorticity" (|curl v|), "helicity"
-  // (v . curl v) or a point scalar of the field's file by name (inputs/scalars.h).
+  // (v . curl v) or a point scalar of the field's file by name (loading/scalars.h).
   std::string colorBy = "speed";
   std::string opacityBy = "speed";
   float rangeTail = 0.0f;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/shader_library.h"
 #include "gpu/vulkan_context.h"
 

@@ -6,18 +6,18 @@
 #include "gpu/vk_check.h"
 
 // Generated at build time by glslangValidator --vn (see cmake/Lic3dShaders.cmake).
+#include "analytic_field_byte_comp_spv.h"
 #include "analytic_field_comp_spv.h"
-#include "analytic_texels_byte_comp_spv.h"
-#include "analytic_texels_comp_spv.h"
-#include "analytic_texels_half_comp_spv.h"
-#include "field_lerp_byte_comp_spv.h"
-#include "field_lerp_comp_spv.h"
-#include "field_lerp_half_comp_spv.h"
+#include "analytic_field_half_comp_spv.h"
+#include "analytic_vectors_comp_spv.h"
 #include "lic2d_comp_spv.h"
 #include "lic_comp_spv.h"
 #include "lic_histogram_comp_spv.h"
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
+#include "time_blend_byte_comp_spv.h"
+#include "time_blend_comp_spv.h"
+#include "time_blend_half_comp_spv.h"
 #ifdef LIC3D_BENCH_RUNTIME_MODES
 #include "lic_naive_comp_spv.h"
 #include "slice_runtime_frag_spv.h"
@@ -44,13 +44,13 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
       return {};
 #endif
     case ShaderId::Lic2DCompute: return lic2d_comp_spv;
-    case ShaderId::FieldLerp: return field_lerp_comp_spv;
-    case ShaderId::FieldLerpHalf: return field_lerp_half_comp_spv;
-    case ShaderId::FieldLerpByte: return field_lerp_byte_comp_spv;
+    case ShaderId::TimeBlend: return time_blend_comp_spv;
+    case ShaderId::TimeBlendHalf: return time_blend_half_comp_spv;
+    case ShaderId::TimeBlendByte: return time_blend_byte_comp_spv;
+    case ShaderId::AnalyticVectors: return analytic_vectors_comp_spv;
     case ShaderId::AnalyticField: return analytic_field_comp_spv;
-    case ShaderId::AnalyticTexels: return analytic_texels_comp_spv;
-    case ShaderId::AnalyticTexelsHalf: return analytic_texels_half_comp_spv;
-    case ShaderId::AnalyticTexelsByte: return analytic_texels_byte_comp_spv;
+    case ShaderId::AnalyticFieldHalf: return analytic_field_half_comp_spv;
+    case ShaderId::AnalyticFieldByte: return analytic_field_byte_comp_spv;
   }
   return {};
 }
@@ -72,13 +72,13 @@ const char* shaderName(ShaderId id) {
     case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";
     case ShaderId::LicComputeSeparateNoise: return "lic.comp (naive, separate noise)";
     case ShaderId::Lic2DCompute: return "lic2d.comp";
-    case ShaderId::FieldLerp: return "field_lerp.comp";
-    case ShaderId::FieldLerpHalf: return "field_lerp.comp (rgba16f)";
-    case ShaderId::FieldLerpByte: return "field_lerp.comp (rgba8 snorm)";
+    case ShaderId::TimeBlend: return "time_blend.comp";
+    case ShaderId::TimeBlendHalf: return "time_blend.comp (rgba16f)";
+    case ShaderId::TimeBlendByte: return "time_blend.comp (rgba8 snorm)";
+    case ShaderId::AnalyticVectors: return "analytic_vectors.comp";
     case ShaderId::AnalyticField: return "analytic_field.comp";
-    case ShaderId::AnalyticTexels: return "analytic_texels.comp";
-    case ShaderId::AnalyticTexelsHalf: return "analytic_texels.comp (rgba16f)";
-    case ShaderId::AnalyticTexelsByte: return "analytic_texels.comp (rgba8 snorm)";
+    case ShaderId::AnalyticFieldHalf: return "analytic_field.comp (rgba16f)";
+    case ShaderId::AnalyticFieldByte: return "analytic_field.comp (rgba8 snorm)";
   }
   return "?";
 }

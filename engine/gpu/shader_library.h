@@ -25,13 +25,13 @@ enum class ShaderId {
   SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES
   LicComputeSeparateNoise,    // the benchmark's naive kernel, same builds only
   Lic2DCompute,
-  FieldLerp,           // time interpolation into an RGBA32F field texture
-  FieldLerpHalf,       // the same into RGBA16F
-  FieldLerpByte,       // the same into RGBA8 SNORM with its packing (FieldPrecision::Byte)
-  AnalyticField,       // the analytic fields evaluated on the device
-  AnalyticTexels,      // an analytic field and its noise into an RGBA32F field texture
-  AnalyticTexelsHalf,  // the same into RGBA16F
-  AnalyticTexelsByte,  // the same into RGBA8 SNORM
+  TimeBlend,          // time interpolation into an RGBA32F field texture
+  TimeBlendHalf,      // the same into RGBA16F
+  TimeBlendByte,      // the same into RGBA8 SNORM with its packing (FieldPrecision::Byte)
+  AnalyticVectors,    // the analytic fields' plain vectors evaluated on the device
+  AnalyticField,      // an analytic field and its noise into an RGBA32F field texture
+  AnalyticFieldHalf,  // the same into RGBA16F
+  AnalyticFieldByte,  // the same into RGBA8 SNORM
 };
 
 // Whether this build embeds the slice shader with runtime mode switches.

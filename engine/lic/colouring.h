@@ -25,7 +25,7 @@ namespace lic3d {
 RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const ViewParams& view,
                       const std::vector<std::uint8_t>& outside = {});
 
-// The scalars colour and opacity follow when not the speed (inputs/scalars.h), on the LIC grid;
+// The scalars colour and opacity follow when not the speed (loading/scalars.h), on the LIC grid;
 // null for the speed.
 struct VolumeScalars {
   const PointScalars* color = nullptr;

@@ -3,7 +3,7 @@
 // Unsteady fields (docs/TIME.md): a time series of 3D vector fields, either numbered files
 // (`step_%03d.vti`, or a glob such as `step_*.vti`) or an analytic field sampled at its own
 // times. Steps are read one at a time, when they are needed: only the two around the current
-// time are kept (on the device, field_interpolation.h), so a series may exceed device memory.
+// time are kept (on the device, time_blend_pass.h), so a series may exceed device memory.
 
 #include <filesystem>
 #include <string>
@@ -62,7 +62,7 @@ Result<TimeSeries> fileSeries(const std::string& pattern);
 Result<TimeSeries> analyticSeries(AnalyticField field, Dims grid, int steps);
 
 // The field between two steps, and the CPU reference of the GPU blend
-// (passes/field_interpolation.h): (1 - w) a + w b per voxel, in double, rounded to float. The
+// (passes/time_blend_pass.h): (1 - w) a + w b per voxel, in double, rounded to float. The
 // steps must share grid and geometry (InvalidInput otherwise); w is clamped to [0, 1].
 Result<VectorField> interpolateFields(const VectorField& a, const VectorField& b, double weight);
 

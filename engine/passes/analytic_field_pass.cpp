@@ -9,10 +9,10 @@
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_submit.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_push.h"
 #include "shared_layout.h"
@@ -20,92 +20,17 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the field.
-struct AnalyticSpecialization {
-  std::uint32_t field = 0;
-};
-static_assert(sizeof(AnalyticSpecialization) == 4);
-
-// constant_id 0: the field, 1: the phase (shaders/analytic_texels.comp).
-struct TexelSpecialization {
+// constant_id 0: the field, 1: the phase (shaders/analytic_field.comp).
+struct AnalyticFieldSpecialization {
   std::uint32_t field = 0;
   std::uint32_t phase = 0;
 };
-static_assert(sizeof(TexelSpecialization) == 8);
-
-// The slab buffer: at most this many bytes (and the device's storage buffer range), so that
-// memory stays bounded whatever the grid.
-constexpr VkDeviceSize kSlabBytes = VkDeviceSize{256} << 20;
+static_assert(sizeof(AnalyticFieldSpecialization) == 8);
 
 }  // namespace
 
-Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticField field,
-                                              Dims dims, double time) {
-  VectorField result;
-  result.dims = dims;
-  result.geometry = analyticGeometry(field, dims);
-  const VkDeviceSize layerBytes =
-      VkDeviceSize{3} * sizeof(float) * std::size_t(dims.x) * std::size_t(dims.y);
-  const VkDeviceSize limit =
-      std::min<VkDeviceSize>(kSlabBytes, context.properties().limits.maxStorageBufferRange);
-  if (layerBytes > limit)
-    return unsupportedError("a z layer of " + gridText(dims) +
-                            " does not fit one storage buffer of this device");
-  const int slab = static_cast<int>(std::min<VkDeviceSize>(limit / layerBytes, dims.z));
-
-  constexpr Binding bindings[] = {
-      {gpu::kAnalyticBindingVectors, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-  LIC3D_TRY_ASSIGN(const PipelineLayout layout,
-                   PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::AnalyticPushConstants), "analytic field"));
-  LIC3D_TRY_ASSIGN(const ShaderModule shader, loadShader(context, ShaderId::AnalyticField));
-  const Specialization<AnalyticSpecialization> constants(
-      AnalyticSpecialization{static_cast<std::uint32_t>(field)});
-  LIC3D_TRY_ASSIGN(const Pipeline pipeline,
-                   createComputePipeline(context, shader, layout, constants.info(),
-                                         "analytic field " + std::string(enumName(field))));
-  LIC3D_TRY_ASSIGN(const Buffer vectors,
-                   Buffer::create(context, layerBytes * static_cast<VkDeviceSize>(slab),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Readback,
-                                  "analytic field slab"));
-
-  result.vectors.resize(voxelCount(dims));
-  gpu::AnalyticPushConstants push{};
-  push.unitScale = glm::vec4(1.0f);
-  push.origin = glm::vec4(glm::vec3(result.geometry.origin), static_cast<float>(time));
-  push.spacing = glm::vec4(glm::vec3(result.geometry.spacing), 0.0f);
-  for (int z0 = 0; z0 < dims.z; z0 += slab) {
-    const int layers = std::min(slab, dims.z - z0);
-    push.dims = glm::ivec4(dims.x, dims.y, layers, z0);
-    DescriptorWrites writes;
-    writes.storageBuffer(gpu::kAnalyticBindingVectors, vectors);
-    LIC3D_TRY(submitAndWait(
-        context,
-        [&](VkCommandBuffer cmd) {
-          writes.push(context, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
-          vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                             &push);
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-          vkCmdDispatch(cmd, groupCount(dims.x, gpu::kAnalyticLocalSizeX),
-                        groupCount(dims.y, gpu::kAnalyticLocalSizeY),
-                        static_cast<std::uint32_t>(layers));
-          memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                        VK_ACCESS_2_HOST_READ_BIT);
-        },
-        "analytic field"));
-    // Three floats per voxel, x fastest: the layout of glm::vec3.
-    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    const std::size_t first = voxelIndex(dims, 0, 0, z0);
-    const std::size_t bytes =
-        static_cast<std::size_t>(layerBytes) * static_cast<std::size_t>(layers);
-    parallelCopy(result.vectors.data() + first, vectors.mapped(), bytes);
-  }
-  return result;
-}
-
-Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
-  AnalyticTexels pass;
+Result<AnalyticFieldPass> AnalyticFieldPass::create(const Context& context) {
+  AnalyticFieldPass pass;
   pass.context_ = &context;
   constexpr Binding bindings[] = {
       {gpu::kAnalyticBindingTexels, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -113,9 +38,9 @@ Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::AnalyticPushConstants), "analytic texels"));
-  const ShaderId ids[3] = {ShaderId::AnalyticTexels, ShaderId::AnalyticTexelsHalf,
-                           ShaderId::AnalyticTexelsByte};
+                                          sizeof(gpu::AnalyticPushConstants), "analytic field"));
+  const ShaderId ids[3] = {ShaderId::AnalyticField, ShaderId::AnalyticFieldHalf,
+                           ShaderId::AnalyticFieldByte};
   for (int variant = 0; variant < 3; ++variant) {
     LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
   }
@@ -132,11 +57,12 @@ Result<AnalyticTexels> AnalyticTexels::create(const Context& context) {
   return pass;
 }
 
-Result<VkPipeline> AnalyticTexels::pipeline(Key key) {
+Result<VkPipeline> AnalyticFieldPass::pipeline(Key key) {
   return pipelines_.get(key, [&](const Key& k) {
-    const Specialization<TexelSpecialization> constants(TexelSpecialization{k.field, k.phase});
+    const Specialization<AnalyticFieldSpecialization> constants(
+        AnalyticFieldSpecialization{k.field, k.phase});
     return createComputePipeline(*context_, shaders_[k.variant], layout_, constants.info(),
-                                 std::string("analytic texels ") +
+                                 std::string("analytic field ") +
                                      (k.phase == 0 ? "measure " : "write ") +
                                      std::string(enumName(static_cast<AnalyticField>(k.field))) +
                                      " " + kFieldTexelVariantNames[k.variant]);
@@ -149,8 +75,8 @@ GridGeometry AnalyticInputs::texelGeometry() const {
   return geometry;
 }
 
-Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
-                                                  FieldPrecision precision) const {
+Result<FieldTexture> AnalyticFieldPass::createTarget(const AnalyticInputs& inputs,
+                                                     FieldPrecision precision) const {
   const Dims dims = inputs.texelDims();
   LIC3D_TRY(checkVolumeDims(*context_, dims, "field"));
   // The texture and the LIC volume must fit (a CPU driver would otherwise accept the allocation
@@ -163,7 +89,9 @@ Result<FieldTexture> AnalyticTexels::createTarget(const AnalyticInputs& inputs,
                                     "analytic field and noise texture");
 }
 
-Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& target) {
+namespace {
+
+Result<void> checkTarget(const AnalyticInputs& inputs, const FieldTexture& target) {
   const Dims dims = inputs.texelDims();
   if (target.dims != dims || !target.image)
     return inputError("the analytic field's texture must be made for its grid " + gridText(dims));
@@ -171,15 +99,12 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
                            glm::any(glm::greaterThan(inputs.brickOffset + dims, inputs.dims))))
     return inputError("the brick " + gridText(dims) + " at " + gridText(inputs.brickOffset) +
                       " is not inside the grid " + gridText(inputs.dims));
-  const StageTimer timer("field and noise (on the device)");
-  const auto field = static_cast<std::uint32_t>(inputs.field);
-  const int variant = fieldTexelVariant(target.precision);
-  LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
-  LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
+  return {};
+}
 
-  // Positions from the whole grid's origin, so that a brick's are the whole grid's there.
+// Positions from the whole grid's origin, so that a brick's are the whole grid's there.
+gpu::AnalyticPushConstants measurePush(const AnalyticInputs& inputs, const glm::dvec3& unit) {
   const GridGeometry geometry = analyticGeometry(inputs.field, inputs.dims);
-  const glm::dvec3 unit = voxelUnitScale(geometry);
   gpu::AnalyticPushConstants push{};
   push.dims = glm::ivec4(inputs.dims, 0);
   push.whole = glm::ivec4(inputs.dims, 0);
@@ -188,64 +113,42 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
   push.unitScale = glm::vec4(glm::vec3(unit), 0.0f);
   push.seed = glm::uvec4(static_cast<std::uint32_t>(inputs.noiseSeed),
                          static_cast<std::uint32_t>(inputs.noiseSeed >> 32), 0u, 0u);
-  DescriptorWrites writes;
-  writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
-      .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
-  // Phase 0 measures the whole grid; phase 1 writes the texels' part of it.
-  gpu::AnalyticPushConstants texels = push;
-  texels.dims = glm::ivec4(dims, 0);
-  texels.offset = glm::ivec4(inputs.brickOffset, 0);
-  const auto groups = [](Dims d) {
-    return glm::uvec3(groupCount(d.x, gpu::kAnalyticLocalSizeX),
-                      groupCount(d.y, gpu::kAnalyticLocalSizeY),
-                      groupCount(d.z, gpu::kAnalyticLayersPerGroup));
-  };
-  const glm::uvec3 measureGroups = groups(inputs.dims);
-  const glm::uvec3 writeGroups = groups(dims);
-  constexpr VkPipelineStageFlags2 kReaders =
-      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-  LIC3D_TRY(submitAndWait(
-      *context_,
-      [&](VkCommandBuffer cmd) {
-        // max |u|, max |v| and the counts start at 0, min |v| at the largest float.
-        constexpr VkDeviceSize word = sizeof(std::uint32_t);
-        constexpr VkDeviceSize minimum = gpu::kAnalyticMinMagnitude * word;
-        vkCmdFillBuffer(cmd, statistics_.handle(), 0, minimum, 0u);
-        vkCmdFillBuffer(cmd, statistics_.handle(), minimum, word, 0x7F7FFFFFu);
-        vkCmdFillBuffer(cmd, statistics_.handle(), minimum + word, VK_WHOLE_SIZE, 0u);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        // The old contents are replaced whole: earlier readers must be done.
-        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     kReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
-        vkCmdDispatch(cmd, measureGroups.x, measureGroups.y, measureGroups.z);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(texels),
-                           &texels);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
-        vkCmdDispatch(cmd, writeGroups.x, writeGroups.y, writeGroups.z);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-        const VkBufferCopy copy{0, 0, statistics_.size()};
-        vkCmdCopyBuffer(cmd, statistics_.handle(), readback_.handle(), 1, &copy);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     kReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-      },
-      "analytic field texels"));
+  return push;
+}
 
+glm::uvec3 groupsOf(Dims d) {
+  return glm::uvec3(groupCount(d.x, gpu::kAnalyticLocalSizeX),
+                    groupCount(d.y, gpu::kAnalyticLocalSizeY),
+                    groupCount(d.z, gpu::kAnalyticLayersPerGroup));
+}
+
+constexpr VkPipelineStageFlags2 kTextureReaders =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+}  // namespace
+
+void AnalyticFieldPass::recordClearStatistics(VkCommandBuffer cmd) const {
+  // max |u|, max |v| and the counts start at 0, min |v| at the largest float.
+  constexpr VkDeviceSize word = sizeof(std::uint32_t);
+  constexpr VkDeviceSize minimum = gpu::kAnalyticMinMagnitude * word;
+  vkCmdFillBuffer(cmd, statistics_.handle(), 0, minimum, 0u);
+  vkCmdFillBuffer(cmd, statistics_.handle(), minimum, word, 0x7F7FFFFFu);
+  vkCmdFillBuffer(cmd, statistics_.handle(), minimum + word, VK_WHOLE_SIZE, 0u);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void AnalyticFieldPass::recordStatisticsReadback(VkCommandBuffer cmd) const {
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy copy{0, 0, statistics_.size()};
+  vkCmdCopyBuffer(cmd, statistics_.handle(), readback_.handle(), 1, &copy);
+  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
+void AnalyticFieldPass::readStatistics(const glm::dvec3& unit, FieldTexture& target) const {
   std::array<std::uint32_t, gpu::kAnalyticStatisticsWords> words{};
   std::memcpy(words.data(), readback_.mapped(), sizeof(words));
   const auto asFloat = [&](std::uint32_t index) {
@@ -263,6 +166,56 @@ Result<void> AnalyticTexels::write(const AnalyticInputs& inputs, FieldTexture& t
       histogramOfCounts(std::span<const std::uint32_t>(words).subspan(gpu::kAnalyticFirstBin),
                         target.minMagnitude, target.maxMagnitude));
   target.unit.clear();
+}
+
+Result<void> AnalyticFieldPass::write(const AnalyticInputs& inputs, FieldTexture& target) {
+  LIC3D_TRY(checkTarget(inputs, target));
+  const Dims dims = inputs.texelDims();
+  const StageTimer timer("field and noise (on the device)");
+  const auto field = static_cast<std::uint32_t>(inputs.field);
+  const int variant = fieldTexelVariant(target.precision);
+  LIC3D_TRY_ASSIGN(const VkPipeline measure, pipeline({field, 0, variant}));
+  LIC3D_TRY_ASSIGN(const VkPipeline write, pipeline({field, 1, variant}));
+
+  const glm::dvec3 unit = voxelUnitScale(analyticGeometry(inputs.field, inputs.dims));
+  const gpu::AnalyticPushConstants push = measurePush(inputs, unit);
+  DescriptorWrites writes;
+  writes.storageImage(gpu::kAnalyticBindingTexels, target.image.view())
+      .storageBuffer(gpu::kAnalyticBindingStatistics, statistics_);
+  // Phase 0 measures the whole grid; phase 1 writes the texels' part of it.
+  gpu::AnalyticPushConstants texels = push;
+  texels.dims = glm::ivec4(dims, 0);
+  texels.offset = glm::ivec4(inputs.brickOffset, 0);
+  const glm::uvec3 measureGroups = groupsOf(inputs.dims);
+  const glm::uvec3 writeGroups = groupsOf(dims);
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        recordClearStatistics(cmd);
+        // The old contents are replaced whole: earlier readers must be done.
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     kTextureReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, measure);
+        vkCmdDispatch(cmd, measureGroups.x, measureGroups.y, measureGroups.z);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(texels),
+                           &texels);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write);
+        vkCmdDispatch(cmd, writeGroups.x, writeGroups.y, writeGroups.z);
+        recordStatisticsReadback(cmd);
+        imageBarrier(cmd, target.image.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     kTextureReaders, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      },
+      "analytic field"));
+  readStatistics(unit, target);
   return {};
 }
 

@@ -1,33 +1,27 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The analytic fields (lic/analytic_fields.h) made on the device, in float; the CPU versions in
-// double stay the oracle (tests/test_analytic_device.cpp holds the device's to them).
-// - makeAnalyticFieldOnDevice: the vectors, slab by slab, read back into a VectorField (for tests
-//   and hosts that need the field itself; read back it was no faster than the CPU on the H100).
-// - AnalyticTexels: the field and its white noise written straight into the LIC pass' field
-//   texture, with the statistics uploadLicInputs measures on the host (min and max |v|, max |u|,
-//   the histogram of |v|): nothing of the field passes through the host, which is what the front
-//   ends use for an analytic field with white noise (docs/BENCHMARKS.md, "End to end").
+// An analytic field (lic/analytic_fields.h) made on the device in float, with its white noise,
+// straight into the LIC pass' field texture (shaders/analytic_field.comp), with the statistics
+// uploadLicInputs measures on the host (min and max |v|, max |u|, the histogram of |v|): nothing
+// of the field passes through the host, which is what the front ends use for an analytic field
+// with white noise (docs/BENCHMARKS.md, "End to end"). The CPU versions in double stay the oracle
+// (tests/test_analytic_device.cpp).
 #include <cstdint>
 
 #include "core/error.h"
 #include "core/volume.h"
-#include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "lic/analytic_fields.h"
 #include "passes/volume_textures.h"
 
 namespace lic3d {
 
-// makeAnalyticField(field, dims, time) evaluated on `context`'s device.
-Result<VectorField> makeAnalyticFieldOnDevice(const Context& context, AnalyticField field,
-                                              Dims dims, double time = 0.0);
-
 // An analytic field at a time on a grid, and the seed of its white noise (lic/noise.h): what
-// AnalyticTexels makes the LIC inputs from.
+// AnalyticFieldPass makes the LIC inputs from.
 // With `brickDims` set, only the brick of the grid at `brickOffset` is made (bricked LIC,
-// inputs/bricks.h): its texels are the whole grid's there, normalised by the whole grid's max |u|.
+// jobs/bricks.h): its texels are the whole grid's there, normalised by the whole grid's max |u|.
 struct AnalyticInputs {
   AnalyticField field = AnalyticField::Tornado;
   Dims dims{0};
@@ -43,10 +37,10 @@ struct AnalyticInputs {
   GridGeometry texelGeometry() const;
 };
 
-class AnalyticTexels {
+class AnalyticFieldPass {
  public:
   // `context` must outlive the pass.
-  static Result<AnalyticTexels> create(const Context& context);
+  static Result<AnalyticFieldPass> create(const Context& context);
 
   // A texture write() can fill: the texels' grid and geometry (texelGeometry), `precision`
   // resolved as uploadLicInputs does. Checks the device's limits and memory first.
@@ -64,6 +58,9 @@ class AnalyticTexels {
     bool operator==(const Key&) const = default;
   };
   Result<VkPipeline> pipeline(Key key);
+  void recordClearStatistics(VkCommandBuffer cmd) const;
+  void recordStatisticsReadback(VkCommandBuffer cmd) const;
+  void readStatistics(const glm::dvec3& unit, FieldTexture& target) const;
 
   const Context* context_ = nullptr;
   PipelineLayout layout_;

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
-#include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "lic/lic2d_reference.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_push.h"

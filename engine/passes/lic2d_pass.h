@@ -15,9 +15,9 @@
 #include "core/error.h"
 #include "core/lic_params.h"
 #include "core/volume.h"
-#include "gpu/gpu_resources.h"
-#include "gpu/gpu_timer.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
+#include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
 #include "passes/volume_textures.h"
 

@@ -11,8 +11,9 @@
 
 namespace lic3d {
 
-LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision) {
-  LicSpecialization s;
+LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision,
+                                    const LicSpecialization& launch) {
+  LicSpecialization s = launch;
   s.integrator = static_cast<std::uint32_t>(params.integrator);
   s.kernel = static_cast<std::uint32_t>(params.kernel);
   s.noiseFilter = static_cast<std::uint32_t>(params.noiseFilter);
@@ -23,7 +24,16 @@ LicSpecialization licSpecialization(const LicParams& params, FieldPrecision prec
   return s;
 }
 
-LicLaunch licLaunchFor(VkPhysicalDeviceType type) {
+LicSpecialization licLaunch(std::uint32_t x, std::uint32_t y, std::uint32_t z, bool interleave) {
+  LicSpecialization launch;
+  launch.localSizeX = x;
+  launch.localSizeY = y;
+  launch.localSizeZ = z;
+  launch.interleave = interleave ? 1u : 0u;
+  return launch;
+}
+
+LicSpecialization licLaunchFor(VkPhysicalDeviceType type) {
   // One direction after the other everywhere: walking both at once keeps two fetches in flight
   // but costs registers; on the H100 it tied for the exact scheme and lost 4 % for the fused one
   // (37 registers against 29), and CPU drivers run an invocation's loop as SIMD lanes, where
@@ -31,8 +41,7 @@ LicLaunch licLaunchFor(VkPhysicalDeviceType type) {
   // streamlines leave a row in every direction); CPU drivers take rows of x (8x8x1), whose SIMD
   // lanes then walk neighbouring streamlines: 4x4x4 took twice as long on lavapipe.
   // docs/BENCHMARKS.md, "Launch shapes".
-  LicLaunch launch;
-  launch.interleave = false;
+  LicSpecialization launch;  // the defaults: one direction after the other, rows of x
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
     launch.localSizeX = launch.localSizeY = launch.localSizeZ = 4;
   }
@@ -40,7 +49,7 @@ LicLaunch licLaunchFor(VkPhysicalDeviceType type) {
 }
 
 Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
-                                std::optional<LicLaunch> launch) {
+                                std::optional<LicSpecialization> launch) {
   LicPass pass;
   pass.context_ = &context;
   pass.separateNoise_ = separateNoise;
@@ -65,26 +74,17 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
   return pass;
 }
 
-LicSpecialization LicPass::specializationFor(const LicParams& params,
-                                             FieldPrecision precision) const {
-  LicSpecialization specialization = licSpecialization(params, precision);
-  specialization.localSizeX = launch_.localSizeX;
-  specialization.localSizeY = launch_.localSizeY;
-  specialization.localSizeZ = launch_.localSizeZ;
-  specialization.interleave = launch_.interleave ? 1u : 0u;
-  return specialization;
-}
-
 std::vector<std::pair<std::string, std::string>> LicPass::statistics(
     const LicParams& params, FieldPrecision precision) const {
-  return pipelineStatistics(*context_, pipelines_.find(specializationFor(params, precision)));
+  return pipelineStatistics(*context_,
+                            pipelines_.find(licSpecialization(params, precision, launch_)));
 }
 
 Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                              const MaskBeyondGrid& beyond, const Image& output,
                              const LicParams& params, int zBegin, int zEnd, const Image* noise) {
   LIC3D_ASSERT(!separateNoise_ || noise);
-  const LicSpecialization specialization = specializationFor(params, field.precision);
+  const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
   LIC3D_TRY_ASSIGN(
       VkPipeline pipeline, pipelines_.get(specialization, [&](const LicSpecialization& key) {
         const Specialization<LicSpecialization> constants(key);

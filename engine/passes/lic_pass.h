@@ -6,6 +6,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -13,46 +14,57 @@
 
 #include "core/error.h"
 #include "core/lic_params.h"
-#include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "lic/sparsity.h"
 #include "passes/volume_textures.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 
-// constant_id i <-> field i (see shaders/lic.comp).
+// constant_id i <-> field i (see shaders/lic.comp), each defaulting to the shader's default
+// (shared_layout.h). Two kinds of fields: those LicParams and the field texture decide
+// (licSpecialization), and the launch (local size, interleave): how the pass is launched whatever
+// the parameters, chosen per device type (licLaunchFor) from `lic3d bench --kernels`, which also
+// times the others (docs/BENCHMARKS.md).
 struct LicSpecialization {
-  std::uint32_t integrator = 1;
-  std::uint32_t kernel = 0;
-  std::uint32_t noiseFilter = 1;
-  std::uint32_t direction = 0;
-  std::uint32_t localSizeX = 8;  // LicLaunch
-  std::uint32_t localSizeY = 8;
-  std::uint32_t localSizeZ = 1;
-  std::uint32_t sparsity = 0;
-  std::uint32_t scheme = 0;
-  std::uint32_t packing = 0;     // 1 for FieldPrecision::Byte
-  std::uint32_t interleave = 1;  // LicLaunch
+  std::uint32_t integrator = gpu::kLicDefaultIntegrator;
+  std::uint32_t kernel = gpu::kLicDefaultKernel;
+  std::uint32_t noiseFilter = gpu::kLicDefaultNoiseFilter;
+  std::uint32_t direction = gpu::kLicDefaultDirection;
+  std::uint32_t localSizeX = gpu::kLicDefaultLocalSizeX;  // launch
+  std::uint32_t localSizeY = gpu::kLicDefaultLocalSizeY;  // launch
+  std::uint32_t localSizeZ = gpu::kLicDefaultLocalSizeZ;  // launch
+  std::uint32_t sparsity = gpu::kLicDefaultSparsity;
+  std::uint32_t scheme = gpu::kLicDefaultScheme;
+  std::uint32_t packing = gpu::kLicDefaultPacking;        // 1 for FieldPrecision::Byte
+  std::uint32_t interleave = gpu::kLicDefaultInterleave;  // launch
 
   bool operator==(const LicSpecialization&) const = default;
 };
 static_assert(sizeof(LicSpecialization) == 11 * 4);
+static_assert(offsetof(LicSpecialization, integrator) == 4 * gpu::kLicConstIntegrator);
+static_assert(offsetof(LicSpecialization, kernel) == 4 * gpu::kLicConstKernel);
+static_assert(offsetof(LicSpecialization, noiseFilter) == 4 * gpu::kLicConstNoiseFilter);
+static_assert(offsetof(LicSpecialization, direction) == 4 * gpu::kLicConstDirection);
+static_assert(offsetof(LicSpecialization, localSizeX) == 4 * gpu::kLicConstLocalSizeX);
+static_assert(offsetof(LicSpecialization, localSizeY) == 4 * gpu::kLicConstLocalSizeY);
+static_assert(offsetof(LicSpecialization, localSizeZ) == 4 * gpu::kLicConstLocalSizeZ);
+static_assert(offsetof(LicSpecialization, sparsity) == 4 * gpu::kLicConstSparsity);
+static_assert(offsetof(LicSpecialization, scheme) == 4 * gpu::kLicConstScheme);
+static_assert(offsetof(LicSpecialization, packing) == 4 * gpu::kLicConstPacking);
+static_assert(offsetof(LicSpecialization, interleave) == 4 * gpu::kLicConstInterleave);
 
-LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision);
+// The fields of `params` and the texture's packing; the launch fields are `launch`'s.
+LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision,
+                                    const LicSpecialization& launch = {});
 
-// How the LIC pass is launched, whatever the parameters: the workgroup shape and whether an
-// invocation walks the two directions of its streamline in one loop (shaders/lic.comp,
-// INTERLEAVE). Both are specialization constants chosen per device type (licLaunchFor), from
-// `lic3d bench --kernels`, which also times the others (docs/BENCHMARKS.md).
-struct LicLaunch {
-  std::uint32_t localSizeX = 8;
-  std::uint32_t localSizeY = 8;
-  std::uint32_t localSizeZ = 1;
-  bool interleave = true;
-  bool operator==(const LicLaunch&) const = default;
-};
-LicLaunch licLaunchFor(VkPhysicalDeviceType type);
+// A specialization whose launch fields are a workgroup of x * y * z and the walk (interleave: both
+// directions in one loop); its other fields are the defaults.
+LicSpecialization licLaunch(std::uint32_t x, std::uint32_t y, std::uint32_t z, bool interleave);
+// The launch fields chosen for a device type.
+LicSpecialization licLaunchFor(VkPhysicalDeviceType type);
 
 // The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding; the
 // second channel is 1 where the voxel is drawn and 0 where sparsity masks it.
@@ -64,9 +76,9 @@ class LicPass {
  public:
   // `context` must outlive the pass. With `separateNoise` (benchmark builds only) the pass runs
   // the naive reference kernel, which reads the noise from an R8 texture of its own.
-  // `launch` replaces the device type's LicLaunch (the benchmark's comparisons).
+  // The launch fields of `launch` replace the device type's (the benchmark's comparisons).
   static Result<LicPass> create(const Context& context, bool separateNoise = false,
-                                std::optional<LicLaunch> launch = std::nullopt);
+                                std::optional<LicSpecialization> launch = std::nullopt);
 
   // Records the dispatch for z slices [zBegin, zEnd). `field`, `mask` and `noise` must be in
   // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`
@@ -80,23 +92,21 @@ class LicPass {
   // the current launch (pipelineStatistics); empty if none was made or none are captured.
   std::vector<std::pair<std::string, std::string>> statistics(const LicParams& params,
                                                               FieldPrecision precision) const;
-  // The launch of the next records (pipelines of every launch stay cached).
-  void setLaunch(const LicLaunch& launch) { launch_ = launch; }
+  // The launch fields of the next records (pipelines of every launch stay cached).
+  void setLaunch(const LicSpecialization& launch) { launch_ = launch; }
   // z slices one workgroup spans: slabs of a multiple of it keep every invocation busy.
   int launchDepth() const { return static_cast<int>(launch_.localSizeZ); }
   std::size_t variantCount() const { return pipelines_.size(); }
   bool separateNoise() const { return separateNoise_; }
 
  private:
-  LicSpecialization specializationFor(const LicParams& params, FieldPrecision precision) const;
-
   const Context* context_ = nullptr;
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler sampler_;
   Sampler maskSampler_;
   bool separateNoise_ = false;
-  LicLaunch launch_;
+  LicSpecialization launch_;  // only its launch fields are used
   PipelineCache<LicSpecialization> pipelines_;
 };
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "core/colormap.h"
-#include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "shared_layout.h"
 

@@ -10,7 +10,7 @@
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 #include "lic/lic_reference.h"
 
 namespace lic3d {

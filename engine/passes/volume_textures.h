@@ -18,7 +18,7 @@
 #include "core/field_precision.h"
 #include "core/value_histogram.h"
 #include "core/volume.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "io/field_io.h"
 
@@ -38,7 +38,7 @@ struct FieldTexture {
   std::string unit;                              // VectorField::unit
 };
 
-// The scalars colour and opacity follow when they are not the speed (inputs/scalars.h), on the
+// The scalars colour and opacity follow when they are not the speed (loading/scalars.h), on the
 // field's grid: R the colour scalar, G the opacity scalar, each as (value - min) / (max - min)
 // in half floats (filterable on every device; 11 bits of the range are finer than the 256
 // entries of a colour table), NaN where the scalar has no value. A 1x1x1 texture when both

@@ -35,10 +35,10 @@
 // The lic3d engine.
 #include "core/enum_names.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
 #include "lic/field_piece.h"
 #include "lic/lic_reference.h"
-#include "passes/lic_renderer.h"
+#include "loading/session_inputs.h"
+#include "render/lic_renderer.h"
 
 // The plugin's own.
 #include "device_for_rank.h"

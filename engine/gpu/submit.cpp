@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gpu/gpu_submit.h"
+#include "gpu/submit.h"
 
 #include <atomic>
 #include <cstdlib>

@@ -19,9 +19,9 @@
 #include "core/session.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/session_inputs.h"
 #include "io/field_stream.h"
 #include "lic/lic_reference.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d {
 

@@ -14,8 +14,8 @@
 #include "core/error.h"
 #include "core/value_histogram.h"
 #include "core/volume.h"
-#include "gpu/gpu_resources.h"
 #include "gpu/pipelines.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "passes/volume_textures.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/reduced_volume.h"
+#include "jobs/reduced_volume.h"
 
 namespace lic3d {
 

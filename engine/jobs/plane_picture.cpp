@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/plane_picture.h"
+#include "jobs/plane_picture.h"
 
 #include <chrono>
 #include <utility>
 
-#include "inputs/session_inputs.h"
 #include "lic/colouring.h"
 #include "lic/lic2d_reference.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d {
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "passes/field_interpolation.h"
+#include "passes/time_blend_pass.h"
 
 #include <algorithm>
 #include <array>
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
-#include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "lic/lic_reference.h"
 #include "passes/lic_push.h"
 #include "shared_layout.h"
@@ -15,11 +15,11 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the phase (see shaders/field_lerp.comp).
-struct LerpSpecialization {
+// constant_id 0: the phase (see shaders/time_blend.comp).
+struct TimeBlendSpecialization {
   std::uint32_t phase = 0;
 };
-static_assert(sizeof(LerpSpecialization) == 4);
+static_assert(sizeof(TimeBlendSpecialization) == 4);
 
 // Steps keep 16 bits at least: they are blended before the texture's own rounding.
 VkFormat stepFormat(FieldPrecision precision) {
@@ -65,25 +65,25 @@ Result<FieldStep> uploadFieldStep(const Context& context, const VectorField& fie
   return step;
 }
 
-Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
-  FieldInterpolation pass;
+Result<TimeBlendPass> TimeBlendPass::create(const Context& context) {
+  TimeBlendPass pass;
   pass.context_ = &context;
   constexpr Binding bindings[] = {
-      {gpu::kLerpBindingStepA},
-      {gpu::kLerpBindingStepB},
-      {gpu::kLerpBindingNoise},
-      {gpu::kLerpBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-      {gpu::kLerpBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {gpu::kTimeBlendBindingStepA},
+      {gpu::kTimeBlendBindingStepB},
+      {gpu::kTimeBlendBindingNoise},
+      {gpu::kTimeBlendBindingTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+      {gpu::kTimeBlendBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
-                                          sizeof(gpu::LerpPushConstants), "field lerp"));
-  const ShaderId ids[3] = {ShaderId::FieldLerp, ShaderId::FieldLerpHalf, ShaderId::FieldLerpByte};
+                                          sizeof(gpu::TimeBlendPushConstants), "time blend"));
+  const ShaderId ids[3] = {ShaderId::TimeBlend, ShaderId::TimeBlendHalf, ShaderId::TimeBlendByte};
   for (int variant = 0; variant < 3; ++variant) {
     LIC3D_TRY_ASSIGN(pass.shaders_[variant], loadShader(context, ids[variant]));
     for (std::uint32_t phase : {0u, 1u}) {
-      const Specialization<LerpSpecialization> constants(LerpSpecialization{phase});
-      const std::string name = std::string("field lerp ") + (phase == 0 ? "measure " : "write ") +
+      const Specialization<TimeBlendSpecialization> constants(TimeBlendSpecialization{phase});
+      const std::string name = std::string("time blend ") + (phase == 0 ? "measure " : "write ") +
                                kFieldTexelVariantNames[variant];
       LIC3D_TRY_ASSIGN(Pipeline pipeline,
                        createComputePipeline(context, pass.shaders_[variant], pass.layout_,
@@ -92,29 +92,29 @@ Result<FieldInterpolation> FieldInterpolation::create(const Context& context) {
     }
   }
   LIC3D_TRY_ASSIGN(pass.nearest_,
-                   Sampler::create(context, VK_FILTER_NEAREST, "field lerp sampler"));
-  const VkDeviceSize rangeBytes = gpu::kLerpRangeCount * sizeof(std::uint32_t);
+                   Sampler::create(context, VK_FILTER_NEAREST, "time blend sampler"));
+  const VkDeviceSize rangeBytes = gpu::kTimeBlendRangeCount * sizeof(std::uint32_t);
   LIC3D_TRY_ASSIGN(pass.ranges_, Buffer::create(context, rangeBytes,
                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                                MemoryUse::DeviceLocal, "field lerp ranges"));
+                                                MemoryUse::DeviceLocal, "time blend ranges"));
   LIC3D_TRY_ASSIGN(pass.readback_,
                    Buffer::create(context, rangeBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  MemoryUse::Readback, "field lerp ranges readback"));
+                                  MemoryUse::Readback, "time blend ranges readback"));
   if (context.supportsTimestamps()) {
-    LIC3D_TRY_ASSIGN(pass.timer_, GpuTimer::create(context, 1, "field lerp timestamps"));
+    LIC3D_TRY_ASSIGN(pass.timer_, GpuTimer::create(context, 1, "time blend timestamps"));
   }
   return pass;
 }
 
-Result<FieldTexture> FieldInterpolation::createTarget(Dims dims, const GridGeometry& geometry,
-                                                      FieldPrecision precision) const {
+Result<FieldTexture> TimeBlendPass::createTarget(Dims dims, const GridGeometry& geometry,
+                                                 FieldPrecision precision) const {
   return createWritableFieldTexture(*context_, dims, geometry, precision,
-                                    "interpolated field and noise texture");
+                                    "blended field and noise texture");
 }
 
-Result<void> FieldInterpolation::setNoise(const NoiseVolume& noise) {
+Result<void> TimeBlendPass::setNoise(const NoiseVolume& noise) {
   LIC3D_TRY(checkVolumeDims(*context_, noise.dims, "noise"));
   std::vector<float> values(voxelCount(noise.dims));
   for (std::size_t i = 0; i < values.size(); ++i) values[i] = noise.value(i);
@@ -128,8 +128,8 @@ Result<void> FieldInterpolation::setNoise(const NoiseVolume& noise) {
   return uploadImage(*context_, noise_, values.data(), values.size() * sizeof(float));
 }
 
-Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep& b, double weight,
-                                             FieldTexture& target) {
+Result<void> TimeBlendPass::blend(const FieldStep& a, const FieldStep& b, double weight,
+                                  FieldTexture& target) {
   if (a.dims != target.dims || b.dims != target.dims || !(a.geometry == b.geometry))
     return inputError("time steps " + std::to_string(a.index) + " and " + std::to_string(b.index) +
                       " must share the field's grid (" + gridText(target.dims) +
@@ -146,19 +146,19 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
   const VkPipeline write = write_[variant].get();
 
   const glm::dvec3 unit = voxelUnitScale(target.geometry);
-  gpu::LerpPushConstants push{};
+  gpu::TimeBlendPushConstants push{};
   push.dims = glm::ivec4(target.dims, 0);
   push.unitScale = glm::vec4(glm::vec3(unit), static_cast<float>(std::clamp(weight, 0.0, 1.0)));
   push.stepScales = glm::vec4(static_cast<float>(a.scale), static_cast<float>(b.scale), 0.0f, 0.0f);
 
   DescriptorWrites writes;
-  writes.sampledImage(gpu::kLerpBindingStepA, nearest_, a.image.view())
-      .sampledImage(gpu::kLerpBindingStepB, nearest_, b.image.view())
-      .sampledImage(gpu::kLerpBindingNoise, nearest_, noise_.view())
-      .storageImage(gpu::kLerpBindingTarget, target.image.view())
-      .storageBuffer(gpu::kLerpBindingRanges, ranges_);
-  const std::uint32_t groupsX = groupCount(target.dims.x, gpu::kLerpLocalSizeX);
-  const std::uint32_t groupsY = groupCount(target.dims.y, gpu::kLerpLocalSizeY);
+  writes.sampledImage(gpu::kTimeBlendBindingStepA, nearest_, a.image.view())
+      .sampledImage(gpu::kTimeBlendBindingStepB, nearest_, b.image.view())
+      .sampledImage(gpu::kTimeBlendBindingNoise, nearest_, noise_.view())
+      .storageImage(gpu::kTimeBlendBindingTarget, target.image.view())
+      .storageBuffer(gpu::kTimeBlendBindingRanges, ranges_);
+  const std::uint32_t groupsX = groupCount(target.dims.x, gpu::kTimeBlendLocalSizeX);
+  const std::uint32_t groupsY = groupCount(target.dims.y, gpu::kTimeBlendLocalSizeY);
   const std::uint32_t groupsZ = static_cast<std::uint32_t>(target.dims.z);
 
   // Frames and LIC slabs still in flight may read the texture that is about to be rewritten.
@@ -208,12 +208,12 @@ Result<void> FieldInterpolation::interpolate(const FieldStep& a, const FieldStep
   if (timer_.valid()) {
     LIC3D_TRY_ASSIGN(lastMs_, timer_.milliseconds(0));
   }
-  std::array<float, gpu::kLerpRangeCount> ranges{};
+  std::array<float, gpu::kTimeBlendRangeCount> ranges{};
   std::memcpy(ranges.data(), readback_.mapped(), sizeof(ranges));
-  target.maxVoxelSpeed = ranges[gpu::kLerpRangeMaxSpeed];
-  target.maxMagnitude = ranges[gpu::kLerpRangeMaxMagnitude];
+  target.maxVoxelSpeed = ranges[gpu::kTimeBlendRangeMaxSpeed];
+  target.maxMagnitude = ranges[gpu::kTimeBlendRangeMaxMagnitude];
   target.minMagnitude =
-      std::min(ranges[gpu::kLerpRangeMinMagnitude], ranges[gpu::kLerpRangeMaxMagnitude]);
+      std::min(ranges[gpu::kTimeBlendRangeMinMagnitude], ranges[gpu::kTimeBlendRangeMaxMagnitude]);
   // As uploadLicInputs: a texel's xyz times this is the physical vector.
   const double speed = target.maxVoxelSpeed > 0.0 ? target.maxVoxelSpeed : 1.0;
   target.texelToPhysical = speed / unit;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/scalars.h"
+#include "loading/scalars.h"
 
 #include <filesystem>
 

@@ -13,8 +13,8 @@
 #include "core/session.h"
 #include "core/volume.h"
 #include "gpu/vulkan_context.h"
-#include "inputs/plane_inputs.h"
 #include "lic/lic_reference.h"
+#include "loading/plane_inputs.h"
 #include "passes/lic2d_pass.h"
 
 namespace lic3d {

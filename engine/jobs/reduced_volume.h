@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "core/volume.h"
-#include "inputs/bricks.h"
+#include "jobs/bricks.h"
 
 namespace lic3d {
 

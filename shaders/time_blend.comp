@@ -9,22 +9,22 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
-layout(local_size_x = kLerpLocalSizeX, local_size_y = kLerpLocalSizeY, local_size_z = 1) in;
+layout(local_size_x = kTimeBlendLocalSizeX, local_size_y = kTimeBlendLocalSizeY, local_size_z = 1) in;
 
-layout(constant_id = kLerpConstPhase) const uint PHASE = 0;
+layout(constant_id = kTimeBlendConstPhase) const uint PHASE = 0;
 
-layout(set = 0, binding = kLerpBindingStepA) uniform sampler3D stepA;
-layout(set = 0, binding = kLerpBindingStepB) uniform sampler3D stepB;
-layout(set = 0, binding = kLerpBindingNoise) uniform sampler3D noiseVolume;
-#define FIELD_TEXEL_BINDING kLerpBindingTarget
+layout(set = 0, binding = kTimeBlendBindingStepA) uniform sampler3D stepA;
+layout(set = 0, binding = kTimeBlendBindingStepB) uniform sampler3D stepB;
+layout(set = 0, binding = kTimeBlendBindingNoise) uniform sampler3D noiseVolume;
+#define FIELD_TEXEL_BINDING kTimeBlendBindingTarget
 #include "field_texel.glsl"
-layout(set = 0, binding = kLerpBindingRanges) buffer Ranges { uint ranges[kLerpRangeCount]; };
+layout(set = 0, binding = kTimeBlendBindingRanges) buffer Ranges { uint ranges[kTimeBlendRangeCount]; };
 
-layout(push_constant) uniform Push { LerpPushConstants pc; };
+layout(push_constant) uniform Push { TimeBlendPushConstants pc; };
 
-shared float groupMaxSpeed[kLerpLocalSizeX * kLerpLocalSizeY];
-shared float groupMaxMagnitude[kLerpLocalSizeX * kLerpLocalSizeY];
-shared float groupMinMagnitude[kLerpLocalSizeX * kLerpLocalSizeY];
+shared float groupMaxSpeed[kTimeBlendLocalSizeX * kTimeBlendLocalSizeY];
+shared float groupMaxMagnitude[kTimeBlendLocalSizeX * kTimeBlendLocalSizeY];
+shared float groupMinMagnitude[kTimeBlendLocalSizeX * kTimeBlendLocalSizeY];
 
 void main() {
   ivec3 voxel = ivec3(gl_GlobalInvocationID);
@@ -40,7 +40,7 @@ void main() {
 
   if (PHASE == 1) {
     if (!inside) return;
-    float maxSpeed = uintBitsToFloat(ranges[kLerpRangeMaxSpeed]);
+    float maxSpeed = uintBitsToFloat(ranges[kTimeBlendRangeMaxSpeed]);
     vec3 texel = maxSpeed > 0.0 ? u / maxSpeed : u;
     float noise = texelFetch(noiseVolume, voxel, 0).r;
     imageStore(fieldTexels, voxel, fieldTexel(texel, noise));
@@ -63,8 +63,8 @@ void main() {
     barrier();
   }
   if (local == 0) {
-    atomicMax(ranges[kLerpRangeMaxSpeed], floatBitsToUint(groupMaxSpeed[0]));
-    atomicMax(ranges[kLerpRangeMaxMagnitude], floatBitsToUint(groupMaxMagnitude[0]));
-    atomicMin(ranges[kLerpRangeMinMagnitude], floatBitsToUint(groupMinMagnitude[0]));
+    atomicMax(ranges[kTimeBlendRangeMaxSpeed], floatBitsToUint(groupMaxSpeed[0]));
+    atomicMax(ranges[kTimeBlendRangeMaxMagnitude], floatBitsToUint(groupMaxMagnitude[0]));
+    atomicMin(ranges[kTimeBlendRangeMinMagnitude], floatBitsToUint(groupMinMagnitude[0]));
   }
 }

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 
 namespace lic3d {

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/plane_inputs.h"
+#include "loading/plane_inputs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "inputs/session_inputs.h"
 #include "lic/analytic_fields.h"
 #include "lic/field_plane.h"
+#include "loading/session_inputs.h"
 
 namespace lic3d {
 namespace {

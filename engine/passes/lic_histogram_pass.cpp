@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "passes/lic_histogram.h"
+#include "passes/lic_histogram_pass.h"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,8 @@
 #include <cstring>
 #include <span>
 
-#include "gpu/gpu_submit.h"
 #include "gpu/shader_library.h"
+#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "shared_layout.h"
 

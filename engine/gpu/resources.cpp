@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 
 #include <atomic>
 #include <cstdlib>

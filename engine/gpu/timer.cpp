@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gpu/gpu_timer.h"
+#include "gpu/timer.h"
 
 #include <algorithm>
 #include <utility>

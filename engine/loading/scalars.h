@@ -10,10 +10,10 @@
 
 #include "core/error.h"
 #include "core/session.h"
-#include "inputs/session_inputs.h"
 #include "io/field_io.h"
 #include "lic/colouring.h"
-#include "passes/lic_renderer.h"
+#include "loading/session_inputs.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/session_inputs.h"
+#include "loading/session_inputs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "core/resolution.h"
 #include "core/stage_times.h"
 #include "core/value_histogram.h"
-#include "gpu/gpu_resources.h"
+#include "gpu/resources.h"
 #include "io/field_io.h"
 #include "lic/noise.h"
 #include "lic/resample.h"
@@ -339,7 +339,7 @@ Result<void> moveToTime(SessionInputs& inputs, const Session& session, double ti
     loaded.emplace_back(k, std::move(step));
   }
   LIC3D_TRY(uploadSteps(renderer, b, loaded));
-  LIC3D_TRY(renderer.interpolateTime(b.first, b.second, b.weight));
+  LIC3D_TRY(renderer.blendTime(b.first, b.second, b.weight));
   inputs.blendMs.push_back(renderer.lastBlendMilliseconds());
   return {};
 }

@@ -20,7 +20,7 @@
 #include "lic/analytic_fields.h"
 #include "lic/time_series.h"
 #include "passes/analytic_field_pass.h"
-#include "passes/lic_renderer.h"
+#include "render/lic_renderer.h"
 
 namespace lic3d {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "inputs/bricks.h"
+#include "jobs/bricks.h"
 
 #include <algorithm>
 #include <atomic>
@@ -255,10 +255,16 @@ int scanLayers(Dims dims) {
 }
 
 // A LIC dispatch (timed with GPU timestamps when asked), read back.
-Result<ScalarVolume> licOnDevice(LicRenderer& renderer, const LicParams& params, bool timed,
-                                 DeviceShare& share) {
+Result<ScalarVolume> licOnDevice(const Context& context, LicRenderer& renderer,
+                                 const LicParams& params, bool timed, DeviceShare& share) {
   if (timed) {
-    LIC3D_TRY_ASSIGN(const double milliseconds, renderer.timeLicDispatch(params));
+    GpuTimer timer;
+    if (context.supportsTimestamps()) {
+      LIC3D_TRY_ASSIGN(timer, GpuTimer::create(context, 1, "lic timestamps"));
+    }
+    LIC3D_TRY_ASSIGN(
+        const double milliseconds,
+        timeLicDispatch(context, renderer.licJob(), renderer.fieldTextures(), timer, params));
     share.licMilliseconds += milliseconds;
   } else {
     LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(params));
@@ -317,6 +323,102 @@ SessionInputs streamedInputs(const FieldStream& stream, const Session& session,
   return inputs;
 }
 
+namespace {
+
+// The LIC of the whole grid on the first device, in one piece.
+Result<void> computeWhole(const Context& context, const Session& session, SessionInputs& inputs,
+                          const LicVolumeOptions& options, const ProgressCallback& progress,
+                          LicVolumeRun& run) {
+  const Clock::time_point start = Clock::now();
+  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
+  LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
+  DeviceShare& share = run.devices[0];
+  if (options.timeLic) {
+    LIC3D_TRY_ASSIGN(run.volume, licOnDevice(context, renderer, session.lic, true, share));
+  } else {
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
+    LIC3D_TRY_ASSIGN(run.volume, renderer.readLicVolume());
+  }
+  const Dims dims = inputs.field.dims;
+  share.bricks = 1;
+  share.voxels = voxelCount(dims);
+  share.seconds = secondsSince(start);
+  share.peakDeviceBytes = context.allocatedBytes();
+  run.brickCore = dims;
+  run.devices.resize(1);
+  return {};
+}
+
+// The largest brick core that every device and the host can hold beside the whole grid's
+// arrays, or why none can (`whole`: whether the grid fit the first device whole).
+Result<Dims> chooseCore(std::span<const Context* const> devices, const Session& session, Dims dims,
+                        int ghost, const RequestShape& shape, const BrickedHost& host,
+                        const Result<void>& whole) {
+  const auto fitsEvery = [&](Dims brick) -> Result<void> {
+    for (const Context* device : devices)
+      LIC3D_TRY(checkRequestMemory(*device, session, brick, shape));
+    return {};
+  };
+  const HostShare perVoxel = hostShare(session, host);
+  const std::uint64_t hostAvailable = hostAvailableBytes();
+  const std::optional<Dims> core = chooseBrickCore(dims, ghost, [&](Dims brick) {
+    return fitsEvery(brick).ok() && hostBytes(perVoxel, dims, brick) <= hostAvailable;
+  });
+  if (core) return *core;
+  const Dims smallest = glm::min(Dims(1 + 2 * ghost), dims);
+  const Result<void> device = fitsEvery(smallest);
+  if (device) {  // the host is what cannot hold even the smallest brick beside the grid's
+    Brick brick;
+    brick.dims = smallest;
+    LIC3D_TRY(checkBrickedHostMemory(session, dims, {brick}, host));
+    return resourceLimitError("no brick of " + gridText(dims) + " fits both the host and " +
+                              "the device");
+  }
+  Error error = whole ? device.error() : whole.error();
+  error.message += "; nor does a brick of one voxel and its " + std::to_string(ghost) +
+                   " ghost layers on each side, so it cannot be made in bricks either";
+  return error;
+}
+
+// How each brick's field and noise are made on the host: read from the stream, or cut from the
+// field on the host (`made` holds it when it is sampled here). None when the device makes them.
+Result<void> preparePieces(const Session& session, SessionInputs& inputs,
+                           const LicVolumeOptions& options, std::optional<VectorField>& made,
+                           BrickJobs& jobs) {
+  const Dims dims = inputs.field.dims;
+  const std::uint64_t seed = session.noise.seed;
+  if (options.stream) {
+    StreamScan scan;
+    if (options.scan) {
+      scan = *options.scan;
+    } else {
+      LIC3D_TRY_ASSIGN(scan, scanFieldStream(*options.stream));
+    }
+    jobs.prepare = [&options, dims, seed,
+                    maxSpeed = scan.maxVoxelSpeed](const Brick& brick) -> Result<PieceInputs> {
+      LIC3D_TRY_ASSIGN(VectorField piece, options.stream->readPiece(brick.offset, brick.dims));
+      piece.piece = FieldPiece{dims, brick.offset, maxSpeed};
+      return PieceInputs{std::move(piece),
+                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, seed)};
+    };
+  } else if (!inputs.device) {
+    if (inputs.sampled) {
+      LIC3D_TRY_ASSIGN(made, hostFieldAt(inputs, session, session.time));
+    }
+    const VectorField* field = made ? &*made : &inputs.field;
+    jobs.prepare = [field, dims, seed, maxSpeed = maxVoxelSpeedOverVoxels(*field)](
+                       const Brick& brick) -> Result<PieceInputs> {
+      LIC3D_TRY_ASSIGN(VectorField piece,
+                       cutFieldPiece(*field, brick.offset, brick.dims, maxSpeed));
+      return PieceInputs{std::move(piece),
+                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, seed)};
+    };
+  }
+  return {};
+}
+
+}  // namespace
+
 Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
                                       const Session& session, SessionInputs& inputs,
                                       const LicVolumeOptions& options,
@@ -326,11 +428,6 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
                            .timeSeries = inputs.series.has_value(),
                            .deviceCap = options.deviceCap};
   const Dims dims = inputs.field.dims;
-  const auto fitsEvery = [&](Dims brick) -> Result<void> {
-    for (const Context* device : devices)
-      LIC3D_TRY(checkRequestMemory(*device, session, brick, shape));
-    return {};
-  };
   const Result<void> whole = checkRequestMemory(*devices[0], session, dims, shape);
   const bool brickable = !inputs.series && isWhiteNoise(session.noise);
   LicVolumeRun run;
@@ -344,23 +441,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
   // A streamed field is never whole on the host: always in bricks.
   if (!brickable || (whole && devices.size() == 1 && !options.stream)) {
     LIC3D_TRY(whole);
-    const Clock::time_point start = Clock::now();
-    const Context& context = *devices[0];
-    LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
-    LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
-    DeviceShare& share = run.devices[0];
-    if (options.timeLic) {
-      LIC3D_TRY_ASSIGN(run.volume, licOnDevice(renderer, session.lic, true, share));
-    } else {
-      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
-      LIC3D_TRY_ASSIGN(run.volume, renderer.readLicVolume());
-    }
-    share.bricks = 1;
-    share.voxels = voxelCount(dims);
-    share.seconds = secondsSince(start);
-    share.peakDeviceBytes = context.allocatedBytes();
-    run.brickCore = dims;
-    run.devices.resize(1);
+    LIC3D_TRY(computeWhole(*devices[0], session, inputs, options, progress, run));
     return run;
   }
   const int ghost = licGhostLayers(session.lic);
@@ -371,28 +452,9 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
       .wholeResult = !options.sink,
       .devices = static_cast<int>(devices.size())};
   // A brick fits every device, and the bricks in flight fit the host beside the whole grid's.
-  const HostShare perVoxel = hostShare(session, host);
-  const std::uint64_t hostAvailable = hostAvailableBytes();
-  std::optional<Dims> core = chooseBrickCore(dims, ghost, [&](Dims brick) {
-    return fitsEvery(brick).ok() && hostBytes(perVoxel, dims, brick) <= hostAvailable;
-  });
-  if (!core) {
-    const Dims smallest = glm::min(Dims(1 + 2 * ghost), dims);
-    const Result<void> device = fitsEvery(smallest);
-    if (device) {  // the host is what cannot hold even the smallest brick beside the grid's
-      Brick brick;
-      brick.dims = smallest;
-      LIC3D_TRY(checkBrickedHostMemory(session, dims, {brick}, host));
-      return resourceLimitError("no brick of " + gridText(dims) + " fits both the host and " +
-                                "the device");
-    }
-    Error error = whole ? device.error() : whole.error();
-    error.message += "; nor does a brick of one voxel and its " + std::to_string(ghost) +
-                     " ghost layers on each side, so it cannot be made in bricks either";
-    return error;
-  }
-  core = splitCoreForDevices(dims, *core, static_cast<int>(devices.size()));
-  const std::vector<Brick> bricks = planBricks(dims, *core, ghost);
+  LIC3D_TRY_ASSIGN(Dims core, chooseCore(devices, session, dims, ghost, shape, host, whole));
+  core = splitCoreForDevices(dims, core, static_cast<int>(devices.size()));
+  const std::vector<Brick> bricks = planBricks(dims, core, ghost);
   if (options.stream && inputs.field.dims != options.stream->dims())
     return inputError("the streamed field's grid is not the inputs' grid");
   LIC3D_TRY(checkBrickedHostMemory(session, dims, bricks, host));
@@ -404,32 +466,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
   BrickJobs jobs;
   // The field on the host, where the bricks are cut from, unless the device makes each brick's.
   std::optional<VectorField> made;
-  double maxSpeed = 0.0;
-  if (options.stream) {
-    StreamScan scan;
-    if (options.scan) {
-      scan = *options.scan;
-    } else {
-      LIC3D_TRY_ASSIGN(scan, scanFieldStream(*options.stream));
-    }
-    jobs.prepare = [&, maxSpeed = scan.maxVoxelSpeed](const Brick& brick) -> Result<PieceInputs> {
-      LIC3D_TRY_ASSIGN(VectorField piece, options.stream->readPiece(brick.offset, brick.dims));
-      piece.piece = FieldPiece{dims, brick.offset, maxSpeed};
-      return PieceInputs{std::move(piece),
-                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, session.noise.seed)};
-    };
-  } else if (!onDevice) {
-    if (inputs.sampled) {
-      LIC3D_TRY_ASSIGN(made, hostFieldAt(inputs, session, session.time));
-    }
-    const VectorField& field = made ? *made : inputs.field;
-    maxSpeed = maxVoxelSpeedOverVoxels(field);
-    jobs.prepare = [&](const Brick& brick) -> Result<PieceInputs> {
-      LIC3D_TRY_ASSIGN(VectorField piece, cutFieldPiece(field, brick.offset, brick.dims, maxSpeed));
-      return PieceInputs{std::move(piece),
-                         makeWhiteNoisePiece(dims, brick.offset, brick.dims, session.noise.seed)};
-    };
-  }
+  LIC3D_TRY(preparePieces(session, inputs, options, made, jobs));
   jobs.lic = [&](int worker, const Brick& brick,
                  std::optional<PieceInputs> in) -> Result<ScalarVolume> {
     const Clock::time_point start = Clock::now();
@@ -444,7 +481,8 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
       analytic.brickDims = brick.dims;
       LIC3D_TRY(renderer.setAnalyticInputs(analytic));
     }
-    LIC3D_TRY_ASSIGN(ScalarVolume lic, licOnDevice(renderer, session.lic, options.timeLic, share));
+    LIC3D_TRY_ASSIGN(ScalarVolume lic, licOnDevice(*devices[static_cast<std::size_t>(worker)],
+                                                   renderer, session.lic, options.timeLic, share));
     share.peakDeviceBytes = std::max(share.peakDeviceBytes,
                                      devices[static_cast<std::size_t>(worker)]->allocatedBytes());
     share.bricks += 1;
@@ -461,7 +499,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
   };
   LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs, progress));
   run.bricks = static_cast<int>(bricks.size());
-  run.brickCore = *core;
+  run.brickCore = core;
   return run;
 }
 

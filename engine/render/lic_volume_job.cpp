@@ -1,0 +1,344 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/lic_volume_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "core/parallel.h"
+#include "core/stage_times.h"
+#include "gpu/submit.h"
+
+namespace lic3d {
+namespace {
+
+// With progress reporting the pass is split into this many slabs along z (at most).
+constexpr int kProgressSlabs = 16;
+
+constexpr VkPipelineStageFlags2 kVolumeReaders =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+}  // namespace
+
+Result<LicVolumeJob> LicVolumeJob::create(const Context& context, bool doubleBuffered,
+                                          bool naiveKernel,
+                                          std::optional<LicSpecialization> launch) {
+  LicVolumeJob job;
+  job.context_ = &context;
+  job.doubleBuffered_ = doubleBuffered;
+  LIC3D_TRY_ASSIGN(job.licPass_, LicPass::create(context, naiveKernel, launch));
+  LIC3D_TRY_ASSIGN(job.histogramPass_, LicHistogramPass::create(context));
+  ImageDesc maskDesc;
+  maskDesc.format = kSparsityMaskFormat;
+  maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  maskDesc.name = "empty sparsity mask";
+  LIC3D_TRY_ASSIGN(job.emptyMask_, Image::create(context, maskDesc));
+  const std::uint8_t white = 0;
+  LIC3D_TRY(uploadImage(context, job.emptyMask_, &white, 1));
+  if (!supportsFormat(context, kLicVolumeFormat,
+                      VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT |
+                          VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+    return unsupportedError(context.deviceInfo().name +
+                            " cannot use RG16_UNORM as a filtered storage image");
+  return job;
+}
+
+void LicVolumeJob::dropField(bool newGrid, const std::optional<FieldPiece>& piece) {
+  job_.reset();
+  finished_.reset();
+  shownParams_.reset();
+  if (piece != piece_) maskParams_.reset();  // a piece's mask is cut from the whole one
+  piece_ = piece;
+  if (newGrid) {
+    maskParams_.reset();  // the mask and the volumes live on the field's grid
+    mask_ = Image();
+    volumes_[0] = Image();
+    volumes_[1] = Image();
+  }
+  fieldChanged_ = false;
+}
+
+Result<void> LicVolumeJob::ensureVolumes(const FieldTextures& textures) {
+  const FieldTexture& field = textures.field();
+  if (!field.image) return inputError("no vector field and noise were set");
+  for (int i = 0; i < (doubleBuffered_ ? 2 : 1); ++i) {
+    if (volumes_[i]) continue;
+    ImageDesc desc;
+    desc.format = kLicVolumeFormat;
+    desc.extent = extentOf(field.dims);
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.name = i == 0 ? "lic volume A" : "lic volume B";
+    LIC3D_TRY_ASSIGN(volumes_[i], Image::create(*context_, desc));
+  }
+  return {};
+}
+
+Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams& params,
+                                     const FieldTextures& textures) {
+  const FieldTexture& field = textures.field();
+  if (!field.image || volume.dims != field.dims)
+    return inputError("the LIC volume's grid does not match the field's");
+  LIC3D_TRY(ensureVolumes(textures));
+  job_.reset();
+  // RG16: the value, and whether the voxel is drawn.
+  std::vector<std::uint16_t> texels(2 * volume.values.size());
+  for (std::size_t i = 0; i < volume.values.size(); ++i) {
+    texels[2 * i] = static_cast<std::uint16_t>(
+        std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
+    texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
+  }
+  vkQueueWaitIdle(context_->queue());  // frames may still read the shown volume
+  LIC3D_TRY(
+      uploadImage(*context_, shownVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        histogramPass_.record(cmd, shownVolume(), field, textures.emptySpeed(), 0);
+      },
+      "lic histogram"));
+  // No job finished here: the statistics are this volume's histogram, taken directly.
+  finished_.reset();
+  statistics_ = intensityStatistics(histogramPass_.counts(0));
+  shownParams_ = params;
+  return {};
+}
+
+const Image& LicVolumeJob::maskFor(const LicParams& params) const {
+  return params.sparsity.distribution == SparsityDistribution::None ? emptyMask_ : mask_;
+}
+
+std::optional<double> LicVolumeJob::hiddenFraction(Dims dims) const {
+  if (!shownParams_ || shownParams_->sparsity.distribution == SparsityDistribution::None)
+    return std::nullopt;
+  return static_cast<double>(statistics_.maskedVoxels) /
+         static_cast<double>(std::max<std::size_t>(voxelCount(dims), 1));
+}
+
+std::uint64_t LicVolumeJob::bytes() const {
+  std::uint64_t bytes = 0;
+  for (const Image& v : volumes_) bytes += v ? v.memorySize() : 0;
+  return bytes + (mask_ ? mask_.memorySize() : 0);
+}
+
+LicStatus LicVolumeJob::status(Dims dims) const {
+  LicStatus status;
+  if (!job_) {
+    status.pending = finished_.has_value();
+    return status;
+  }
+  status.pending = true;
+  status.fraction = dims.z > 0 ? static_cast<double>(job_->nextZ) / dims.z : 0.0;
+  status.waitingForMask = job_->needsMask;
+  return status;
+}
+
+// ---- Jobs --------------------------------------------------------------------------------------
+
+Result<void> LicVolumeJob::start(const LicParams& params, const FieldTextures& textures,
+                                 bool force) {
+  LIC3D_TRY(validate(params));
+  const Dims dims = textures.field().dims;
+  if (!textures.field().image) return inputError("no vector field and noise were set");
+  const SparsityParams sparsity = maskParams(params);
+  LIC3D_TRY(validate(sparsity, piece_ ? piece_->wholeDims : dims));
+  if (!force && job_ && job_->params == params) return {};
+  fieldChanged_ = false;  // the job reads the field texture as it is now
+  Job job;
+  job.params = params;
+  job.needsMask = sparsity.distribution != SparsityDistribution::None &&
+                  !(maskParams_ && *maskParams_ == sparsity);
+  if (job.needsMask && job_ && job_->needsMask && maskParams(job_->params) == sparsity) {
+    // The mask the dropped job was waiting for serves this one (a new field, e.g. the next
+    // time of a series, does not change it): not made again, and not waited for here.
+    job.mask = job_->mask;
+  } else if (job.needsMask) {
+    // Some distributions take seconds (best candidate): never on the thread that draws.
+    job.mask = std::async(std::launch::async, [sparsity, dims, piece = piece_] {
+                 return piece ? makeSparsityMaskPiece(sparsity, *piece, dims)
+                              : makeSparsityMask(sparsity, dims);
+               }).share();
+  }
+  job_ = std::move(job);
+  return {};
+}
+
+Result<void> LicVolumeJob::request(const LicParams& params, const FieldTextures& textures) {
+  const std::optional<LicParams>& latest = finished_ ? finished_->params : shownParams_;
+  if (!job_ && latest && *latest == params && !fieldChanged_) return {};
+  return start(params, textures, fieldChanged_);
+}
+
+Result<void> LicVolumeJob::uploadMask(const SparsityMask& mask, Dims dims) {
+  ImageDesc desc;
+  desc.format = kSparsityMaskFormat;
+  desc.extent = extentOf(dims);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "sparsity mask";
+  // Slabs of an earlier job recorded into frames still in flight may read the old mask.
+  vkQueueWaitIdle(context_->queue());
+  maskParams_.reset();
+  mask_ = Image();
+  LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
+  LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
+  maskBeyond_ = mask.beyond;
+  ++maskBuilds_;
+  return {};
+}
+
+// Whether the job's mask is on the GPU; uploads it when the worker has finished it.
+Result<bool> LicVolumeJob::prepareMask(Dims dims) {
+  if (!job_->needsMask) return true;
+  if (job_->mask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+  const Result<SparsityMask> mask = job_->mask.get();
+  if (!mask) {
+    Error error = mask.error();
+    job_.reset();
+    return error;
+  }
+  StageTimer uploading("mask upload");
+  LIC3D_TRY(uploadMask(*mask, dims));
+  uploading.stop();
+  maskParams_ = maskParams(job_->params);
+  job_->needsMask = false;
+  return true;
+}
+
+Result<void> LicVolumeJob::waitForMask(const FieldTextures& textures) {
+  if (!job_) return {};
+  if (job_->needsMask) job_->mask.wait();
+  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ready, prepareMask(textures.field().dims));
+  return {};
+}
+
+Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& textures,
+                                     int maxSlices, std::uint32_t slot) {
+  LicWork work;
+  // A finished volume waits for collectStatistics; the next job would overwrite it.
+  if (!job_ || finished_) return work;
+  const FieldTexture& field = textures.field();
+  const Dims dims = field.dims;
+  LIC3D_TRY_ASSIGN(const bool maskReady, prepareMask(dims));
+  if (!maskReady) {
+    work.waitingForMask = true;
+    return work;
+  }
+  LIC3D_TRY(ensureVolumes(textures));
+  Image& back = backVolume();
+  const int zBegin = job_->nextZ;
+  // Whole workgroups: a slab thinner than a workgroup is deep would leave invocations idle.
+  const int depth = licPass_.launchDepth();
+  const int slices = (std::max(1, maxSlices) + depth - 1) / depth * depth;
+  const int zEnd = std::min(dims.z, zBegin + slices);
+  if (zBegin == 0) {
+    // The old contents are discarded; earlier frames and histograms must be done reading.
+    if (!doubleBuffered_) shownParams_.reset();
+    imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                 kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  } else {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  LIC3D_TRY(licPass_.record(cmd, field, maskFor(job_->params), maskBeyond_, back, job_->params,
+                            zBegin, zEnd, textures.separateNoise()));
+  work.slicesRecorded = zEnd - zBegin;
+  job_->nextZ = zEnd;
+  if (zEnd < dims.z) return work;
+
+  imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  histogramPass_.record(cmd, back, field, textures.emptySpeed(), slot);
+  // Shown once its statistics are read back: a frame never draws a volume with another's
+  // contrast stretch.
+  finished_ = Finished{job_->params, slot};
+  job_.reset();
+  ++licDispatches_;
+  work.finished = true;
+  return work;
+}
+
+void LicVolumeJob::collectStatistics(std::uint32_t slot) {
+  if (!finished_ || finished_->slot != slot) return;
+  statistics_ = intensityStatistics(histogramPass_.counts(slot));
+  if (doubleBuffered_) front_ = 1 - front_;
+  shownParams_ = finished_->params;
+  finished_.reset();
+}
+
+Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& textures,
+                                  const ProgressCallback& progress) {
+  if (!job_ && shownParams_ && *shownParams_ == params && !fieldChanged_) return false;
+  LIC3D_TRY(start(params, textures, fieldChanged_));
+  const Dims dims = textures.field().dims;
+  const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
+  while (job_) {
+    if (job_->needsMask) {
+      const StageTimer timer("mask");
+      job_->mask.wait();
+    }
+    Result<LicWork> work = LicWork{};
+    const StageTimer timer("LIC");
+    LIC3D_TRY(submitAndWait(
+        *context_, [&](VkCommandBuffer cmd) { work = record(cmd, textures, slab, 0); },
+        "lic compute"));
+    LIC3D_TRY(work);
+    if (work->finished) collectStatistics(0);
+    if (progress && work->slicesRecorded > 0)
+      progress(job_ ? static_cast<double>(job_->nextZ) / dims.z : 1.0);
+  }
+  return true;
+}
+
+Result<ScalarVolume> LicVolumeJob::read(const FieldTextures& textures) const {
+  if (!shownParams_) return inputError("no LIC volume has been computed");
+  const StageTimer timer("volume read-back");
+  const FieldTexture& field = textures.field();
+  ScalarVolume volume;
+  volume.dims = field.dims;
+  volume.geometry = field.geometry;
+  resizeLarge(volume.values, voxelCount(field.dims));
+  const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
+  if (sparse) resizeLarge(volume.drawn, volume.values.size());
+  // Converted straight from the read-back buffer: RG16, the value and whether it is drawn.
+  LIC3D_TRY(readImageWith(*context_, shownVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4,
+                          [&](const void* texels, std::size_t) {
+                            const auto* bytes = static_cast<const std::byte*>(texels);
+                            parallelChunks(
+                                volume.values.size(), [&](std::size_t begin, std::size_t end) {
+                                  for (std::size_t i = begin; i < end; ++i) {
+                                    std::uint16_t texel[2];
+                                    std::memcpy(texel, bytes + 4 * i, 4);
+                                    volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
+                                    if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
+                                  }
+                                });
+                          }));
+  return volume;
+}
+
+Result<double> timeLicDispatch(const Context& context, LicVolumeJob& job,
+                               const FieldTextures& textures, const GpuTimer& timer,
+                               const LicParams& params) {
+  if (!timer.valid()) return unsupportedError("the device has no timestamp queries");
+  LIC3D_TRY(job.start(params, textures, true));
+  LIC3D_TRY(job.waitForMask(textures));
+  Result<LicWork> work = LicWork{};
+  LIC3D_TRY(submitAndWait(
+      context,
+      [&](VkCommandBuffer cmd) {
+        timer.reset(cmd, 0);
+        timer.begin(cmd, 0);
+        work = job.record(cmd, textures, textures.field().dims.z, 0);
+        timer.end(cmd, 0);
+      },
+      "lic timing"));
+  LIC3D_TRY(work);
+  job.collectStatistics(0);
+  return timer.milliseconds(0);
+}
+
+}  // namespace lic3d

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The LIC volume on the GPU and the job that recomputes it: a job starts for a LicParams, makes
+// its sparsity mask on a worker thread and uploads it, records the LIC pass in slabs of z (one
+// command buffer or many), then the volume's intensity histogram, whose statistics make it the
+// shown volume. With doubleBuffered, the job writes a second volume, so a recompute spread over
+// many frames never shows a half-written volume.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <future>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "core/lic_params.h"
+#include "core/volume.h"
+#include "gpu/resources.h"
+#include "gpu/timer.h"
+#include "gpu/vulkan_context.h"
+#include "lic/lic_reference.h"
+#include "lic/sparsity.h"
+#include "passes/lic_histogram_pass.h"
+#include "passes/lic_pass.h"
+#include "render/field_textures.h"
+
+namespace lic3d {
+
+// What one record() call did.
+struct LicWork {
+  int slicesRecorded = 0;
+  bool finished = false;        // the job's last slice was recorded: the new volume is shown
+  bool waitingForMask = false;  // the sparsity mask is still being made on a worker thread
+};
+
+struct LicStatus {
+  bool pending = false;   // a requested volume is not finished yet
+  double fraction = 1.0;  // of the pending job's slices recorded
+  bool waitingForMask = false;
+};
+
+class LicVolumeJob {
+ public:
+  LicVolumeJob() = default;
+  // `context` must outlive the job. `naiveKernel` (benchmark builds only): the LIC pass reads the
+  // noise from a texture of its own (FieldTextures' separateNoise). `launch` replaces the device
+  // type's launch fields (licLaunchFor).
+  static Result<LicVolumeJob> create(const Context& context, bool doubleBuffered,
+                                     bool naiveKernel = false,
+                                     std::optional<LicSpecialization> launch = std::nullopt);
+
+  // A new field: the job and the shown volume are dropped, and with `newGrid` the mask and the
+  // volumes too; `piece` is the field's place in the whole grid the mask is cut from. The caller
+  // makes sure no work in flight reads them.
+  void dropField(bool newGrid, const std::optional<FieldPiece>& piece);
+  // The field texture changed under the shown volume: the next request recomputes it.
+  void markFieldChanged() { fieldChanged_ = true; }
+  // A field that is no piece of a larger grid on the same grid (a time series' blend).
+  void forgetPiece() { piece_.reset(); }
+
+  // Uses a volume computed elsewhere (the CPU reference) as the result for `params`.
+  Result<void> setVolume(const ScalarVolume& volume, const LicParams& params,
+                         const FieldTextures& textures);
+
+  // Starts a job for `params` unless the pending one has them (`force`: always); a new mask is
+  // made on a worker thread.
+  Result<void> start(const LicParams& params, const FieldTextures& textures, bool force);
+  // start() unless the shown or finished volume already has `params` for the current field.
+  Result<void> request(const LicParams& params, const FieldTextures& textures);
+  // Waits for the pending job's sparsity mask and uploads it, so that record() records at once.
+  Result<void> waitForMask(const FieldTextures& textures);
+  // Records `maxSlices` z slices of the pending job, rounded up to whole workgroups of the LIC
+  // pass; when it records the last one, the volume's histogram goes to `slot`
+  // (< LicHistogramPass::kSlots): call collectStatistics(slot) once `cmd` has completed. Until
+  // then no further work is recorded.
+  Result<LicWork> record(VkCommandBuffer cmd, const FieldTextures& textures, int maxSlices,
+                         std::uint32_t slot);
+  // Reads the histogram of `slot`; if it belongs to the finished volume, that volume and its
+  // statistics are shown from then on.
+  void collectStatistics(std::uint32_t slot);
+  // Blocking: runs the pending or needed job to its end, in slabs with a progress callback.
+  // Returns whether the LIC pass ran.
+  Result<bool> update(const LicParams& params, const FieldTextures& textures,
+                      const ProgressCallback& progress);
+  // The shown volume read back on the field's grid.
+  Result<ScalarVolume> read(const FieldTextures& textures) const;
+
+  // Whether update(params) would run the pass: no volume of `params` for the current field.
+  bool needs(const LicParams& params) const {
+    return job_ || !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
+  }
+  LicStatus status(Dims dims) const;
+  const Image& shownVolume() const { return volumes_[front_]; }
+  const std::optional<LicParams>& shownParams() const { return shownParams_; }
+  const IntensityStatistics& statistics() const { return statistics_; }
+  // The fraction of the voxels the shown volume's sparsity mask hid; nullopt without a mask.
+  std::optional<double> hiddenFraction(Dims dims) const;
+  std::uint64_t dispatchCount() const { return licDispatches_; }
+  std::uint64_t maskBuildCount() const { return maskBuilds_; }
+  // Bytes of device memory the LIC volumes and the mask hold.
+  std::uint64_t bytes() const;
+
+  // The LIC pass' launch fields from now on (pipelines of every launch stay cached), and the
+  // driver's statistics of the pipeline last used for `params` (LicPass::statistics).
+  void setLaunch(const LicSpecialization& launch) { licPass_.setLaunch(launch); }
+  std::vector<std::pair<std::string, std::string>> pipelineStatistics(
+      const LicParams& params, FieldPrecision precision) const {
+    return licPass_.statistics(params, precision);
+  }
+  std::size_t variantCount() const { return licPass_.variantCount(); }
+
+ private:
+  // The computation of one LIC volume, possibly spread over many command buffers.
+  struct Job {
+    LicParams params;
+    int nextZ = 0;
+    bool needsMask = false;
+    std::shared_future<Result<SparsityMask>> mask;
+  };
+  struct Finished {
+    LicParams params;
+    std::uint32_t slot = 0;  // of the histogram to read
+  };
+
+  Result<void> ensureVolumes(const FieldTextures& textures);
+  Result<bool> prepareMask(Dims dims);
+  Result<void> uploadMask(const SparsityMask& mask, Dims dims);
+  const Image& maskFor(const LicParams& params) const;
+  Image& backVolume() { return volumes_[doubleBuffered_ ? 1 - front_ : front_]; }
+
+  const Context* context_ = nullptr;
+  LicPass licPass_;
+  LicHistogramPass histogramPass_;
+  bool doubleBuffered_ = false;
+  Image volumes_[2];  // the shown one is volumes_[front_]; the other is written by jobs
+  int front_ = 0;
+  std::optional<LicParams> shownParams_;  // what the shown volume holds; empty when none
+  std::optional<Job> job_;
+  std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
+  IntensityStatistics statistics_;
+  std::uint64_t licDispatches_ = 0;
+  Image mask_;       // the sparsity mask of maskParams_ on the field's grid
+  Image emptyMask_;  // 1x1x1, bound when sparsity is off
+  std::optional<SparsityParams> maskParams_;
+  MaskBeyondGrid maskBeyond_;        // of mask_
+  std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
+  std::uint64_t maskBuilds_ = 0;
+  bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
+};
+
+// GPU milliseconds of one LIC dispatch over the whole volume of `params` (always dispatched;
+// the volume is then shown), from region 0 of `timer`: what the benchmark and
+// `compute --time-lic` measure.
+Result<double> timeLicDispatch(const Context& context, LicVolumeJob& job,
+                               const FieldTextures& textures, const GpuTimer& timer,
+                               const LicParams& params);
+
+}  // namespace lic3d
