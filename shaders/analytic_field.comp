@@ -14,7 +14,7 @@
 #include "field_texel.glsl"
 
 layout(local_size_x = kAnalyticLocalSizeX, local_size_y = kAnalyticLocalSizeY) in;
-layout(constant_id = kAnalyticConstPhase) const uint PHASE = 0;
+layout(constant_id = kAnalyticConstPhase) const uint PHASE = kAnalyticDefaultPhase;
 
 layout(set = 0, binding = kAnalyticBindingStatistics, std430) buffer Statistics {
   uint statistics[kAnalyticStatisticsWords];

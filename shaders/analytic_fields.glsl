@@ -5,7 +5,8 @@
 #ifndef LIC3D_ANALYTIC_FIELDS_GLSL
 #define LIC3D_ANALYTIC_FIELDS_GLSL
 
-layout(constant_id = kAnalyticConstField) const uint FIELD = 0;  // AnalyticField
+// The AnalyticField.
+layout(constant_id = kAnalyticConstField) const uint FIELD = kAnalyticDefaultField;
 
 // Crawfis' tornado, as lic/analytic_fields.cpp writes it.
 vec3 tornado(vec3 p, float time) {

@@ -8,17 +8,22 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
-layout(local_size_x_id = kLic2DConstLocalSizeX, local_size_y_id = kLic2DConstLocalSizeY,
+layout(local_size_x = kLic2DDefaultLocalSizeX, local_size_x_id = kLic2DConstLocalSizeX,
+       local_size_y = kLic2DDefaultLocalSizeY, local_size_y_id = kLic2DConstLocalSizeY,
        local_size_z = 1) in;
 
-layout(constant_id = kLic2DConstIntegrator) const uint INTEGRATOR = 1;    // 0 euler, 1 rk2, 2 rk4
-layout(constant_id = kLic2DConstKernel) const uint KERNEL = 0;            // 0 box, 1 hann, 2 gauss
-layout(constant_id = kLic2DConstNoiseFilter) const uint NOISE_FILTER = 1; // 0 nearest, 1 bilinear
-layout(constant_id = kLic2DConstDirection) const uint DIRECTION = 0;      // 0 u/|u|, 1 u/max|u|
+// 0 euler, 1 rk2, 2 rk4
+layout(constant_id = kLic2DConstIntegrator) const uint INTEGRATOR = kLic2DDefaultIntegrator;
+// 0 box, 1 hann, 2 gauss
+layout(constant_id = kLic2DConstKernel) const uint KERNEL = kLic2DDefaultKernel;
+// 0 nearest, 1 bilinear
+layout(constant_id = kLic2DConstNoiseFilter) const uint NOISE_FILTER = kLic2DDefaultNoiseFilter;
+// 0 u/|u|, 1 u/max|u|
+layout(constant_id = kLic2DConstDirection) const uint DIRECTION = kLic2DDefaultDirection;
 // How RK2 steps, as in lic.comp (LicParams::scheme): 0 exact, every step an RK2 step; 1 the first
 // step RK2 and the others two-step Adams-Bashforth steps from the directions at the last two
 // samples (one fetch per sample); 2 fused, RK2 steps of 2h whose midpoint is a sample.
-layout(constant_id = kLic2DConstScheme) const uint SCHEME = 1;
+layout(constant_id = kLic2DConstScheme) const uint SCHEME = kLic2DDefaultScheme;
 
 // xy = u / max|u|, u the field in output pixel units (engine/lic2d_pass.h).
 layout(set = 0, binding = kLic2DBindingField) uniform sampler2D fieldTexture;

@@ -112,6 +112,24 @@ LIC3D_CONST kSliceConstOpacityTable = 13;     // 0 magnitude opacity, 1 the cust
 LIC3D_CONST kSliceConstClipPlane = 14;        // 0 off, 1 discard where dot(p - point, n) > 0
 LIC3D_CONST kSliceConstColorSource = 15;      // colour scalar: 0 |v| (field texture), 1 scalars.r
 LIC3D_CONST kSliceConstOpacitySource = 16;    // opacity scalar: 0 |v|, 1 scalars.g
+// Their one default each, which slice.frag and SliceSpecialization both take.
+LIC3D_CONST kSliceDefaultOpacityMode = 1;  // alpha * grey
+LIC3D_CONST kSliceDefaultOrthographic = 0;
+LIC3D_CONST kSliceDefaultColorMode = 0;
+LIC3D_CONST kSliceDefaultColormap = 0;
+LIC3D_CONST kSliceDefaultMagnitudeOpacity = 0;
+LIC3D_CONST kSliceDefaultSparsity = 0;
+LIC3D_CONST kSliceDefaultRoiShape = 0;
+LIC3D_CONST kSliceDefaultRoiOutside = 0;
+LIC3D_CONST kSliceDefaultFog = 0;
+LIC3D_CONST kSliceDefaultLighting = 0;
+LIC3D_CONST kSliceDefaultFilter = 1;  // trilinear
+LIC3D_CONST kSliceDefaultAnaglyph = 0;
+LIC3D_CONST kSliceDefaultFieldPacking = kLicDefaultPacking;
+LIC3D_CONST kSliceDefaultOpacityTable = 0;
+LIC3D_CONST kSliceDefaultClipPlane = 0;
+LIC3D_CONST kSliceDefaultColorSource = 0;
+LIC3D_CONST kSliceDefaultOpacitySource = 0;
 
 // One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
 struct SliceUniforms {
@@ -157,6 +175,14 @@ LIC3D_CONST kLic2DConstDirection = 3;
 LIC3D_CONST kLic2DConstLocalSizeX = 4;
 LIC3D_CONST kLic2DConstLocalSizeY = 5;
 LIC3D_CONST kLic2DConstScheme = 6;  // LicParams::scheme, as kLicConstScheme
+// Their one default each, which lic2d.comp and Lic2DSpecialization both take.
+LIC3D_CONST kLic2DDefaultIntegrator = 1;   // rk2
+LIC3D_CONST kLic2DDefaultKernel = 0;       // box
+LIC3D_CONST kLic2DDefaultNoiseFilter = 1;  // bilinear
+LIC3D_CONST kLic2DDefaultDirection = 0;    // u/|u|
+LIC3D_CONST kLic2DDefaultLocalSizeX = 8;
+LIC3D_CONST kLic2DDefaultLocalSizeY = 8;
+LIC3D_CONST kLic2DDefaultScheme = 1;  // ab2 (LicParams' default is exact; every pipeline sets it)
 
 struct Lic2DPushConstants {
   ivec4 size;             // xy: output image size in pixels; zw: unused
@@ -179,6 +205,7 @@ LIC3D_CONST kTimeBlendBindingTarget = 3;  // image3D: the field texture (RGBA16F
 LIC3D_CONST kTimeBlendBindingRanges =
     4;  // buffer of kTimeBlendRangeCount uints, float bits (see below)
 LIC3D_CONST kTimeBlendConstPhase = 0;  // 0: measure the interpolated field, 1: write the texture
+LIC3D_CONST kTimeBlendDefaultPhase = 0;
 LIC3D_CONST kTimeBlendLocalSizeX = 8;
 LIC3D_CONST kTimeBlendLocalSizeY = 8;
 // The ranges buffer: non-negative floats as uint bits (their order is the floats' order).
@@ -207,6 +234,8 @@ LIC3D_CONST kAnalyticBindingTexels = 0;      // image3D: the field and noise tex
 LIC3D_CONST kAnalyticBindingStatistics = 1;  // AnalyticStatistics
 LIC3D_CONST kAnalyticConstField = 0;         // the AnalyticField
 LIC3D_CONST kAnalyticConstPhase = 1;         // analytic_field.comp: 0 measure, 1 write
+LIC3D_CONST kAnalyticDefaultField = 0;       // AnalyticField::Tornado
+LIC3D_CONST kAnalyticDefaultPhase = 0;
 LIC3D_CONST kAnalyticLocalSizeX = 8;
 LIC3D_CONST kAnalyticLocalSizeY = 8;
 LIC3D_CONST kAnalyticLayersPerGroup = 16;   // z layers one texel workgroup walks

@@ -32,28 +32,30 @@ layout(set = 0, binding = kSliceBindingScalars) uniform sampler3D scalars;
 #define COLOR_SOURCE u.modes[3].z
 #define OPACITY_SOURCE u.modes[3].w
 #else
-layout(constant_id = kSliceConstOpacityMode) const uint OPACITY_MODE = 1;
-layout(constant_id = kSliceConstOrthographic) const uint ORTHOGRAPHIC = 0;
-layout(constant_id = kSliceConstColorMode) const uint COLOR_MODE = 0;
-layout(constant_id = kSliceConstColormap) const uint COLORMAP = 0;
-layout(constant_id = kSliceConstMagnitudeOpacity) const uint MAGNITUDE_OPACITY = 0;
-layout(constant_id = kSliceConstSparsity) const uint SPARSITY = 0;
-layout(constant_id = kSliceConstRoiShape) const uint ROI_SHAPE = 0;
-layout(constant_id = kSliceConstRoiOutside) const uint ROI_OUTSIDE = 0;
-layout(constant_id = kSliceConstFog) const uint FOG = 0;
-layout(constant_id = kSliceConstLighting) const uint LIGHTING = 0;
-layout(constant_id = kSliceConstFilter) const uint FILTER = 1;
-layout(constant_id = kSliceConstAnaglyph) const uint ANAGLYPH = 0;
+layout(constant_id = kSliceConstOpacityMode) const uint OPACITY_MODE = kSliceDefaultOpacityMode;
+layout(constant_id = kSliceConstOrthographic) const uint ORTHOGRAPHIC = kSliceDefaultOrthographic;
+layout(constant_id = kSliceConstColorMode) const uint COLOR_MODE = kSliceDefaultColorMode;
+layout(constant_id = kSliceConstColormap) const uint COLORMAP = kSliceDefaultColormap;
+layout(constant_id = kSliceConstMagnitudeOpacity) const uint MAGNITUDE_OPACITY =
+    kSliceDefaultMagnitudeOpacity;
+layout(constant_id = kSliceConstSparsity) const uint SPARSITY = kSliceDefaultSparsity;
+layout(constant_id = kSliceConstRoiShape) const uint ROI_SHAPE = kSliceDefaultRoiShape;
+layout(constant_id = kSliceConstRoiOutside) const uint ROI_OUTSIDE = kSliceDefaultRoiOutside;
+layout(constant_id = kSliceConstFog) const uint FOG = kSliceDefaultFog;
+layout(constant_id = kSliceConstLighting) const uint LIGHTING = kSliceDefaultLighting;
+layout(constant_id = kSliceConstFilter) const uint FILTER = kSliceDefaultFilter;
+layout(constant_id = kSliceConstAnaglyph) const uint ANAGLYPH = kSliceDefaultAnaglyph;
 // Opacity from the transfer function's table (the custom row's alpha) instead of t^E.
-layout(constant_id = kSliceConstOpacityTable) const uint OPACITY_TABLE = 0;
-layout(constant_id = kSliceConstClipPlane) const uint CLIP_PLANE = 0;
+layout(constant_id = kSliceConstOpacityTable) const uint OPACITY_TABLE = kSliceDefaultOpacityTable;
+layout(constant_id = kSliceConstClipPlane) const uint CLIP_PLANE = kSliceDefaultClipPlane;
 // What colour and opacity follow: 0 the speed |v| from the field texture, 1 the scalar texture.
-layout(constant_id = kSliceConstColorSource) const uint COLOR_SOURCE = 0;
-layout(constant_id = kSliceConstOpacitySource) const uint OPACITY_SOURCE = 0;
+layout(constant_id = kSliceConstColorSource) const uint COLOR_SOURCE = kSliceDefaultColorSource;
+layout(constant_id = kSliceConstOpacitySource) const uint OPACITY_SOURCE =
+    kSliceDefaultOpacitySource;
 #endif
 
 // Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
-layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = 0;
+layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = kSliceDefaultFieldPacking;
 
 layout(location = 0) in vec3 texCoord;
 layout(location = 1) in vec3 world;

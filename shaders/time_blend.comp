@@ -11,7 +11,7 @@
 
 layout(local_size_x = kTimeBlendLocalSizeX, local_size_y = kTimeBlendLocalSizeY, local_size_z = 1) in;
 
-layout(constant_id = kTimeBlendConstPhase) const uint PHASE = 0;
+layout(constant_id = kTimeBlendConstPhase) const uint PHASE = kTimeBlendDefaultPhase;
 
 layout(set = 0, binding = kTimeBlendBindingStepA) uniform sampler3D stepA;
 layout(set = 0, binding = kTimeBlendBindingStepB) uniform sampler3D stepB;

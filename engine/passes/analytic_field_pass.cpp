@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <memory>
 
@@ -20,12 +21,15 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the field, 1: the phase (shaders/analytic_field.comp).
+// constant_id i <-> field i (see shaders/analytic_field.comp), each defaulting to the shader's
+// default (shared_layout.h).
 struct AnalyticFieldSpecialization {
-  std::uint32_t field = 0;
-  std::uint32_t phase = 0;
+  std::uint32_t field = gpu::kAnalyticDefaultField;
+  std::uint32_t phase = gpu::kAnalyticDefaultPhase;
 };
-static_assert(sizeof(AnalyticFieldSpecialization) == 8);
+static_assert(sizeof(AnalyticFieldSpecialization) == 2 * 4);
+static_assert(offsetof(AnalyticFieldSpecialization, field) == 4 * gpu::kAnalyticConstField);
+static_assert(offsetof(AnalyticFieldSpecialization, phase) == 4 * gpu::kAnalyticConstPhase);
 
 }  // namespace
 

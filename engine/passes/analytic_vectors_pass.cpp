@@ -2,6 +2,7 @@
 #include "passes/analytic_vectors_pass.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <string>
 
 #include "core/parallel.h"
@@ -15,11 +16,13 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the field (shaders/analytic_vectors.comp).
+// constant_id i <-> field i (see shaders/analytic_fields.glsl), defaulting to the shader's
+// default (shared_layout.h).
 struct AnalyticVectorsSpecialization {
-  std::uint32_t field = 0;
+  std::uint32_t field = gpu::kAnalyticDefaultField;
 };
-static_assert(sizeof(AnalyticVectorsSpecialization) == 4);
+static_assert(sizeof(AnalyticVectorsSpecialization) == 1 * 4);
+static_assert(offsetof(AnalyticVectorsSpecialization, field) == 4 * gpu::kAnalyticConstField);
 
 // The slab buffer: at most this many bytes (and the device's storage buffer range), so that
 // memory stays bounded whatever the grid.

@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <utility>
@@ -20,22 +21,31 @@
 #include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
 #include "passes/volume_textures.h"
+#include "shared_layout.h"
 
 namespace lic3d {
 
-// constant_id i <-> field i (see shaders/lic2d.comp).
+// constant_id i <-> field i (see shaders/lic2d.comp), each defaulting to the shader's default
+// (shared_layout.h).
 struct Lic2DSpecialization {
-  std::uint32_t integrator = 1;
-  std::uint32_t kernel = 0;
-  std::uint32_t noiseFilter = 1;
-  std::uint32_t direction = 0;
-  std::uint32_t localSizeX = 8;
-  std::uint32_t localSizeY = 8;
-  std::uint32_t scheme = 1;
+  std::uint32_t integrator = gpu::kLic2DDefaultIntegrator;
+  std::uint32_t kernel = gpu::kLic2DDefaultKernel;
+  std::uint32_t noiseFilter = gpu::kLic2DDefaultNoiseFilter;
+  std::uint32_t direction = gpu::kLic2DDefaultDirection;
+  std::uint32_t localSizeX = gpu::kLic2DDefaultLocalSizeX;
+  std::uint32_t localSizeY = gpu::kLic2DDefaultLocalSizeY;
+  std::uint32_t scheme = gpu::kLic2DDefaultScheme;
 
   bool operator==(const Lic2DSpecialization&) const = default;
 };
 static_assert(sizeof(Lic2DSpecialization) == 7 * 4);
+static_assert(offsetof(Lic2DSpecialization, integrator) == 4 * gpu::kLic2DConstIntegrator);
+static_assert(offsetof(Lic2DSpecialization, kernel) == 4 * gpu::kLic2DConstKernel);
+static_assert(offsetof(Lic2DSpecialization, noiseFilter) == 4 * gpu::kLic2DConstNoiseFilter);
+static_assert(offsetof(Lic2DSpecialization, direction) == 4 * gpu::kLic2DConstDirection);
+static_assert(offsetof(Lic2DSpecialization, localSizeX) == 4 * gpu::kLic2DConstLocalSizeX);
+static_assert(offsetof(Lic2DSpecialization, localSizeY) == 4 * gpu::kLic2DConstLocalSizeY);
+static_assert(offsetof(Lic2DSpecialization, scheme) == 4 * gpu::kLic2DConstScheme);
 
 Lic2DSpecialization lic2DSpecialization(const LicParams& params);
 

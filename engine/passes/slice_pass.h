@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <tuple>
@@ -25,29 +26,49 @@
 
 namespace lic3d {
 
-// constant_id i <-> field i (see shaders/slice.frag and shared_layout.h).
+// constant_id i <-> field i (see shaders/slice.frag), each defaulting to the shader's default
+// (shared_layout.h).
 struct SliceSpecialization {
-  std::uint32_t opacityMode = 1;
-  std::uint32_t orthographic = 0;
-  std::uint32_t colorMode = 0;
-  std::uint32_t colormap = 0;
-  std::uint32_t magnitudeOpacity = 0;
-  std::uint32_t sparsity = 0;
-  std::uint32_t roiShape = 0;
-  std::uint32_t roiOutside = 0;
-  std::uint32_t fog = 0;
-  std::uint32_t lighting = 0;
-  std::uint32_t filter = 1;
-  std::uint32_t anaglyph = 0;
-  std::uint32_t fieldPacking = 0;  // LicSpecialization::packing
-  std::uint32_t opacityTable = 0;  // the transfer function's opacities
-  std::uint32_t clipPlane = 0;
-  std::uint32_t colorSource = 0;    // 1: the scalar texture's R (ScalarTexture::color)
-  std::uint32_t opacitySource = 0;  // 1: its G
+  std::uint32_t opacityMode = gpu::kSliceDefaultOpacityMode;
+  std::uint32_t orthographic = gpu::kSliceDefaultOrthographic;
+  std::uint32_t colorMode = gpu::kSliceDefaultColorMode;
+  std::uint32_t colormap = gpu::kSliceDefaultColormap;
+  std::uint32_t magnitudeOpacity = gpu::kSliceDefaultMagnitudeOpacity;
+  std::uint32_t sparsity = gpu::kSliceDefaultSparsity;
+  std::uint32_t roiShape = gpu::kSliceDefaultRoiShape;
+  std::uint32_t roiOutside = gpu::kSliceDefaultRoiOutside;
+  std::uint32_t fog = gpu::kSliceDefaultFog;
+  std::uint32_t lighting = gpu::kSliceDefaultLighting;
+  std::uint32_t filter = gpu::kSliceDefaultFilter;
+  std::uint32_t anaglyph = gpu::kSliceDefaultAnaglyph;
+  std::uint32_t fieldPacking = gpu::kSliceDefaultFieldPacking;  // LicSpecialization::packing
+  std::uint32_t opacityTable = gpu::kSliceDefaultOpacityTable;  // the transfer function's opacities
+  std::uint32_t clipPlane = gpu::kSliceDefaultClipPlane;
+  // 1: the scalar texture's R (ScalarTexture::color)
+  std::uint32_t colorSource = gpu::kSliceDefaultColorSource;
+  std::uint32_t opacitySource = gpu::kSliceDefaultOpacitySource;  // 1: its G
 
   bool operator==(const SliceSpecialization&) const = default;
 };
 static_assert(sizeof(SliceSpecialization) == 17 * 4);
+static_assert(offsetof(SliceSpecialization, opacityMode) == 4 * gpu::kSliceConstOpacityMode);
+static_assert(offsetof(SliceSpecialization, orthographic) == 4 * gpu::kSliceConstOrthographic);
+static_assert(offsetof(SliceSpecialization, colorMode) == 4 * gpu::kSliceConstColorMode);
+static_assert(offsetof(SliceSpecialization, colormap) == 4 * gpu::kSliceConstColormap);
+static_assert(offsetof(SliceSpecialization, magnitudeOpacity) ==
+              4 * gpu::kSliceConstMagnitudeOpacity);
+static_assert(offsetof(SliceSpecialization, sparsity) == 4 * gpu::kSliceConstSparsity);
+static_assert(offsetof(SliceSpecialization, roiShape) == 4 * gpu::kSliceConstRoiShape);
+static_assert(offsetof(SliceSpecialization, roiOutside) == 4 * gpu::kSliceConstRoiOutside);
+static_assert(offsetof(SliceSpecialization, fog) == 4 * gpu::kSliceConstFog);
+static_assert(offsetof(SliceSpecialization, lighting) == 4 * gpu::kSliceConstLighting);
+static_assert(offsetof(SliceSpecialization, filter) == 4 * gpu::kSliceConstFilter);
+static_assert(offsetof(SliceSpecialization, anaglyph) == 4 * gpu::kSliceConstAnaglyph);
+static_assert(offsetof(SliceSpecialization, fieldPacking) == 4 * gpu::kSliceConstFieldPacking);
+static_assert(offsetof(SliceSpecialization, opacityTable) == 4 * gpu::kSliceConstOpacityTable);
+static_assert(offsetof(SliceSpecialization, clipPlane) == 4 * gpu::kSliceConstClipPlane);
+static_assert(offsetof(SliceSpecialization, colorSource) == 4 * gpu::kSliceConstColorSource);
+static_assert(offsetof(SliceSpecialization, opacitySource) == 4 * gpu::kSliceConstOpacitySource);
 
 // What a frame needs to know about the volume besides the view.
 struct VolumeFacts {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
@@ -15,11 +16,13 @@
 namespace lic3d {
 namespace {
 
-// constant_id 0: the phase (see shaders/time_blend.comp).
+// constant_id i <-> field i (see shaders/time_blend.comp), defaulting to the shader's default
+// (shared_layout.h).
 struct TimeBlendSpecialization {
-  std::uint32_t phase = 0;
+  std::uint32_t phase = gpu::kTimeBlendDefaultPhase;
 };
-static_assert(sizeof(TimeBlendSpecialization) == 4);
+static_assert(sizeof(TimeBlendSpecialization) == 1 * 4);
+static_assert(offsetof(TimeBlendSpecialization, phase) == 4 * gpu::kTimeBlendConstPhase);
 
 // Steps keep 16 bits at least: they are blended before the texture's own rounding.
 VkFormat stepFormat(FieldPrecision precision) {
