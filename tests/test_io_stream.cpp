@@ -28,6 +28,7 @@ namespace lic3d {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytesOf;
 
 constexpr Dims kDims{7, 5, 4};
 const GridGeometry kGeometry{{0.5, 0.25, 2.0}, {-1.0, 3.0, 0.125}};
@@ -44,17 +45,6 @@ VectorField makeField(Dims dims = kDims) {
   field.vectors[9].y = std::numeric_limits<float>::quiet_NaN();
   field.vectors[31].z = std::numeric_limits<float>::infinity();
   return field;
-}
-
-template <class T>
-std::string bytesOf(const std::vector<T>& values, std::endian order) {
-  std::string bytes(values.size() * sizeof(T), '\0');
-  std::memcpy(bytes.data(), values.data(), bytes.size());
-  if (order != std::endian::native)
-    for (std::size_t i = 0; i < values.size(); ++i)
-      std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i * sizeof(T)),
-                   bytes.begin() + static_cast<std::ptrdiff_t>((i + 1) * sizeof(T)));
-  return bytes;
 }
 
 template <class T>

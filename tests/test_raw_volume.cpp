@@ -22,29 +22,11 @@ namespace lic3d {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytesOf;
+using test::expectInputError;
+using test::expectSameField;
 
 class RawVolumeTest : public test::TempFolderTest {};
-
-template <class T>
-void expectInputError(const Result<T>& result, const fs::path& file, const std::string& fragment) {
-  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
-  const std::string& message = result.error().message;
-  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
-  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
-  EXPECT_NE(message.find(fragment), std::string::npos)
-      << "'" << fragment << "' not in: " << message;
-}
-
-template <class T>
-std::string bytesOf(const std::vector<T>& values, std::endian order) {
-  std::string bytes(values.size() * sizeof(T), '\0');
-  std::memcpy(bytes.data(), values.data(), bytes.size());
-  if (order != std::endian::native)
-    for (std::size_t i = 0; i < values.size(); ++i)
-      std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i * sizeof(T)),
-                   bytes.begin() + static_cast<std::ptrdiff_t>((i + 1) * sizeof(T)));
-  return bytes;
-}
 
 VectorField makeField(Dims dims) {
   VectorField field;
@@ -73,14 +55,6 @@ std::vector<T> planar(const VectorField& field) {
 }
 
 const char kGeometry[] = R"("spacing": [0.5, 0.25, 2], "origin": [-1, 3, 0.125])";
-
-void expectSameField(const VectorField& actual, const VectorField& expected) {
-  EXPECT_EQ(actual.dims, expected.dims);
-  EXPECT_EQ(actual.geometry, expected.geometry);
-  ASSERT_EQ(actual.vectors.size(), expected.vectors.size());
-  for (std::size_t i = 0; i < expected.vectors.size(); ++i)
-    ASSERT_EQ(actual.vectors[i], expected.vectors[i]) << "voxel " << i;
-}
 
 TEST_F(RawVolumeTest, ReadsEveryLayoutTypeAndByteOrder) {
   const VectorField field = makeField({4, 3, 2});

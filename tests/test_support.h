@@ -4,10 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "core/error.h"
+#include "core/volume.h"
 
 namespace lic3d::test {
 
@@ -15,6 +22,39 @@ namespace lic3d::test {
 std::filesystem::path dataFolder();
 
 std::string readWhole(const std::filesystem::path& file);
+
+// Values as bytes in the given byte order.
+template <class T>
+std::string bytesOf(const std::vector<T>& values, std::endian order) {
+  std::string bytes(values.size() * sizeof(T), '\0');
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  if (order != std::endian::native)
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i * sizeof(T)),
+                   bytes.begin() + static_cast<std::ptrdiff_t>((i + 1) * sizeof(T)));
+  return bytes;
+}
+
+// The same grid, geometry and vectors, bit for bit.
+inline void expectSameField(const VectorField& actual, const VectorField& expected) {
+  EXPECT_EQ(actual.dims, expected.dims);
+  EXPECT_EQ(actual.geometry, expected.geometry);
+  ASSERT_EQ(actual.vectors.size(), expected.vectors.size());
+  for (std::size_t i = 0; i < expected.vectors.size(); ++i)
+    ASSERT_EQ(actual.vectors[i], expected.vectors[i]) << "voxel " << i;
+}
+
+// `result` is an input error whose message names `file` and contains `fragment`.
+template <class T>
+void expectInputError(const Result<T>& result, const std::filesystem::path& file,
+                      const std::string& fragment) {
+  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
+  const std::string& message = result.error().message;
+  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
+  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
+  EXPECT_NE(message.find(fragment), std::string::npos)
+      << "'" << fragment << "' not in: " << message;
+}
 
 // `data` as one zlib stream (windowBits 15) or gzip stream (15 + 16), as VTK and teem write them.
 std::string deflateBytes(const std::string& data, int windowBits);

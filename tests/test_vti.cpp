@@ -31,16 +31,6 @@ using namespace test;  // the VTI files of vti_test_files.h
 
 class VtiTest : public test::TempFolderTest {};
 
-template <class T>
-void expectInputError(const Result<T>& result, const fs::path& file, const std::string& fragment) {
-  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
-  const std::string& message = result.error().message;
-  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
-  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
-  EXPECT_NE(message.find(fragment), std::string::npos)
-      << "'" << fragment << "' not in: " << message;
-}
-
 void expectRamp(const VectorField& field, double start, double step) {
   ASSERT_EQ(field.vectors.size() * 3, 36u);
   for (std::size_t i = 0; i < 36; ++i)

@@ -29,6 +29,7 @@ namespace lic3d {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectInputError;
 
 using test::dataFolder;
 using test::readWhole;
@@ -56,16 +57,6 @@ std::string asciiNumbers(std::size_t count, double start, double step) {
     text += (i % 9 == 8 || i + 1 == count) ? "\n" : " ";
   }
   return text;
-}
-
-template <class T>
-void expectInputError(const Result<T>& result, const fs::path& file, const std::string& fragment) {
-  ASSERT_FALSE(result.ok()) << "expected an error containing '" << fragment << "'";
-  const std::string& message = result.error().message;
-  EXPECT_EQ(result.error().kind, ErrorKind::InvalidInput) << message;
-  EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
-  EXPECT_NE(message.find(fragment), std::string::npos)
-      << "'" << fragment << "' not in: " << message;
 }
 
 struct Magnitudes {
