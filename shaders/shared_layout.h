@@ -105,13 +105,16 @@ LIC3D_CONST kSliceConstRoiShape = 6;          // 0 none, 1 sphere, 2 cube, 3 cyl
 LIC3D_CONST kSliceConstRoiOutside = 7;        // 0 keep the inside, 1 keep the outside
 LIC3D_CONST kSliceConstFog = 8;               // 0 off, 1 linear depth cueing
 LIC3D_CONST kSliceConstLighting = 9;          // 0 none, 1 Phong with TNB normals, 2 lines
-LIC3D_CONST kSliceConstFilter = 10;           // 0 nearest voxel, 1 trilinear
+LIC3D_CONST kSliceConstFilter = 10;           // 0 nearest voxel, 1 trilinear, 2 cubic B-spline
 LIC3D_CONST kSliceConstAnaglyph = 11;         // 0 colour, 1 left eye (red), 2 right eye (cyan)
 LIC3D_CONST kSliceConstFieldPacking = 12;     // the field texture's packing (kLicConstPacking)
 LIC3D_CONST kSliceConstOpacityTable = 13;     // 0 magnitude opacity, 1 the custom table row's alpha
 LIC3D_CONST kSliceConstClipPlane = 14;        // 0 off, 1 discard where dot(p - point, n) > 0
 LIC3D_CONST kSliceConstColorSource = 15;      // colour scalar: 0 |v| (field texture), 1 scalars.r
 LIC3D_CONST kSliceConstOpacitySource = 16;    // opacity scalar: 0 |v|, 1 scalars.g
+LIC3D_CONST kSliceConstHalo = 17;             // 0 off, 1 dark borders around streaks (halos)
+LIC3D_CONST kSliceConstOcclusion = 18;        // 0 off, 1 front to back with an occlusion buffer
+LIC3D_CONST kSliceConstJitter = 19;           // 0 off, 1 each pixel's samples offset along its ray
 // Their one default each, which slice.frag and SliceSpecialization both take.
 LIC3D_CONST kSliceDefaultOpacityMode = 1;  // alpha * grey
 LIC3D_CONST kSliceDefaultOrthographic = 0;
@@ -130,6 +133,13 @@ LIC3D_CONST kSliceDefaultOpacityTable = 0;
 LIC3D_CONST kSliceDefaultClipPlane = 0;
 LIC3D_CONST kSliceDefaultColorSource = 0;
 LIC3D_CONST kSliceDefaultOpacitySource = 0;
+LIC3D_CONST kSliceDefaultHalo = 0;
+LIC3D_CONST kSliceDefaultOcclusion = 0;
+LIC3D_CONST kSliceDefaultJitter = 1;
+LIC3D_CONST kSliceBindingOcclusion = 5;   // sampler2D: the occlusion buffer of the slice in front
+LIC3D_CONST kOcclusionTaps = 6;  // the occlusion buffer blurred by a ring of taps and the centre
+// The composite of the occlusion-shaded image into the frame (passes/occlusion_pass.h).
+LIC3D_CONST kOcclusionBindingImage = 0;  // sampler2D: the finished image
 
 // One draw's parameters (a uniform buffer slot each; stereo draws twice per frame).
 struct SliceUniforms {
@@ -145,7 +155,7 @@ struct SliceUniforms {
   vec4 toViewer;          // xyz: unit direction from the volume to the camera; w: unused
   vec4 transfer;          // grey = clamp(x * intensity + y); z: reference distance; w: unused
   vec4 magnitude;         // x: low end of the colour range (physical |v|), y: 1 / (high - low),
-                          // zw: unused
+                          // z: the opacity weight's floor above the threshold; w: unused
   vec4 magnitudeOpacity;  // x: exponent, y: threshold (normalised magnitude), z: low end of the
                           // opacity range, w: 1 / its width
   vec4 clipPlane;         // xyz: unit normal in world units, w: its offset (kept: dot(n, p) <= w)
@@ -158,8 +168,18 @@ struct SliceUniforms {
                           // points along the flow in world space); w: unused
   vec4 texelToPhysical;   // texelToPhysicalForShader (volume_textures.h): a texel's physical
                           // speed is length(texel * xyz) * w
-  uvec4 modes[4];         // the display-mode specialization constants in order, read only by the
+  vec4 screenRight;       // xyz: unit screen-right in world space; w: halo radius (world units)
+  vec4 screenUp;          // xyz: unit screen-up in world space; w: halo strength
+  vec4 haloColor;         // rgb: the halos' colour (the background)
+  vec4 occlusion;         // x: occlusion strength, y: blur radius in pixels per slice,
+                          // zw: 1 / the occlusion buffer's size in pixels
+  uvec4 modes[5];         // the display-mode specialization constants in order, read only by the
                           // benchmark's runtime-mode build of slice.frag
+};
+
+// Push constants of the occlusion composite.
+struct OcclusionPushConstants {
+  ivec4 offset;  // xy: the viewport's offset in the frame
 };
 
 // ---- 2D LIC pass (lic2d.comp) -------------------------------------------------------------------
@@ -264,7 +284,8 @@ static_assert(sizeof(AnalyticPushConstants) == 112);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(TimeBlendPushConstants) == 48);
-static_assert(sizeof(SliceUniforms) == 2 * 64 + 21 * 16);
+static_assert(sizeof(SliceUniforms) == 2 * 64 + 26 * 16);
+static_assert(sizeof(OcclusionPushConstants) == 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif

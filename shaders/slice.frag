@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #version 460
 // Shades one slice fragment: region of interest, grey transfer of the LIC intensity, colour and
-// opacity by magnitude, sparsity mask, lighting, opacity correction, fog, anaglyph. Each of these
-// is a specialization constant: a variant compiles to exactly the code it uses.
+// opacity by magnitude, sparsity mask, lighting, halos, occlusion, opacity correction, fog,
+// anaglyph. Each of these is a specialization constant: a variant compiles to exactly the code it
+// uses.
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
@@ -11,6 +12,7 @@ layout(set = 0, binding = kSliceBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kSliceBindingColormap) uniform sampler2D colormaps;
 layout(set = 0, binding = kSliceBindingUniforms, std140) uniform Uniforms { SliceUniforms u; };
 layout(set = 0, binding = kSliceBindingScalars) uniform sampler3D scalars;
+layout(set = 0, binding = kSliceBindingOcclusion) uniform sampler2D occlusionBuffer;
 
 #ifdef LIC3D_RUNTIME_MODES
 // Built only for `lic3d bench --variants`: the same shader deciding every mode at run time, the
@@ -31,6 +33,9 @@ layout(set = 0, binding = kSliceBindingScalars) uniform sampler3D scalars;
 #define CLIP_PLANE u.modes[3].y
 #define COLOR_SOURCE u.modes[3].z
 #define OPACITY_SOURCE u.modes[3].w
+#define HALO u.modes[4].x
+#define OCCLUSION u.modes[4].y
+#define JITTER u.modes[4].z
 #else
 layout(constant_id = kSliceConstOpacityMode) const uint OPACITY_MODE = kSliceDefaultOpacityMode;
 layout(constant_id = kSliceConstOrthographic) const uint ORTHOGRAPHIC = kSliceDefaultOrthographic;
@@ -52,22 +57,61 @@ layout(constant_id = kSliceConstClipPlane) const uint CLIP_PLANE = kSliceDefault
 layout(constant_id = kSliceConstColorSource) const uint COLOR_SOURCE = kSliceDefaultColorSource;
 layout(constant_id = kSliceConstOpacitySource) const uint OPACITY_SOURCE =
     kSliceDefaultOpacitySource;
+// Visibility-impeding halos (Interrante and Grosch 1997): around a streak, the slice takes the
+// streak's opacity in the background colour, so a near streak cuts the far ones it crosses.
+layout(constant_id = kSliceConstHalo) const uint HALO = kSliceDefaultHalo;
+// Directional occlusion (Schott et al. 2009): slices drawn front to back, each shaded by the
+// opacity in front of it, blurred over a cone towards the viewer, and adding its own.
+layout(constant_id = kSliceConstOcclusion) const uint OCCLUSION = kSliceDefaultOcclusion;
+// Each pixel's samples moved along its ray by a fraction of the slice spacing that varies from
+// pixel to pixel: the slices' wood-grain pattern turns into fine noise.
+layout(constant_id = kSliceConstJitter) const uint JITTER = kSliceDefaultJitter;
 #endif
 
 // Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
 layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = kSliceDefaultFieldPacking;
 
-layout(location = 0) in vec3 texCoord;
-layout(location = 1) in vec3 world;
+layout(location = 0) in vec3 slicePoint;  // texture coordinates on the slice
+layout(location = 1) in vec3 sliceWorld;
 layout(location = 0) out vec4 color;
+// The opacity this fragment adds to the occlusion buffer (OCCLUSION only; without, the frame has
+// no second attachment and the output is dropped).
+layout(location = 1) out float occlusionOut;
 
-// Thesis 6.4: nearest filtering keeps neighbouring streamlines apart, linear smooths them.
+// Where this fragment samples: the slice point, moved along the ray when jittered.
+vec3 texCoord;
+vec3 world;
+
+// Thesis 6.4: nearest filtering keeps neighbouring streamlines apart, linear smooths them. Cubic:
+// the cubic B-spline from 8 linear fetches (Sigg and Hadwiger 2005), smooth across voxel faces
+// where linear filtering shows the voxels as facets when a voxel covers several pixels.
 vec2 sampleLic(vec3 uvw) {
   if (FILTER == 0) {
     ivec3 size = textureSize(licVolume, 0);
     return texelFetch(licVolume, clamp(ivec3(floor(uvw * vec3(size))), ivec3(0), size - 1), 0).rg;
   }
-  return texture(licVolume, uvw).rg;
+  if (FILTER == 1) return texture(licVolume, uvw).rg;
+  vec3 size = vec3(textureSize(licVolume, 0));
+  vec3 coord = uvw * size - 0.5;
+  vec3 index = floor(coord);
+  vec3 f = coord - index;
+  vec3 one = 1.0 - f;
+  vec3 w0 = one * one * one / 6.0;
+  vec3 w1 = (4.0 - 6.0 * f * f + 3.0 * f * f * f) / 6.0;
+  vec3 w2 = (4.0 - 6.0 * one * one + 3.0 * one * one * one) / 6.0;
+  vec3 w3 = f * f * f / 6.0;
+  vec3 g0 = w0 + w1;
+  vec3 g1 = w2 + w3;
+  vec3 h0 = (index - 0.5 + w1 / g0) / size;  // texel centres are at i + 0.5
+  vec3 h1 = (index + 1.5 + w3 / g1) / size;
+  vec2 result = vec2(0.0);
+  for (int k = 0; k < 8; ++k) {
+    bvec3 upper = bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0);
+    vec3 at = mix(h0, h1, upper);
+    vec3 weight = mix(g0, g1, upper);
+    result += weight.x * weight.y * weight.z * texture(licVolume, at).rg;
+  }
+  return result;
 }
 
 // Thesis 5.2.2: sphere, cube or cylinder (axis z) of unit size in the region's own frame, which
@@ -104,6 +148,27 @@ vec3 applyLighting(vec3 base, vec3 toEye) {
   if (tangent == vec3(0.0)) return base;
   vec3 toLight = u.light.xyz;
   float ambient = u.lightTerms.x, diffuse = u.lightTerms.y, specular = u.lightTerms.z;
+  if (LIGHTING == 3) {
+    // The streak as a tube: its normal is the LIC intensity's gradient across the flow (the
+    // intensity falls away from a streak's core), lit from both sides.
+    vec3 h = 1.0 / vec3(textureSize(licVolume, 0));
+    float here = sampleLic(texCoord).r;
+    vec3 gradient = (vec3(sampleLic(texCoord + vec3(h.x, 0, 0)).r,
+                          sampleLic(texCoord + vec3(0, h.y, 0)).r,
+                          sampleLic(texCoord + vec3(0, 0, h.z)).r) -
+                     here) /
+                    u.voxelSize.xyz;
+    vec3 across = gradient - dot(gradient, tangent) * tangent;
+    float len = length(across);
+    // Where the intensity is flat across the flow there is no surface: light it as facing the
+    // viewer.
+    vec3 normal = len > 1e-6 ? -across / len : toEye;
+    if (dot(normal, toEye) < 0.0) normal = -normal;
+    float nl = abs(dot(normal, toLight));
+    vec3 reflected = reflect(-toLight, dot(normal, toLight) < 0.0 ? -normal : normal);
+    float highlight = pow(max(dot(reflected, toEye), 0.0), u.light.w);
+    return base * (ambient + diffuse * nl) + vec3(specular * highlight);
+  }
   if (LIGHTING == 1) {
     // Cl = Ca + Cd |N.L| + Cs max(R.E, 0)^k, the LIC colour modulating the diffuse part.
     vec3 normal = principalNormal(tangent, toEye);
@@ -128,14 +193,25 @@ vec4 tableAt(float t, uint row) {
   return texture(colormaps, vec2((t * 255.0 + 0.5) / 256.0, v));
 }
 
-void main() {
-  if (CLIP_PLANE == 1 && dot(u.clipPlane.xyz, world) > u.clipPlane.w) discard;
-  if (ROI_SHAPE != 0) {
-    vec3 p = (u.roiFromTexture * vec4(texCoord, 1.0)).xyz;
-    if (insideRegion(p) == (ROI_OUTSIDE == 1)) discard;
-  }
+// A fraction in [0, 1) per pixel from a hash of its coordinates (PCG, Jarzynski and Olano 2020):
+// white noise, with no pattern of its own for the eye to follow.
+float pixelJitter() {
+  uvec2 p = uvec2(gl_FragCoord.xy);
+  uint v = p.x * 1664525u + p.y * 22695477u + 1013904223u;
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return float((word >> 22u) ^ word) * (1.0 / 4294967296.0);
+}
 
-  vec2 lic = sampleLic(texCoord);
+// A sample's grey and opacity before the slice spacing is accounted for: alpha is per reference
+// distance (one voxel).
+struct Sample {
+  vec3 rgb;
+  float alpha;
+};
+
+Sample shadeAt(vec3 uvw) {
+  vec2 lic = sampleLic(uvw);
   float grey = clamp(u.transfer.x * lic.r + u.transfer.y, 0.0, 1.0);
   float alpha = OPACITY_MODE == 1 ? u.halfExtent.w * grey : u.halfExtent.w;
   if (SPARSITY == 1) alpha *= lic.g;
@@ -145,13 +221,13 @@ void main() {
     float speed = 0.0;
     if (COLOR_SOURCE == 0 || OPACITY_SOURCE == 0) {
       // Physical |v|, as the colour range is: texels are in voxel units, scaled per axis.
-      vec3 texel = texture(fieldTexture, texCoord).xyz;
+      vec3 texel = texture(fieldTexture, uvw).xyz;
       if (FIELD_PACKING == 1) texel *= length(texel);  // e |e| = u / max|u|
       speed = length(texel * u.texelToPhysical.xyz) * u.texelToPhysical.w;
     }
     vec2 scalar = vec2(0.0);
     if (COLOR_SOURCE == 1 || OPACITY_SOURCE == 1)
-      scalar = u.scalarRange.xz + texture(scalars, texCoord).rg * u.scalarRange.yw;
+      scalar = u.scalarRange.xz + texture(scalars, uvw).rg * u.scalarRange.yw;
     float colorValue = COLOR_SOURCE == 1 ? scalar.r : speed;
     float opacityValue = OPACITY_SOURCE == 1 ? scalar.g : speed;
     if (COLOR_MODE == 1) {
@@ -164,20 +240,103 @@ void main() {
     if (OPACITY_TABLE == 1) {
       alpha *= tableAt(o, kSliceCustomColormapRow).a;
     } else if (MAGNITUDE_OPACITY == 1) {
-      alpha *= o < u.magnitudeOpacity.y ? 0.0 : pow(o, u.magnitudeOpacity.x);
+      alpha *= o < u.magnitudeOpacity.y ? 0.0 : max(pow(o, u.magnitudeOpacity.x), u.magnitude.z);
     }
     // A scalar with no value there (NaN in the file) is empty space.
     if (isnan(colorValue) || isnan(opacityValue)) alpha = 0.0;
   }
+  return Sample(rgb, alpha);
+}
 
+// The strongest opacity on a ring around `p` in the screen plane, the halo's radius out: what a
+// streak passing near this point would cover. Four taps, the ring turned from pixel to pixel by
+// `turn` in [0, 1) so that neighbouring pixels cover the angles between.
+float ringOpacity(vec3 p, float turn) {
+  float strongest = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    float angle = 1.57079633 * (float(k) + turn);
+    vec3 q = p + u.screenRight.w * (cos(angle) * u.screenRight.xyz + sin(angle) * u.screenUp.xyz);
+    strongest = max(strongest, shadeAt(q / (2.0 * u.halfExtent.xyz) + 0.5).alpha);
+  }
+  return strongest;
+}
+
+// The occlusion buffer of the slice in front, blurred over the cone's footprint (one slice's
+// spread): a ring of taps and the centre.
+float occlusionInFront() {
+  vec2 at = gl_FragCoord.xy * u.occlusion.zw;
+  float sum = texture(occlusionBuffer, at).r;
+  for (int k = 0; k < kOcclusionTaps; ++k) {
+    float angle = 6.28318531 * float(k) / float(kOcclusionTaps);
+    sum += texture(occlusionBuffer, at + u.occlusion.y * vec2(cos(angle), sin(angle)) *
+                                             u.occlusion.zw).r;
+  }
+  return sum / float(kOcclusionTaps + 1);
+}
+
+// How much of the ray this slice's sample stands for: the slice spacing, except at the ends of
+// the ray's way through the kept box (clip box and clip plane), where the first and the last
+// slice reach to the boundary. Without this, the number of slices a pixel meets steps across
+// the picture where slices leave the box, and the steps show as bands when zoomed.
+float segmentLength(vec3 point, vec3 forward, float spacing) {
+  vec3 inverse = 1.0 / (abs(forward) + 1e-12) * sign(forward + 1e-20);
+  vec3 t1 = (u.clipMin.xyz - point) * inverse;
+  vec3 t2 = (u.clipMax.xyz - point) * inverse;
+  vec3 low = min(t1, t2);
+  vec3 high = max(t1, t2);
+  float entry = max(max(low.x, low.y), low.z);
+  float exit = min(min(high.x, high.y), high.z);
+  if (CLIP_PLANE == 1) {
+    float towards = dot(u.clipPlane.xyz, forward);
+    float at = (u.clipPlane.w - dot(u.clipPlane.xyz, point)) / (abs(towards) > 1e-12 ? towards : 1e-12);
+    if (towards > 0.0) exit = min(exit, at);
+    if (towards < 0.0) entry = max(entry, at);
+  }
+  // The slice before (after) is drawn only if its point lies inside.
+  float back = -entry < spacing ? max(-entry, 0.0) : 0.5 * spacing;
+  float ahead = exit < spacing ? max(exit, 0.0) : 0.5 * spacing;
+  return back + ahead;
+}
+
+void main() {
+  texCoord = slicePoint;
+  world = sliceWorld;
   vec3 toEye = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : normalize(u.eyePosition.xyz - world);
-  if (LIGHTING != 0) rgb = applyLighting(rgb, toEye);
-
-  // alpha is given per reference distance (one voxel); the slice spacing along this ray is the
-  // plane spacing over |cos| of the angle between ray and plane normal.
+  // The slice spacing along this ray: the plane spacing over |cos| of the angle between ray and
+  // plane normal.
   float spacing = u.eyePosition.w / max(abs(dot(toEye, u.planeNormal.xyz)), 1e-3);
-  alpha = clamp(alpha, 0.0, 1.0);
-  alpha = 1.0 - pow(1.0 - alpha, spacing / u.transfer.z);
+  float jitter = JITTER == 1 || HALO == 1 ? pixelJitter() : 0.5;
+  if (JITTER == 1) {
+    world -= toEye * (jitter - 0.5) * spacing;
+    texCoord = world / (2.0 * u.halfExtent.xyz) + 0.5;
+  }
+
+  // With occlusion, a removed fragment still carries the buffer to the next slice.
+  bool removed = CLIP_PLANE == 1 && dot(u.clipPlane.xyz, sliceWorld) > u.clipPlane.w;
+  if (ROI_SHAPE != 0) {
+    vec3 p = (u.roiFromTexture * vec4(texCoord, 1.0)).xyz;
+    removed = removed || insideRegion(p) == (ROI_OUTSIDE == 1);
+  }
+  if (removed && OCCLUSION == 0) discard;
+
+  float inFront = OCCLUSION == 1 ? occlusionInFront() : 0.0;
+  Sample s = shadeAt(texCoord);
+  vec3 rgb = s.rgb;
+  float alpha = removed ? 0.0 : s.alpha;
+  if (LIGHTING != 0) rgb = applyLighting(rgb, toEye);
+  if (OCCLUSION == 1) rgb *= 1.0 - u.occlusion.x * inFront;
+
+  // Halo: where a neighbouring streak is more opaque than this point, the point takes up to its
+  // opacity in the background colour.
+  float haloAlpha = 0.0;
+  if (HALO == 1 && !removed)
+    haloAlpha = clamp(u.screenUp.w * (ringOpacity(world, jitter) - alpha), 0.0, 1.0 - alpha);
+
+  // Opacity per slice spacing from opacity per reference distance.
+  float exponent = segmentLength(sliceWorld, -toEye, spacing) / u.transfer.z;
+  float total = 1.0 - pow(1.0 - clamp(alpha + haloAlpha, 0.0, 1.0), exponent);
+  alpha = 1.0 - pow(1.0 - clamp(alpha, 0.0, 1.0), exponent);
+  haloAlpha = total - alpha;
 
   if (FOG == 1) {
     // Thesis 5.3.1: linear intensity depth cueing towards the fog colour.
@@ -189,5 +348,7 @@ void main() {
   // Anaglyph eyes see grey levels: red for the left eye, green and blue for the right.
   if (ANAGLYPH != 0) rgb = vec3(dot(rgb, vec3(0.299, 0.587, 0.114)));
 
-  color = vec4(clamp(rgb, 0.0, 1.0) * alpha, alpha);
+  color = vec4(clamp(rgb, 0.0, 1.0) * alpha + u.haloColor.rgb * haloAlpha, total);
+  // The buffer the next slice reads: what lies in front of it, this slice included.
+  if (OCCLUSION == 1) occlusionOut = inFront + (1.0 - inFront) * total;
 }

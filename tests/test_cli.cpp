@@ -380,7 +380,7 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --stereo anaglyph --ortho",
       "render --eye-separation -0.1",
       "render --lighting gouraud",
-      "render --filter cubic",
+      "render --filter quadratic",
       "bench --sizes 64,abc",
       "bench --repeats 2",
       "--device no-such-device render --grid 8",

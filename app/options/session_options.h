@@ -70,6 +70,7 @@ struct SessionOptions {
   // view flags (render and the viewer only)
   TextOption background, window, contrast, colorRange, clip, roiCenter, roiRotate, fog, fogColor;
   TextOption colormap, transferFunction, clipPlane, windowPercentiles;
+  TextOption jitter;
   CLI::Option* colorBy = nullptr;  // to tell a given --color-by from the session's
   CLI::Option* opacityBy = nullptr;
 };

@@ -169,7 +169,24 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
             "centre)");
   addEnumOption(app, "--lighting", view.lighting,
                 "phong: normals from the streamline's TNB frame (thesis 5.3.3); lines: "
-                "illuminated lines, lit from the tangent alone");
+                "illuminated lines, lit from the tangent alone; gradient: Phong with the "
+                "streak's normal, the LIC gradient across the flow");
+  addRanged(app, "--opacity-floor", view.opacityFloor, ranges::kOpacityFloor,
+            "The least opacity weight of flow above --magnitude-threshold, so weak flow stays "
+            "visible (0: none)");
+  addRanged(app, "--halo", view.halo, ranges::kHalo,
+            "Halos: around each streak, up to this times its opacity in the background colour, "
+            "so a near streak visibly crosses a far one (0: off)");
+  addRanged(app, "--halo-radius", view.haloRadius, ranges::kHaloRadius,
+            "How far the halos reach from a streak, in voxels");
+  addRanged(app, "--occlusion", view.occlusion, ranges::kOcclusion,
+            "Occlusion shading: each slice darkened by the opacity in front of it, spread over a "
+            "cone towards the viewer, by up to this fraction (0: off)");
+  addText(app, "--jitter", options.jitter,
+          "on: each pixel's samples offset along its ray by part of a slice spacing (no "
+          "wood-grain pattern); off: plain slicing",
+          "on")
+      .option->check(CLI::IsMember({"on", "off"}));
 }
 
 void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane) {
@@ -233,6 +250,7 @@ Result<void> applyViewOptions(SessionOptions& options) {
     LIC3D_TRY_ASSIGN(view.background, parseColor(options.background.text, "--background"));
   }
   if (options.contrast.given()) view.contrast = options.contrast.text == "on";
+  if (options.jitter.given()) view.jitter = options.jitter.text == "on";
   if (options.window.given()) {
     view.manualWindow = options.window.text != "auto";
     if (view.manualWindow) {

@@ -74,8 +74,9 @@ void App::drawAxes(const PictureLayout& layout) const {
     return;
   const glm::ivec4 area = layout.picture;
   const VolumeFacts facts = renderer_->volumeFacts();
-  const SliceFrame frame = makeSliceFrame(session_.view, facts, Eye::Mono,
-                                          static_cast<float>(area.z) / static_cast<float>(area.w));
+  const SliceFrame frame =
+      makeSliceFrame(session_.view, facts, Eye::Mono,
+                     {static_cast<std::uint32_t>(area.z), static_cast<std::uint32_t>(area.w)});
   const BoxAxes axes = projectBoxAxes(frame.camera, session_.view.camera.orthographic,
                                       frame.halfExtent, facts.dims, facts.geometry, area);
   const ImU32 line = imguiInk(session_.view.background, 160);
@@ -390,15 +391,17 @@ Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
                VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
   if (f.timed) f.timer.begin(cmd, 1);
-  beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
   const glm::ivec4 picture = layout.picture;
   const VkRect2D area{
       {picture.x, picture.y},
       {static_cast<std::uint32_t>(picture.z), static_cast<std::uint32_t>(picture.w)}};
-  const Result<void> drawn = session_.twoD || stopped_
-                                 ? Result<void>()
-                                 : renderer_->recordDraw(cmd, FramePresenter::kOffscreenFormat,
-                                                         area, session_.view, 2 * slot);
+  const bool drawVolume = !session_.twoD && !stopped_;
+  if (drawVolume) LIC3D_TRY(renderer_->prepareDraw(cmd, area, session_.view, 2 * slot));
+  beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
+  const Result<void> drawn = drawVolume ? renderer_->recordDraw(cmd,
+                                                                FramePresenter::kOffscreenFormat,
+                                                                area, session_.view, 2 * slot)
+                                        : Result<void>();
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);

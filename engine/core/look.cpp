@@ -6,9 +6,15 @@
 namespace lic3d {
 namespace {
 
-// Ray optical depth the looks aim at: about a third of the light crosses a typical ray through
-// the whole volume (exp(-1.1)), so the inside shows and the structure still reads as solid.
-constexpr float kSeeThroughDepth = 1.1f;
+// Ray optical depth the looks aim at: about 60 % of the light crosses a typical ray through the
+// whole volume (exp(-0.5)), so a layer of flow behind another still shows (docs/LOOKS.md).
+constexpr float kSeeThroughDepth = 0.5f;
+// The least opacity weight of flow above the empty-space threshold: the magnetic mirror's
+// central field lines, at a tenth of the coils' |B|, stay in the picture.
+constexpr float kWeakFlowOpacity = 0.15f;
+// Depth cues, chosen by rendering every gallery field with and without (docs/LOOKS.md).
+constexpr float kSeeThroughHalo = 0.3f;
+constexpr float kStreamlinesHalo = 0.4f;
 
 }  // namespace
 
@@ -34,6 +40,9 @@ void applyLook(Look look, Session& session) {
   v.magnitudeThreshold = defaults.magnitudeThreshold;
   v.lighting = defaults.lighting;
   v.filter = defaults.filter;
+  v.opacityFloor = defaults.opacityFloor;
+  v.halo = defaults.halo;
+  v.occlusion = defaults.occlusion;
   session.noise.seedSpots = 0;
   session.noise.seedFraction = 0.0f;
   lic.sparsity = SparsityParams{};
@@ -47,6 +56,8 @@ void applyLook(Look look, Session& session) {
   v.opticalDepth = kSeeThroughDepth;
   v.magnitudeOpacity = 1.5f;
   v.magnitudeThreshold = kEmptySpeedFraction;
+  v.opacityFloor = kWeakFlowOpacity;
+  v.halo = kSeeThroughHalo;
   if (look == Look::Streamlines) {
     // A seed in about every 700th flowing voxel: streamlines 10 voxels long each way seldom
     // overlap. Most voxels meet no seed and stay black, so the window comes from the top of the
@@ -56,6 +67,7 @@ void applyLook(Look look, Session& session) {
     v.windowPercentiles = {0.85f, 0.95f};
     v.magnitudeOpacity = 0.5f;
     v.lighting = Lighting::Lines;
+    v.halo = kStreamlinesHalo;
   } else if (look == Look::Sparse) {
     lic.sparsity.distribution = SparsityDistribution::Poisson;
     lic.sparsity.amount = 0.5f;

@@ -112,6 +112,10 @@ inline constexpr ParameterRange kZeroParallax{"view.zero_parallax", 0, 1000, 0, 
 inline constexpr ParameterRange kAmbient{"view.light.ambient", 0, 10, 0, 1};
 inline constexpr ParameterRange kDiffuse{"view.light.diffuse", 0, 10, 0, 1.5};
 inline constexpr ParameterRange kSpecular{"view.light.specular", 0, 10, 0, 1.5};
+inline constexpr ParameterRange kOpacityFloor{"view.opacity_floor", 0, 1, 0, 1};
+inline constexpr ParameterRange kHalo{"view.halo", 0, 4, 0, 2};
+inline constexpr ParameterRange kHaloRadius{"view.halo_radius", 0.25, 8, 0.5, 4};
+inline constexpr ParameterRange kOcclusion{"view.occlusion", 0, 1, 0, 1};
 inline constexpr ParameterRange kShininess{"view.light.shininess", 1, 1000, 1, 128};
 
 }  // namespace ranges

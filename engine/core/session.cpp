@@ -112,6 +112,7 @@ void visitSession(Fields& f, S& s) {
     o.value("title", v.title);
     o.value("magnitude_opacity", v.magnitudeOpacity);
     o.value("magnitude_threshold", v.magnitudeThreshold);
+    o.value("opacity_floor", v.opacityFloor);
     o.value("clip_min", v.clipMin);
     o.value("clip_max", v.clipMax);
     o.value("clip_plane", v.clipPlane);
@@ -136,6 +137,10 @@ void visitSession(Fields& f, S& s) {
       t.value("specular", v.light.specular);
       t.value("shininess", v.light.shininess);
     });
+    o.value("halo", v.halo);
+    o.value("halo_radius", v.haloRadius);
+    o.value("occlusion", v.occlusion);
+    o.value("jitter", v.jitter);
   });
 }
 

@@ -67,7 +67,9 @@ glm::vec3 viewColor(const ViewParams& view, float t) {
 float opacityWeight(const ViewParams& view, float t) {
   if (!view.transfer.opacities.empty()) return static_cast<float>(view.transfer.opacity(t));
   if (view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f)
-    return t < view.magnitudeThreshold ? 0.0f : std::pow(t, view.magnitudeOpacity);
+    return t < view.magnitudeThreshold ? 0.0f
+                                       : std::max(std::pow(t, view.magnitudeOpacity),
+                                                  view.opacityFloor);
   return 1.0f;
 }
 
@@ -174,6 +176,10 @@ Result<void> validate(const ViewParams& view) {
   LIC3D_TRY(checkRange(r::kAmbient, view.light.ambient));
   LIC3D_TRY(checkRange(r::kDiffuse, view.light.diffuse));
   LIC3D_TRY(checkRange(r::kSpecular, view.light.specular));
+  LIC3D_TRY(checkRange(r::kOpacityFloor, view.opacityFloor));
+  LIC3D_TRY(checkRange(r::kHalo, view.halo));
+  LIC3D_TRY(checkRange(r::kHaloRadius, view.haloRadius));
+  LIC3D_TRY(checkRange(r::kOcclusion, view.occlusion));
   return checkRange(r::kShininess, view.light.shininess);
 }
 

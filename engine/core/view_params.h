@@ -28,23 +28,30 @@ enum class OpacityMode {
   Intensity,  // alpha times the grey value: dark gaps between streamlines turn clear
 };
 
-enum class VolumeFilter { Nearest, Linear };  // how slices sample the LIC volume (thesis 6.4)
+// How slices sample the LIC volume: thesis 6.4's nearest and linear; the cubic B-spline, smooth
+// across voxel faces where linear sampling shows the voxels as facets; auto: cubic where a voxel
+// covers more than kCubicFromPixels pixels on the screen, else linear.
+enum class VolumeFilter { Nearest, Linear, Cubic, Auto };
+inline constexpr float kCubicFromPixels = 2.0f;
 enum class ColorMode { None, Magnitude };     // grey, or coloured by |v| (thesis 5.1.2)
 enum class RoiShape { None, Sphere, Cube, Cylinder };  // thesis 5.2.2
 enum class StereoMode { None, Anaglyph, SideBySide };  // thesis 5.3.2
-enum class Lighting { None, Phong, Lines };            // thesis 5.3.3, and illuminated lines
+// Thesis 5.3.3 (Phong with the streamline's principal normal), illuminated lines, and Phong with
+// the normal of the streak: the LIC intensity's gradient across the flow.
+enum class Lighting { None, Phong, Lines, Gradient };
 
 LIC3D_ENUM_NAMES(Slicing, {Slicing::ViewAligned, "view"}, {Slicing::AxisAligned, "axis"})
 LIC3D_ENUM_NAMES(OpacityMode, {OpacityMode::Constant, "constant"},
                  {OpacityMode::Intensity, "intensity"})
-LIC3D_ENUM_NAMES(VolumeFilter, {VolumeFilter::Nearest, "nearest"}, {VolumeFilter::Linear, "linear"})
+LIC3D_ENUM_NAMES(VolumeFilter, {VolumeFilter::Nearest, "nearest"}, {VolumeFilter::Linear, "linear"},
+                 {VolumeFilter::Cubic, "cubic"}, {VolumeFilter::Auto, "auto"})
 LIC3D_ENUM_NAMES(ColorMode, {ColorMode::None, "none"}, {ColorMode::Magnitude, "magnitude"})
 LIC3D_ENUM_NAMES(RoiShape, {RoiShape::None, "none"}, {RoiShape::Sphere, "sphere"},
                  {RoiShape::Cube, "cube"}, {RoiShape::Cylinder, "cylinder"})
 LIC3D_ENUM_NAMES(StereoMode, {StereoMode::None, "none"}, {StereoMode::Anaglyph, "anaglyph"},
                  {StereoMode::SideBySide, "side-by-side"})
 LIC3D_ENUM_NAMES(Lighting, {Lighting::None, "none"}, {Lighting::Phong, "phong"},
-                 {Lighting::Lines, "lines"})
+                 {Lighting::Lines, "lines"}, {Lighting::Gradient, "gradient"})
 
 struct LightTerms {
   float ambient = 0.35f;
@@ -70,7 +77,7 @@ struct ViewParams {
   // data; passes/slice_pass.h, resolvedAlpha). Looks set it; 0 keeps `alpha`.
   float opticalDepth = 0.0f;
   OpacityMode opacityMode = OpacityMode::Intensity;
-  VolumeFilter filter = VolumeFilter::Linear;
+  VolumeFilter filter = VolumeFilter::Auto;
 
   // Grey transfer of the LIC intensity I. With contrast (default), the drawn voxels' mean and
   // standard deviation are stretched to 0.5 and kContrastTargetDeviation (a histogram stretch);
@@ -113,6 +120,8 @@ struct ViewParams {
   // colour range when it is the colour scalar); 0 is off. Voxels with t below the threshold vanish.
   float magnitudeOpacity = 0.0f;
   float magnitudeThreshold = 0.0f;
+  // The least weight t^exponent gives above the threshold: weak flow stays in the picture.
+  float opacityFloor = 0.0f;
 
   // Thesis 5.2.1: the drawn part of the box, as fractions of it along x, y, z.
   glm::vec3 clipMin{0.0f};
@@ -149,6 +158,17 @@ struct ViewParams {
   // Thesis 5.3.3.
   Lighting lighting = Lighting::None;
   LightTerms light;
+
+  // Depth cues (docs/LOOKS.md). Halos: around a streak, up to `halo` times its opacity in the
+  // background colour, `haloRadius` voxels out, so a near streak cuts the far ones it crosses
+  // (0: off). Occlusion: each slice darkened by the opacity in front of it, spread over a 45
+  // degree cone towards the viewer, by up to this fraction (0: off).
+  float halo = 0.0f;
+  float haloRadius = 1.5f;
+  float occlusion = 0.0f;
+  // Each pixel's samples offset along its ray by part of a slice spacing (against the slices'
+  // wood-grain pattern); off gives the thesis' plain slicing.
+  bool jitter = true;
 
   bool operator==(const ViewParams&) const = default;
 };

@@ -65,6 +65,91 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
   return Pipeline(context.device(), pipeline);
 }
 
+Result<Pipeline> createGraphicsPipeline(const Context& context, const GraphicsPipelineDesc& desc) {
+  LIC3D_ASSERT(desc.blends.size() == desc.colorFormats.size());
+  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = desc.vertex;
+  stages[0].pName = "main";
+  stages[0].pSpecializationInfo = desc.specialization;
+  stages[1] = stages[0];
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = desc.fragment;
+
+  VkPipelineVertexInputStateCreateInfo vertexInput{
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{
+      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  VkPipelineColorBlendStateCreateInfo blend{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = static_cast<std::uint32_t>(desc.blends.size());
+  blend.pAttachments = desc.blends.data();
+  const std::array<VkDynamicState, 2> dynamicStates{VK_DYNAMIC_STATE_VIEWPORT,
+                                                    VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = static_cast<std::uint32_t>(dynamicStates.size());
+  dynamic.pDynamicStates = dynamicStates.data();
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = static_cast<std::uint32_t>(desc.colorFormats.size());
+  rendering.pColorAttachmentFormats = desc.colorFormats.data();
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+  info.stageCount = static_cast<std::uint32_t>(stages.size());
+  info.pStages = stages.data();
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamic;
+  info.layout = desc.layout->get();
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  LIC3D_TRY(checkVk(
+      vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+      "vkCreateGraphicsPipelines"));
+  context.setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, desc.name);
+  return Pipeline(context.device(), pipeline);
+}
+
+VkPipelineColorBlendAttachmentState blendOver(VkColorComponentFlags writeMask) {
+  VkPipelineColorBlendAttachmentState state{};
+  state.blendEnable = VK_TRUE;
+  state.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+  state.colorBlendOp = VK_BLEND_OP_ADD;
+  state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+  state.alphaBlendOp = VK_BLEND_OP_ADD;
+  state.colorWriteMask = writeMask;
+  return state;
+}
+
+VkPipelineColorBlendAttachmentState blendUnder() {
+  VkPipelineColorBlendAttachmentState state = blendOver(kWriteRgba);
+  state.srcColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA;
+  state.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  state.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA;
+  state.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  return state;
+}
+
 std::vector<std::pair<std::string, std::string>> pipelineStatistics(const Context& context,
                                                                     VkPipeline pipeline) {
   std::vector<std::pair<std::string, std::string>> statistics;

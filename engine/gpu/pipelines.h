@@ -52,6 +52,27 @@ Result<Pipeline> createComputePipeline(const Context& context, const ShaderModul
                                        const VkSpecializationInfo* specialization,
                                        const std::string& name);
 
+// A graphics pipeline for dynamic rendering: triangle lists without vertex buffers, no culling,
+// no depth, one sample, viewport and scissor dynamic; one blend state per colour attachment.
+struct GraphicsPipelineDesc {
+  VkShaderModule vertex = VK_NULL_HANDLE;
+  VkShaderModule fragment = VK_NULL_HANDLE;
+  const VkSpecializationInfo* specialization = nullptr;  // both stages'
+  std::span<const VkFormat> colorFormats;
+  std::span<const VkPipelineColorBlendAttachmentState> blends;  // one per format
+  const PipelineLayout* layout = nullptr;
+  std::string name;
+};
+Result<Pipeline> createGraphicsPipeline(const Context& context, const GraphicsPipelineDesc& desc);
+
+// Premultiplied-alpha blending: "over" for layers drawn back to front (dst = src + (1 - src.a)
+// dst), "under" for layers drawn front to back (dst = dst + (1 - dst.a) src).
+VkPipelineColorBlendAttachmentState blendOver(VkColorComponentFlags writeMask);
+VkPipelineColorBlendAttachmentState blendUnder();
+inline constexpr VkColorComponentFlags kWriteRgba =
+    VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+    VK_COLOR_COMPONENT_A_BIT;
+
 // The pipeline variants of a pass, each made the first time its key (a specialization struct,
 // or one with the attachment format) is asked for and kept for the pass's life.
 template <class Key>

@@ -10,9 +10,11 @@
 #include "analytic_field_comp_spv.h"
 #include "analytic_field_half_comp_spv.h"
 #include "analytic_vectors_comp_spv.h"
+#include "fullscreen_vert_spv.h"
 #include "lic2d_comp_spv.h"
 #include "lic_comp_spv.h"
 #include "lic_histogram_comp_spv.h"
+#include "occlusion_composite_frag_spv.h"
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
 #include "time_blend_byte_comp_spv.h"
@@ -37,6 +39,8 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
 #else
       return {};
 #endif
+    case ShaderId::FullscreenVertex: return fullscreen_vert_spv;
+    case ShaderId::OcclusionComposite: return occlusion_composite_frag_spv;
     case ShaderId::LicComputeSeparateNoise:
 #ifdef LIC3D_BENCH_RUNTIME_MODES
       return lic_naive_comp_spv;
@@ -70,6 +74,8 @@ const char* shaderName(ShaderId id) {
     case ShaderId::SliceVertex: return "slice.vert";
     case ShaderId::SliceFragment: return "slice.frag";
     case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";
+    case ShaderId::FullscreenVertex: return "fullscreen.vert";
+    case ShaderId::OcclusionComposite: return "occlusion_composite.frag";
     case ShaderId::LicComputeSeparateNoise: return "lic.comp (naive, separate noise)";
     case ShaderId::Lic2DCompute: return "lic2d.comp";
     case ShaderId::TimeBlend: return "time_blend.comp";

@@ -23,6 +23,8 @@ enum class ShaderId {
   SliceVertex,
   SliceFragment,
   SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES
+  FullscreenVertex,           // one triangle over the viewport
+  OcclusionComposite,         // the occlusion-shaded image over the frame
   LicComputeSeparateNoise,    // the benchmark's naive kernel, same builds only
   Lic2DCompute,
   TimeBlend,          // time interpolation into an RGBA32F field texture

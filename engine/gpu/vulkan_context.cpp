@@ -140,6 +140,8 @@ DeviceInfo describeDevice(VkPhysicalDevice device, int index,
     if (!features13.maintenance4) missing.push_back("maintenance4");
     if (!features.features.shaderStorageImageExtendedFormats)
       missing.push_back("shaderStorageImageExtendedFormats");
+    // Occlusion shading blends its image and its buffer differently (passes/occlusion_pass.h).
+    if (!features.features.independentBlend) missing.push_back("independentBlend");
   }
   if (findQueueFamily(device, surface) == UINT32_MAX)
     missing.push_back(surface ? "a graphics+compute queue that presents to the window"
@@ -450,6 +452,7 @@ Result<Context> Context::create(const ContextOptions& options) {
   features13.maintenance4 = VK_TRUE;
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
   features.features.shaderStorageImageExtendedFormats = VK_TRUE;
+  features.features.independentBlend = VK_TRUE;
 
   std::vector<const char*> extensions = options.deviceExtensions;
   extensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);

@@ -26,6 +26,13 @@ glm::mat3 rotationFromEuler(glm::vec3 degrees) {
   return glm::mat3(m);
 }
 
+// Anaglyph: the left eye (1) writes red, the right eye (2) green and blue, into one image.
+VkColorComponentFlags anaglyphWriteMask(std::uint32_t anaglyph) {
+  if (anaglyph == 1) return VK_COLOR_COMPONENT_R_BIT;
+  if (anaglyph == 2) return VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT;
+  return kWriteRgba;
+}
+
 }  // namespace
 
 float zeroParallaxDistance(const ViewParams& view, const CameraMatrices& central) {
@@ -38,8 +45,18 @@ float eyeSeparation(const ViewParams& view, const CameraMatrices& central) {
                                    : zeroParallaxDistance(view, central) / 30.0f;
 }
 
+// How many pixels one voxel (its smallest side) covers at the box's centre.
+float pixelsPerVoxel(const CameraMatrices& camera, glm::vec3 voxel, VkExtent2D viewport) {
+  const float side = std::min(voxel.x, std::min(voxel.y, voxel.z));
+  const glm::vec4 centre = camera.viewProjection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  const glm::vec4 aside = camera.viewProjection * glm::vec4(side * camera.up, 1.0f);
+  return glm::length(glm::vec2(aside) / aside.w - glm::vec2(centre) / centre.w) * 0.5f *
+         static_cast<float>(viewport.height);
+}
+
 SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye eye,
-                          float aspect) {
+                          VkExtent2D viewport) {
+  const float aspect = static_cast<float>(viewport.width) / static_cast<float>(viewport.height);
   SliceFrame frame;
   frame.halfExtent = boxHalfExtent(volume.dims, volume.geometry);
   const CameraMatrices central = computeCamera(view.camera, frame.halfExtent, aspect);
@@ -71,9 +88,19 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   s.roiOutside = view.roi != RoiShape::None && view.roiOutside ? 1u : 0u;
   s.fog = view.fog ? 1u : 0u;
   s.lighting = static_cast<std::uint32_t>(view.lighting);
-  s.filter = view.filter == VolumeFilter::Nearest ? 0u : 1u;
+  VolumeFilter filter = view.filter;
+  if (filter == VolumeFilter::Auto)
+    filter = pixelsPerVoxel(frame.camera, 2.0f * frame.halfExtent / glm::vec3(volume.dims),
+                            viewport) > kCubicFromPixels
+                 ? VolumeFilter::Cubic
+                 : VolumeFilter::Linear;
+  s.filter = static_cast<std::uint32_t>(filter);
   if (view.stereo == StereoMode::Anaglyph) s.anaglyph = eye == Eye::Right ? 2u : 1u;
   s.fieldPacking = volume.fieldPrecision == FieldPrecision::Byte ? 1u : 0u;
+  s.halo = view.halo > 0.0f ? 1u : 0u;
+  s.occlusion = view.occlusion > 0.0f ? 1u : 0u;
+  s.jitter = view.jitter ? 1u : 0u;
+  frame.eyeIndex = eye == Eye::Right ? 1 : 0;
 
   gpu::SliceUniforms& u = frame.uniforms;
   const glm::vec3 h = frame.halfExtent;
@@ -92,7 +119,8 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.eyePosition = glm::vec4(frame.camera.eye, frame.plan.spacing);
   u.toViewer = glm::vec4(central.toViewer, 0.0f);
   u.transfer = glm::vec4(greyTransfer(view, transferFacts), frame.plan.voxelSize, 0.0f);
-  u.magnitude = glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), 0.0f, 0.0f);
+  u.magnitude =
+      glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), view.opacityFloor, 0.0f);
   u.texelToPhysical = texelToPhysicalForShader(glm::dvec3(volume.texelToPhysical));
   u.magnitudeOpacity = glm::vec4(view.magnitudeOpacity, view.magnitudeThreshold,
                                  magnitudeTransfer(opacityRange(view, transferFacts)));
@@ -119,10 +147,17 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.light = glm::vec4(toLight, view.light.shininess);
   u.lightTerms = glm::vec4(view.light.ambient, view.light.diffuse, view.light.specular, 0.0f);
   u.voxelSize = glm::vec4(2.0f * h / glm::vec3(volume.dims), 0.0f);
+  const glm::vec3 voxel = glm::vec3(u.voxelSize);
+  const float smallestVoxel = std::min(voxel.x, std::min(voxel.y, voxel.z));
+  u.screenRight = glm::vec4(central.right, view.haloRadius * smallestVoxel);
+  u.screenUp = glm::vec4(central.up, view.halo);
+  u.haloColor = glm::vec4(view.background, 1.0f);
+  u.occlusion = glm::vec4(view.occlusion, 0.0f, 0.0f, 0.0f);  // the rest set per viewport
   const std::uint32_t* modes = reinterpret_cast<const std::uint32_t*>(&s);
   // Every mode after `colormap` but the field packing, in order: the runtime-mode shader's.
   for (int i = 0; i < 12; ++i) u.modes[i / 4][i % 4] = modes[i];
   u.modes[3] = glm::uvec4(s.opacityTable, s.clipPlane, s.colorSource, s.opacitySource);
+  u.modes[4] = glm::uvec4(s.halo, s.occlusion, s.jitter, 0u);
   u.scalarRange = volume.scalarRange;
   return frame;
 }
@@ -140,6 +175,7 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
       {gpu::kSliceBindingColormap, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
       {gpu::kSliceBindingUniforms, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBothStages},
       {gpu::kSliceBindingScalars, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+      {gpu::kSliceBindingOcclusion, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
   };
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, bindings, 0, 0, "slice"));
   LIC3D_TRY_ASSIGN(pass.vertexShader_, loadShader(context, ShaderId::SliceVertex));
@@ -164,6 +200,7 @@ Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
   LIC3D_TRY_ASSIGN(pass.uniforms_, Buffer::create(context, pass.slotSize_ * kUniformSlots,
                                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                                   MemoryUse::Upload, "slice uniforms"));
+  LIC3D_TRY_ASSIGN(pass.occlusion_, OcclusionPass::create(context));
   return pass;
 }
 
@@ -180,102 +217,105 @@ Result<void> SlicePass::setTransferFunction(const TransferFunction& tf, Colormap
 
 Result<Pipeline> SlicePass::createPipeline(const SliceVariant& variant) const {
   const SliceSpecialization& specialization = variant.specialization;
-  const VkFormat format = variant.format;
   const Specialization<SliceSpecialization> constants(specialization);
-  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vertexShader_.get();
-  stages[0].pName = "main";
-  stages[0].pSpecializationInfo = constants.info();
-  stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = fragmentShader_.get();
-  stages[1].pName = "main";
-  stages[1].pSpecializationInfo = constants.info();
-
-  VkPipelineVertexInputStateCreateInfo vertexInput{
-      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo assembly{
-      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{
-      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{
-      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{
-      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  // Premultiplied "over", slices drawn back to front: dst = src + (1 - src.a) * dst.
-  VkPipelineColorBlendAttachmentState blendAttachment{};
-  blendAttachment.blendEnable = VK_TRUE;
-  blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-  blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-  blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
-  blendAttachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-  blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  // Anaglyph: the left eye writes red, the right eye green and blue, into one image.
-  blendAttachment.colorWriteMask = specialization.anaglyph == 1 ? VK_COLOR_COMPONENT_R_BIT
-                                   : specialization.anaglyph == 2
-                                       ? VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT
-                                       : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                             VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo blend{
-      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
-  blend.pAttachments = &blendAttachment;
-  const std::array<VkDynamicState, 2> dynamicStates{VK_DYNAMIC_STATE_VIEWPORT,
-                                                    VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamic.dynamicStateCount = static_cast<std::uint32_t>(dynamicStates.size());
-  dynamic.pDynamicStates = dynamicStates.data();
-  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachmentFormats = &format;
-
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-  info.stageCount = static_cast<std::uint32_t>(stages.size());
-  info.pStages = stages.data();
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &viewport;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &multisample;
-  info.pDepthStencilState = &depth;
-  info.pColorBlendState = &blend;
-  info.pDynamicState = &dynamic;
-  info.layout = layout_.get();
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  LIC3D_TRY(checkVk(
-      vkCreateGraphicsPipelines(context_->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-      "vkCreateGraphicsPipelines"));
   std::string name = "slices";
   const std::uint32_t* fields = reinterpret_cast<const std::uint32_t*>(&specialization);
   for (std::size_t i = 0; i < sizeof(specialization) / 4; ++i)
     name += " " + std::to_string(fields[i]);
-  context_->setDebugName(pipeline, VK_OBJECT_TYPE_PIPELINE, name);
-  return Pipeline(context_->device(), pipeline);
+  GraphicsPipelineDesc desc{.vertex = vertexShader_.get(),
+                            .fragment = fragmentShader_.get(),
+                            .specialization = constants.info(),
+                            .layout = &layout_,
+                            .name = name};
+  if (specialization.occlusion == 1) {
+    // Front to back into the occlusion pass's image ("under"); the buffer is written as is.
+    VkPipelineColorBlendAttachmentState writeBuffer{};
+    writeBuffer.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
+    const std::array<VkPipelineColorBlendAttachmentState, 2> blends{blendUnder(), writeBuffer};
+    desc.colorFormats = OcclusionPass::kFormats;
+    desc.blends = blends;
+    return createGraphicsPipeline(*context_, desc);
+  }
+  // Premultiplied "over", slices drawn back to front. Anaglyph: the left eye writes red, the
+  // right eye green and blue, into one image.
+  const std::array<VkPipelineColorBlendAttachmentState, 1> blends{
+      blendOver(anaglyphWriteMask(specialization.anaglyph))};
+  desc.colorFormats = std::span<const VkFormat>(&variant.format, 1);
+  desc.blends = blends;
+  return createGraphicsPipeline(*context_, desc);
+}
+
+Result<VkPipeline> SlicePass::pipelineFor(const SliceFrame& frame, VkFormat format) {
+  // The runtime-mode shader needs one pipeline per colour write mask and attachment set only.
+  SliceSpecialization key = frame.specialization;
+  if (runtimeModes_)
+    key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
+                              .fieldPacking = frame.specialization.fieldPacking,
+                              .occlusion = frame.specialization.occlusion};
+  // The occlusion variant draws into the occlusion pass's attachments, whatever the frame's.
+  if (key.occlusion == 1) format = VK_FORMAT_UNDEFINED;
+  return pipelines_.get({key, format}, [&](const SliceVariant& v) { return createPipeline(v); });
+}
+
+void SlicePass::writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const {
+  std::memcpy(static_cast<std::byte*>(uniforms_.mapped()) + slotSize_ * slot, &uniforms,
+              sizeof(uniforms));
+}
+
+void SlicePass::pushDescriptors(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
+                                const Image& scalars, VkImageView occlusion,
+                                std::uint32_t slot) const {
+  // Nearest filtering happens in the shader (texelFetch); the sampler is always linear.
+  DescriptorWrites()
+      .sampledImage(gpu::kSliceBindingVolume, linear_, volume.view())
+      .sampledImage(gpu::kSliceBindingField, linear_, field.image.view())
+      .sampledImage(gpu::kSliceBindingColormap, linear_, colormaps_.view())
+      .uniformBuffer(gpu::kSliceBindingUniforms, uniforms_, slotSize_ * slot,
+                     sizeof(gpu::SliceUniforms))
+      .sampledImage(gpu::kSliceBindingScalars, linear_, scalars.view())
+      .sampledImage(gpu::kSliceBindingOcclusion, occlusion_.sampler(), occlusion)
+      .push(*context_, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_);
+}
+
+Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Image& volume,
+                                const FieldTexture& field, const Image& scalars,
+                                const SliceFrame& frame, std::uint32_t slot) {
+  LIC3D_ASSERT(slot < kUniformSlots);
+  if (frame.specialization.occlusion == 0) return {};
+  LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, VK_FORMAT_UNDEFINED));
+  const VkExtent2D extent = viewport.extent;
+  gpu::SliceUniforms uniforms = frame.uniforms;
+  uniforms.occlusion.z = 1.0f / static_cast<float>(extent.width);
+  uniforms.occlusion.w = 1.0f / static_cast<float>(extent.height);
+  // The cone's spread over one slice: 45 degrees, one slice spacing sideways, in pixels at the
+  // volume's centre.
+  const glm::vec4 centre = frame.camera.viewProjection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  const glm::vec4 aside = frame.camera.viewProjection *
+                          glm::vec4(frame.camera.up * frame.plan.spacing, 1.0f);
+  const float pixels = glm::length(glm::vec2(aside) / aside.w - glm::vec2(centre) / centre.w) *
+                       0.5f * static_cast<float>(extent.height);
+  uniforms.occlusion.y = std::max(pixels, 0.5f);
+  writeUniforms(uniforms, slot);
+  const int count = frame.plan.count;
+  return occlusion_.record(
+      cmd, frame.eyeIndex, extent, count,
+      [&](VkCommandBuffer c, int index, VkImageView inFront) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        pushDescriptors(c, volume, field, scalars, inFront, slot);
+        // Slice 0 is the farthest: the index-th from the front is count - 1 - index.
+        vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0,
+                  static_cast<std::uint32_t>(count - 1 - index));
+      });
 }
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
                                const Image& volume, const FieldTexture& field, const Image& scalars,
                                const SliceFrame& frame, std::uint32_t slot) {
   LIC3D_ASSERT(slot < kUniformSlots);
-  // The runtime-mode shader needs one pipeline per colour write mask only.
-  SliceSpecialization key = frame.specialization;
-  if (runtimeModes_)
-    key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
-                              .fieldPacking = frame.specialization.fieldPacking};
-  LIC3D_TRY_ASSIGN(
-      VkPipeline pipeline,
-      pipelines_.get({key, colorFormat}, [&](const SliceVariant& v) { return createPipeline(v); }));
+  if (frame.specialization.occlusion == 1)
+    return occlusion_.composite(cmd, frame.eyeIndex, colorFormat, viewport,
+                                anaglyphWriteMask(frame.specialization.anaglyph));
+  LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
   const VkViewport vp{static_cast<float>(viewport.offset.x),
@@ -286,19 +326,9 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
                       1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &viewport);
-
-  const VkDeviceSize offset = slotSize_ * slot;
-  std::memcpy(static_cast<std::byte*>(uniforms_.mapped()) + offset, &frame.uniforms,
-              sizeof(frame.uniforms));
-
-  // Nearest filtering happens in the shader (texelFetch); the sampler is always linear.
-  DescriptorWrites()
-      .sampledImage(gpu::kSliceBindingVolume, linear_, volume.view())
-      .sampledImage(gpu::kSliceBindingField, linear_, field.image.view())
-      .sampledImage(gpu::kSliceBindingColormap, linear_, colormaps_.view())
-      .uniformBuffer(gpu::kSliceBindingUniforms, uniforms_, offset, sizeof(gpu::SliceUniforms))
-      .sampledImage(gpu::kSliceBindingScalars, linear_, scalars.view())
-      .push(*context_, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_);
+  writeUniforms(frame.uniforms, slot);
+  // No occlusion buffer without occlusion: any 2D image fills the binding.
+  pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);
   vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
   return {};
 }

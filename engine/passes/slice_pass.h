@@ -2,9 +2,10 @@
 #pragma once
 // The graphics pass: alpha-blended slice proxies through the LIC volume, back to front, into
 // whatever colour attachment the caller's dynamic rendering has open. Display variants (colour,
-// opacity, sparsity, region of interest, fog, lighting, filtering, anaglyph eye) are
-// specialization constants; one pipeline per (variant, attachment format), made on first use
-// and cached.
+// opacity, sparsity, region of interest, fog, lighting, halos, occlusion, jitter, filtering,
+// anaglyph eye) are specialization constants; one pipeline per (variant, attachment format),
+// made on first use and cached. With occlusion the slices are drawn front to back before the
+// frame's rendering (prepare) and composited inside it (record).
 
 #include <vulkan/vulkan.h>
 
@@ -21,6 +22,7 @@
 #include "gpu/pipelines.h"
 #include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
+#include "passes/occlusion_pass.h"
 #include "passes/volume_textures.h"
 #include "shared_layout.h"
 
@@ -47,10 +49,13 @@ struct SliceSpecialization {
   // 1: the scalar texture's R (ScalarTexture::color)
   std::uint32_t colorSource = gpu::kSliceDefaultColorSource;
   std::uint32_t opacitySource = gpu::kSliceDefaultOpacitySource;  // 1: its G
+  std::uint32_t halo = gpu::kSliceDefaultHalo;
+  std::uint32_t occlusion = gpu::kSliceDefaultOcclusion;  // drawn front to back (OcclusionPass)
+  std::uint32_t jitter = gpu::kSliceDefaultJitter;
 
   bool operator==(const SliceSpecialization&) const = default;
 };
-static_assert(sizeof(SliceSpecialization) == 17 * 4);
+static_assert(sizeof(SliceSpecialization) == 20 * 4);
 static_assert(offsetof(SliceSpecialization, opacityMode) == 4 * gpu::kSliceConstOpacityMode);
 static_assert(offsetof(SliceSpecialization, orthographic) == 4 * gpu::kSliceConstOrthographic);
 static_assert(offsetof(SliceSpecialization, colorMode) == 4 * gpu::kSliceConstColorMode);
@@ -69,6 +74,9 @@ static_assert(offsetof(SliceSpecialization, opacityTable) == 4 * gpu::kSliceCons
 static_assert(offsetof(SliceSpecialization, clipPlane) == 4 * gpu::kSliceConstClipPlane);
 static_assert(offsetof(SliceSpecialization, colorSource) == 4 * gpu::kSliceConstColorSource);
 static_assert(offsetof(SliceSpecialization, opacitySource) == 4 * gpu::kSliceConstOpacitySource);
+static_assert(offsetof(SliceSpecialization, halo) == 4 * gpu::kSliceConstHalo);
+static_assert(offsetof(SliceSpecialization, occlusion) == 4 * gpu::kSliceConstOcclusion);
+static_assert(offsetof(SliceSpecialization, jitter) == 4 * gpu::kSliceConstJitter);
 
 // What a frame needs to know about the volume besides the view.
 struct VolumeFacts {
@@ -111,10 +119,12 @@ struct SliceFrame {
   CameraMatrices camera;
   SlicePlan plan;
   glm::vec3 halfExtent{0.5f};
+  int eyeIndex = 0;  // 0 mono or left, 1 right: whose occlusion images
 };
 
-// `aspect` is the eye's viewport width over height.
-SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye eye, float aspect);
+// `viewport` is the eye's size in pixels.
+SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye eye,
+                          VkExtent2D viewport);
 
 // Eye separation and zero-parallax distance after defaults (world units).
 float eyeSeparation(const ViewParams& view, const CameraMatrices& central);
@@ -128,6 +138,13 @@ class SlicePass {
   // `context` must outlive the pass. With `runtimeModes` (benchmark builds only) every display
   // mode is decided at run time by one shader instead of by specialization.
   static Result<SlicePass> create(const Context& context, bool runtimeModes = false);
+
+  // Outside any rendering, before record(): what must be drawn before the frame's rendering
+  // opens (the occlusion variant's front-to-back slices; nothing for the others). The same
+  // arguments as record's.
+  Result<void> prepare(VkCommandBuffer cmd, VkRect2D viewport, const Image& volume,
+                       const FieldTexture& field, const Image& scalars, const SliceFrame& frame,
+                       std::uint32_t slot);
 
   // Records the draw inside an open dynamic rendering of one `colorFormat` attachment, into
   // `viewport` of it. `volume` and `field.image` must be in SHADER_READ_ONLY_OPTIMAL with their
@@ -149,6 +166,10 @@ class SlicePass {
     bool operator==(const SliceVariant&) const = default;
   };
   Result<Pipeline> createPipeline(const SliceVariant& variant) const;
+  Result<VkPipeline> pipelineFor(const SliceFrame& frame, VkFormat format);
+  void writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const;
+  void pushDescriptors(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
+                       const Image& scalars, VkImageView occlusion, std::uint32_t slot) const;
 
   const Context* context_ = nullptr;
   bool runtimeModes_ = false;
@@ -162,6 +183,7 @@ class SlicePass {
   Buffer uniforms_;
   VkDeviceSize slotSize_ = 0;
   PipelineCache<SliceVariant> pipelines_;
+  OcclusionPass occlusion_;
 };
 
 }  // namespace lic3d

@@ -120,47 +120,59 @@ VolumeFacts LicRenderer::volumeFacts() const {
   return facts;
 }
 
+std::vector<LicRenderer::EyeDraw> LicRenderer::eyeDraws(VkRect2D area,
+                                                        const ViewParams& view) const {
+  const VolumeFacts facts = volumeFacts();
+  const bool sideBySide = view.stereo == StereoMode::SideBySide;
+  const VkExtent2D eyeExtent{sideBySide ? area.extent.width / 2 : area.extent.width,
+                             area.extent.height};
+  const VkOffset2D at = area.offset;
+  const VkOffset2D right{at.x + static_cast<std::int32_t>(eyeExtent.width), at.y};
+  const auto draw = [&](Eye eye, VkOffset2D offset) {
+    return EyeDraw{makeSliceFrame(view, facts, eye, eyeExtent), {offset, eyeExtent}};
+  };
+  switch (view.stereo) {
+    case StereoMode::None: return {draw(Eye::Mono, at)};
+    case StereoMode::Anaglyph: return {draw(Eye::Left, at), draw(Eye::Right, at)};
+    case StereoMode::SideBySide: return {draw(Eye::Left, at), draw(Eye::Right, right)};
+  }
+  return {};
+}
+
+Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const ViewParams& view,
+                                      std::uint32_t slotBase) {
+  if (!hasVolume()) return {};
+  LIC3D_TRY(validate(view));
+  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
+  const std::vector<EyeDraw> draws = eyeDraws(area, view);
+  for (std::uint32_t i = 0; i < draws.size(); ++i)
+    LIC3D_TRY(slicePass_.prepare(cmd, draws[i].viewport, job_.shownVolume(), textures_.field(),
+                                 textures_.scalars().image, draws[i].frame, slotBase + i));
+  return {};
+}
+
 Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
                                      const ViewParams& view, std::uint32_t slotBase) {
   if (!hasVolume()) return {};
   LIC3D_TRY(validate(view));
   LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
-  const VolumeFacts facts = volumeFacts();
-  const bool sideBySide = view.stereo == StereoMode::SideBySide;
-  const VkExtent2D eyeExtent{sideBySide ? area.extent.width / 2 : area.extent.width,
-                             area.extent.height};
-  const float aspect = static_cast<float>(eyeExtent.width) / static_cast<float>(eyeExtent.height);
-  struct Draw {
-    Eye eye;
-    VkRect2D viewport;
-  };
-  std::vector<Draw> draws;
-  const VkOffset2D at = area.offset;
-  const VkOffset2D right{at.x + static_cast<std::int32_t>(eyeExtent.width), at.y};
-  switch (view.stereo) {
-    case StereoMode::None: draws = {{Eye::Mono, {at, eyeExtent}}}; break;
-    case StereoMode::Anaglyph:
-      draws = {{Eye::Left, {at, eyeExtent}}, {Eye::Right, {at, eyeExtent}}};
-      break;
-    case StereoMode::SideBySide:
-      draws = {{Eye::Left, {at, eyeExtent}}, {Eye::Right, {right, eyeExtent}}};
-      break;
-  }
-  for (std::uint32_t i = 0; i < draws.size(); ++i) {
-    const SliceFrame frame = makeSliceFrame(view, facts, draws[i].eye, aspect);
+  const std::vector<EyeDraw> draws = eyeDraws(area, view);
+  for (std::uint32_t i = 0; i < draws.size(); ++i)
     LIC3D_TRY(slicePass_.record(cmd, format, draws[i].viewport, job_.shownVolume(),
-                                textures_.field(), textures_.scalars().image, frame, slotBase + i));
-  }
+                                textures_.field(), textures_.scalars().image, draws[i].frame,
+                                slotBase + i));
   return {};
 }
 
 Result<void> LicRenderer::recordFrame(VkCommandBuffer cmd, const OffscreenTarget& target,
                                       const ViewParams& view) {
-  target.beginFrame(cmd, view.background);
   const glm::ivec4 p = pictureLayoutFor(view).picture;
-  Result<void> status = recordDraw(
-      cmd, target.format(),
-      {{p.x, p.y}, {static_cast<std::uint32_t>(p.z), static_cast<std::uint32_t>(p.w)}}, view, 0);
+  const VkRect2D area{{p.x, p.y},
+                      {static_cast<std::uint32_t>(p.z), static_cast<std::uint32_t>(p.w)}};
+  // The frame is begun and ended whatever fails, so the read-back that follows finds it.
+  Result<void> status = prepareDraw(cmd, area, view, 0);
+  target.beginFrame(cmd, view.background);
+  if (status) status = recordDraw(cmd, target.format(), area, view, 0);
   vkCmdEndRendering(cmd);
   return status;
 }

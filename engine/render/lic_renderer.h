@@ -101,6 +101,11 @@ class LicRenderer {
   // Reads the histogram of `slot`; if it belongs to the finished volume, that volume and its
   // statistics are what recordDraw() draws from then on.
   void collectStatistics(std::uint32_t slot) { job_.collectStatistics(slot); }
+  // Records what must precede the frame's rendering (occlusion shading draws the slices front to
+  // back into images of its own): call it outside any rendering, then recordDraw with the same
+  // arguments.
+  Result<void> prepareDraw(VkCommandBuffer cmd, VkRect2D area, const ViewParams& view,
+                           std::uint32_t slotBase);
   // Records the shown volume's slices into an open dynamic rendering of one `format` attachment
   // into `area` of it (both halves of it for side-by-side stereo). Uniform slots `slotBase` and
   // slotBase + 1 must not be in use by a frame still in flight.
@@ -177,6 +182,13 @@ class LicRenderer {
   const Context* context_ = nullptr;
   FieldTextures textures_;
   LicVolumeJob job_;
+  // One slice draw per eye of `view` in `area`.
+  struct EyeDraw {
+    SliceFrame frame;
+    VkRect2D viewport{};
+  };
+  std::vector<EyeDraw> eyeDraws(VkRect2D area, const ViewParams& view) const;
+
   SlicePass slicePass_;
   OffscreenTarget target_;
 };
