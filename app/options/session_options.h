@@ -72,6 +72,7 @@ struct SessionOptions {
   TextOption colormap, transferFunction, clipPlane, windowPercentiles;
   CLI::Option* colorBy = nullptr;  // to tell a given --color-by from the session's
   CLI::Option* opacityBy = nullptr;
+  float scale = 1.0f;  // --scale: the picture's sizes times this (scaledView), after the rest
 };
 
 struct ComputeOptions {

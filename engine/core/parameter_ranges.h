@@ -112,6 +112,9 @@ inline constexpr ParameterRange kZeroParallax{"view.zero_parallax", 0, 1000, 0, 
 inline constexpr ParameterRange kAmbient{"view.light.ambient", 0, 10, 0, 1};
 inline constexpr ParameterRange kDiffuse{"view.light.diffuse", 0, 10, 0, 1.5};
 inline constexpr ParameterRange kSpecular{"view.light.specular", 0, 10, 0, 1.5};
+inline constexpr ParameterRange kFontSize{"view.font_size", 0, 1024, 0, 64};
+// --scale (scaledView): not a key of its own, the session keeps the sizes it gives.
+inline constexpr ParameterRange kScale{"scale", 0.05, 64, 0.25, 8};
 inline constexpr ParameterRange kShininess{"view.light.shininess", 1, 1000, 1, 128};
 
 }  // namespace ranges
