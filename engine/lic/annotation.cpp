@@ -38,10 +38,11 @@ std::vector<PlacedText> annotatePicture(RgbaImage& image, const ViewParams& view
   const glm::vec3 halfExtent = boxHalfExtent(dims, geometry);
   const CameraMatrices camera = computeCamera(
       view.camera, halfExtent, static_cast<float>(area.z) / static_cast<float>(area.w));
-  for (PlacedText& t : drawBoxAxes(
-           image,
-           projectBoxAxes(camera, view.camera.orthographic, halfExtent, dims, geometry, area),
-           view.background, layout.style))
+  for (PlacedText& t :
+       drawBoxAxes(image,
+                   projectBoxAxes(camera, view.camera.orthographic, halfExtent, dims, geometry,
+                                  area, 3.5f * layout.style.fontSize),
+                   view.background, layout.style))
     texts.push_back(std::move(t));
   return texts;
 }

@@ -329,7 +329,8 @@ std::vector<glm::vec2> convexHull(std::vector<glm::vec2> points) {
 }  // namespace
 
 BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec3 halfExtent,
-                       Dims dims, const GridGeometry& geometry, glm::ivec4 area) {
+                       Dims dims, const GridGeometry& geometry, glm::ivec4 area,
+                       float tickSpacing) {
   BoxAxes axes;
   auto corner = [&](int i) {
     return glm::vec3(i & 1 ? halfExtent.x : -halfExtent.x, i & 2 ? halfExtent.y : -halfExtent.y,
@@ -424,7 +425,7 @@ BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec
     const double first = geometry.origin[axis];
     const double last = first + geometry.spacing[axis] * (dims[axis] - 1);
     const float pixels = glm::length(b - a);
-    const int count = std::clamp(static_cast<int>(pixels / 70.0f), 2, 6);
+    const int count = std::clamp(static_cast<int>(pixels / std::max(tickSpacing, 1.0f)), 2, 6);
     for (const double value : niceTicks(first, last, count)) {
       const float t = last > first ? static_cast<float>((value - first) / (last - first)) : 0.5f;
       axes.ticks.push_back(

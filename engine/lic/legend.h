@@ -123,8 +123,11 @@ struct BoxAxes {
 // `camera` maps the box (centred at the origin, half extent `halfExtent`) to Vulkan clip space;
 // the picture is `area` (x, y, width, height) of the image. An edge is behind the volume when
 // both faces that meet at it face away from the camera. Edges behind the camera are left out.
+// Ticks are about `tickSpacing` pixels apart (3.5 em of the annotation's text, as the picture
+// scales), 2 to 6 per edge.
 BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec3 halfExtent,
-                       Dims dims, const GridGeometry& geometry, glm::ivec4 area);
+                       Dims dims, const GridGeometry& geometry, glm::ivec4 area,
+                       float tickSpacing = 70.0f);
 // Draws them into the image, light or dark to stand out from `background`, sized by `style`: each
 // tick label beyond its mark, centred on the mark's line, left out where it would leave the image
 // or cover another; each name beyond its edge's tick labels. The texts' boxes.
