@@ -60,9 +60,10 @@ void addTextOptions(CLI::App& app, SessionOptions& options, bool scale = true) {
   addRanged(app, "--font-size", view.fontSize, ranges::kFontSize,
             "Size of the legend's, the title's and the axes' text in pixels (the em; lines and "
             "ticks follow it); 0: 1/50 of the picture's height, 20 at 1024");
-  app.add_option("--legend-title", view.legendTitle,
-                 "The legend's title (default: the colour quantity and its unit where the file "
-                 "gives one, e.g. 'speed [m/s]' or '|B| [T]')");
+  app.add_option(
+      "--legend-title", view.legendTitle,
+      "The legend's title, e.g. '|B| [T]' (default: the colour quantity and its unit where "
+      "the file gives one, 'speed [m/s]')");
   nameFlag("view.legend_title", "--legend-title");
   if (scale)
     addRanged(app, "--scale", options.scale, ranges::kScale,

@@ -108,8 +108,8 @@ struct ViewParams {
   // centre, in the file's units), drawn over the picture.
   bool axes = false;
   std::string title;  // drawn above the picture when not empty
-  // The legend's title; empty: the colour quantity and its unit where the file gives one
-  // ("speed [m/s]", "|B| [T]").
+  // The legend's title ("|B| [T]"); empty: the colour quantity and its unit where the file
+  // gives one ("speed [m/s]", "vorticity").
   std::string legendTitle;
   // The annotation's text size in pixels (the em; lines, ticks and gaps follow it, lic/legend.h);
   // 0: 1/50 of the picture's height (20 px at 1024), at least 10.
