@@ -8,7 +8,7 @@ packages="
   ca-certificates cmake ninja-build g++ pkg-config help2man
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev
-  libglm-dev libglfw3-dev libimgui-dev libstb-dev
+  libglm-dev libglfw3-dev libimgui-dev libstb-dev fonts-dejavu-core
   libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev libpugixml-dev libgtest-dev
   xvfb xauth
   clang-14 libclang-rt-14-dev clang-format-14

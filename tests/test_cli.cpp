@@ -160,6 +160,26 @@ TEST_F(CliTest, EveryRenderFlagParses) {
   EXPECT_EQ(pngSize(path("cpu.png")), std::make_pair(32, 32));
 }
 
+// --scale makes the same picture larger: its size, the legend's column and the font size times
+// the factor, recorded in the session it carries; --legend-title names the legend.
+TEST_F(CliTest, ScaleMakesTheSameLayoutLargerAndTheSessionRecordsIt) {
+  const std::string args =
+      "render -q --grid 8 --width 64 --height 48 --color magnitude --legend --title T "
+      "--legend-title '|B| [T]' --font-size 10 ";
+  ASSERT_EQ(run(args + "-o small.png").status, 0);
+  const CommandRun big = run(args + "--scale 2 -o big.png");
+  ASSERT_EQ(big.status, 0) << big.output;
+  const auto [smallWidth, smallHeight] = pngSize(path("small.png"));
+  const auto [bigWidth, bigHeight] = pngSize(path("big.png"));
+  EXPECT_EQ(bigHeight, 2 * smallHeight);
+  EXPECT_NEAR(bigWidth, 2 * smallWidth, 2) << "the legend's column grows with its text";
+  const Result<Session> stored = test::sessionInPng(path("big.png"));
+  ASSERT_TRUE(stored.ok()) << stored.error().message;
+  EXPECT_EQ(stored->view.width, 128);
+  EXPECT_EQ(stored->view.fontSize, 20.0f);
+  EXPECT_EQ(stored->view.legendTitle, "|B| [T]");
+}
+
 TEST_F(CliTest, BenchRunsAndWritesJson) {
   const CommandRun r =
       run("bench --field vortex --sizes 8,12 --lengths 2 --frame-sizes 32 --frame-volume 8 "
@@ -364,6 +384,9 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
       "render --color-range 1",
       "render --color-range 0.5,0.2",
       "render --look dense --legend",  // a legend needs --color magnitude
+      "render --font-size -1",
+      "render --scale 0",
+      "render --width 8000 --scale 4",  // beyond the largest picture
       "render --magnitude-opacity -1",
       "render --magnitude-threshold 2",
       "render --clip 0,1,0,1",

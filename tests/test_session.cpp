@@ -55,6 +55,8 @@ Session unusualSession() {
   v.colorHigh = 2.5f;
   v.legend = true;
   v.axes = true;
+  v.legendTitle = "|B| [T]";
+  v.fontSize = 18.5f;
   v.magnitudeOpacity = 0.5f;
   v.magnitudeThreshold = 0.25f;
   v.clipMin = {0.125f, 0.25f, 0.375f};

@@ -114,21 +114,6 @@ TEST(BoxAxes, FrontEdgesInsideTheFittedViewAndTicksInThePhysicalRanges) {
   EXPECT_GE(axes.ticks.size(), 6u);  // at least two per axis
 }
 
-// Every stroke of every character is drawn, however many strokes a label has: an 8 is a 3 with
-// its two left strokes (at x 0..1, y 1..3 and 4..6 of its cell), the last strokes stb emits.
-TEST(Legend, TextDrawsEveryStrokeOfALongLabel) {
-  RgbaImage image;
-  image.width = 200;
-  image.height = 20;
-  image.pixels.assign(4 * static_cast<std::size_t>(image.width) * image.height, 0);
-  const std::string label = "0.008888";
-  drawText(image, 0, 0, label, glm::u8vec4(255), 1);
-  // The last 8 starts where the text without it ends.
-  const int last = textWidth(label.substr(0, label.size() - 1), 1);
-  for (const int y : {1, 2, 4, 5})
-    EXPECT_EQ(image.at(last, y).r, 255) << "the last 8's left stroke at y " << y;
-}
-
 TEST(BoxAxes, NiceTicksAreRoundValuesInTheRange) {
   EXPECT_EQ(niceTicks(0.0, 1.0, 6), (std::vector<double>{0.0, 0.2, 0.4, 0.6, 0.8, 1.0}));
   EXPECT_EQ(niceTicks(-1.15, 1.15, 5), (std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}));

@@ -53,6 +53,25 @@ void addGreyAndColorOptions(CLI::App& app, SessionOptions& options, const char* 
                "Draw the colour legend into the image (with --color magnitude)");
 }
 
+// The size of the annotation's text and the legend's title (render, render2d and the app);
+// `render` and the app also take --scale.
+void addTextOptions(CLI::App& app, SessionOptions& options, bool scale = true) {
+  ViewParams& view = options.session.view;
+  addRanged(app, "--font-size", view.fontSize, ranges::kFontSize,
+            "Size of the legend's, the title's and the axes' text in pixels (the em; lines and "
+            "ticks follow it); 0: 1/50 of the picture's height, 20 at 1024");
+  app.add_option(
+      "--legend-title", view.legendTitle,
+      "The legend's title, e.g. '|B| [T]' (default: the colour quantity and its unit where "
+      "the file gives one, 'speed [m/s]')");
+  nameFlag("view.legend_title", "--legend-title");
+  if (scale)
+    addRanged(app, "--scale", options.scale, ranges::kScale,
+              "Make the picture this many times larger with the same layout: --width, --height "
+              "and --font-size times it (a poster from a figure's settings; the session records "
+              "the sizes it gives)");
+}
+
 }  // namespace
 
 void addLookOption(CLI::App& app, SessionOptions& options) {
@@ -105,6 +124,7 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
                "origin and spacing)");
   app.add_option("--title", view.title, "A title drawn above the picture");
   nameFlag("view.title", "--title");
+  addTextOptions(app, options);
   options.colorBy =
       app.add_option(
              "--color-by", view.colorBy,
@@ -209,6 +229,7 @@ void addPlaneOptions(CLI::App& app, SessionOptions& options, PlaneOptions& plane
           "", "plane.point");
   nameFlag("plane.normal", "--plane");
   addGreyAndColorOptions(app, options, "the image's", "");
+  addTextOptions(app, options, false);
   addText(app, "--background", options.background,
           "Background colour R,G,B the legend's text is set against (0..1, or 0..255)", "0,0,0",
           "view.background");
@@ -329,6 +350,13 @@ Result<void> applyViewOptions(SessionOptions& options) {
   if (options.fogColor.given()) {
     LIC3D_TRY_ASSIGN(view.fogColor, parseColor(options.fogColor.text, "--fog-color"));
     view.fogColorFromBackground = false;
+  }
+  if (options.scale != 1.0f) {
+    view = scaledView(view, options.scale);
+    if (view.width > kMaxImageSize || view.height > kMaxImageSize)
+      return parameterError("scale", "makes the picture " + std::to_string(view.width) + "x" +
+                                         std::to_string(view.height) + ", more than " +
+                                         std::to_string(kMaxImageSize) + " pixels a side");
   }
   return {};
 }

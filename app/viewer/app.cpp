@@ -22,6 +22,7 @@
 #include "gpu/vk_check.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"
+#include "lic/annotation.h"
 #include "lic/legend.h"
 
 namespace lic3d::viewer {
@@ -55,7 +56,8 @@ std::optional<LegendSpec> App::legendSpec() const {
   if (!v.legend || v.color != ColorMode::Magnitude) return std::nullopt;
   const float low = v.autoColorRange ? stats_.minMagnitude : v.colorLow;
   const float high = v.autoColorRange ? stats_.maxMagnitude : v.colorHigh;
-  return LegendSpec{[v](float t) { return viewColor(v, t); }, low, high, legendTitle("speed", "")};
+  return LegendSpec{[v](float t) { return viewColor(v, t); }, low, high,
+                    viewLegendTitle(v, "speed", "")};
 }
 
 PictureLayout App::viewLayout() const {

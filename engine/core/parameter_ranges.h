@@ -116,6 +116,9 @@ inline constexpr ParameterRange kOpacityFloor{"view.opacity_floor", 0, 1, 0, 1};
 inline constexpr ParameterRange kHalo{"view.halo", 0, 4, 0, 2};
 inline constexpr ParameterRange kHaloRadius{"view.halo_radius", 0.25, 8, 0.5, 4};
 inline constexpr ParameterRange kOcclusion{"view.occlusion", 0, 1, 0, 1};
+inline constexpr ParameterRange kFontSize{"view.font_size", 0, 1024, 0, 64};
+// --scale (scaledView): not a key of its own, the session keeps the sizes it gives.
+inline constexpr ParameterRange kScale{"scale", 0.05, 64, 0.25, 8};
 inline constexpr ParameterRange kShininess{"view.light.shininess", 1, 1000, 1, 128};
 
 }  // namespace ranges

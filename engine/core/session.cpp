@@ -110,6 +110,8 @@ void visitSession(Fields& f, S& s) {
     o.value("legend", v.legend);
     o.value("axes", v.axes);
     o.value("title", v.title);
+    o.value("legend_title", v.legendTitle);
+    o.value("font_size", v.fontSize);
     o.value("magnitude_opacity", v.magnitudeOpacity);
     o.value("magnitude_threshold", v.magnitudeThreshold);
     o.value("opacity_floor", v.opacityFloor);

@@ -105,6 +105,17 @@ glm::vec2 magnitudeTransfer(const ColorRange& range) {
   return {range.low, 1.0f / std::max(range.high - range.low, 1e-30f)};
 }
 
+ViewParams scaledView(const ViewParams& view, float scale) {
+  ViewParams scaled = view;
+  const auto times = [scale](int pixels) {
+    return std::max(1, static_cast<int>(std::lround(static_cast<float>(pixels) * scale)));
+  };
+  scaled.width = times(view.width);
+  scaled.height = times(view.height);
+  scaled.fontSize = view.fontSize * scale;  // 0, the automatic size, follows the height
+  return scaled;
+}
+
 Result<void> validate(const ViewParams& view) {
   namespace r = ranges;
   LIC3D_TRY(checkRange(r::kImageWidth, view.width));
@@ -114,6 +125,7 @@ Result<void> validate(const ViewParams& view) {
   LIC3D_TRY(checkRange(r::kElevation, view.camera.elevation));
   LIC3D_TRY(checkRange(r::kDistance, view.camera.distance));
   LIC3D_TRY(checkRange(r::kFov, view.camera.fovY));
+  LIC3D_TRY(checkRange(r::kFontSize, view.fontSize));
   for (int c = 0; c < 3; ++c) {
     LIC3D_TRY(checkRange(r::kBackground, view.background[c]));
     LIC3D_TRY(checkRange(r::kFogColor, view.fogColor[c]));

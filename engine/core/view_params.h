@@ -115,6 +115,12 @@ struct ViewParams {
   // centre, in the file's units), drawn over the picture.
   bool axes = false;
   std::string title;  // drawn above the picture when not empty
+  // The legend's title ("|B| [T]"); empty: the colour quantity and its unit where the file
+  // gives one ("speed [m/s]", "vorticity").
+  std::string legendTitle;
+  // The annotation's text size in pixels (the em; lines, ticks and gaps follow it, lic/legend.h);
+  // 0: 1/50 of the picture's height (20 px at 1024), at least 10.
+  float fontSize = 0.0f;
 
   // Thesis 5.1.3: alpha *= t^exponent, t = the opacity scalar normalised over its range (the
   // colour range when it is the colour scalar); 0 is off. Voxels with t below the threshold vanish.
@@ -228,6 +234,10 @@ float opacityWeight(const ViewParams& view, float t);
 // given the drawn fraction, the mean grey (intensity opacity) and the mean opacity weight
 // measured on the data. In [0.005, 1].
 float resolvedAlpha(const ViewParams& view, const TransferFacts& facts, Dims dims);
+
+// The view `scale` times larger (--scale): width, height and a given font size, so that a
+// poster-size picture keeps the layout of the smaller one.
+ViewParams scaledView(const ViewParams& view, float scale);
 
 // The ranges of core/parameter_ranges.h and their consistency; InvalidInput naming the
 // parameter.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/colormap.h"
+#include "lic/annotation.h"
 #include "lic/legend.h"
 #include "lic/lic_reference.h"
 
@@ -84,10 +85,10 @@ RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const V
     }
   if (view.legend && byMagnitude) {
     const LegendSpec legend{[&view](float t) { return viewColor(view, t); }, low, high,
-                            legendTitle("speed", field.unit)};
-    return annotatedPicture(image, &legend, view.title, view.background);
+                            viewLegendTitle(view, "speed", field.unit)};
+    return annotatedPicture(image, &legend, view.title, view.background, view.fontSize);
   }
-  return annotatedPicture(image, nullptr, view.title, view.background);
+  return annotatedPicture(image, nullptr, view.title, view.background, view.fontSize);
 }
 
 RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,

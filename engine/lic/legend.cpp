@@ -4,20 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
 #include <string>
 #include <vector>
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#include <stb_easy_font.h>
-#pragma GCC diagnostic pop
 
 namespace lic3d {
 namespace {
 
+// Blends `color` over [x0,x1) x [y0,y1), cut to the image.
 void fillRect(RgbaImage& image, int x0, int y0, int x1, int y1, glm::u8vec4 color) {
   x0 = std::clamp(x0, 0, image.width);
   x1 = std::clamp(x1, 0, image.width);
@@ -32,39 +26,85 @@ void fillRect(RgbaImage& image, int x0, int y0, int x1, int y1, glm::u8vec4 colo
     }
 }
 
+// A line `width` pixels wide from a to b with round ends, anti-aliased: each pixel covered by the
+// part of its square within width / 2 of the segment (to a pixel's accuracy). Only the pixels
+// near the line are visited, column by column or row by row along its longer direction.
+void drawLine(RgbaImage& image, glm::vec2 a, glm::vec2 b, float width, glm::u8vec4 color) {
+  const bool steep = std::abs(b.y - a.y) > std::abs(b.x - a.x);
+  const int major = steep ? 1 : 0, minor = 1 - major;
+  if (a[major] > b[major]) std::swap(a, b);
+  const glm::vec2 d = b - a;
+  const float length2 = glm::dot(d, d);
+  const float reach = 0.5f * width + 1.0f;
+  // Across the line, the band of pixels within `reach` of it is reach / cos wide.
+  const float across = reach * std::sqrt(length2) / std::max(std::abs(d[major]), 1e-6f);
+  const int extent[2] = {image.width, image.height};
+  const int m0 = std::max(0, static_cast<int>(std::floor(a[major] - reach)));
+  const int m1 = std::min(extent[major], static_cast<int>(std::ceil(b[major] + reach)));
+  for (int m = m0; m < m1; ++m) {
+    const float at = static_cast<float>(m) + 0.5f;
+    const float t =
+        std::abs(d[major]) > 1e-6f ? std::clamp((at - a[major]) / d[major], 0.0f, 1.0f) : 0.0f;
+    const float centre = a[minor] + t * d[minor];
+    const int n0 = std::max(0, static_cast<int>(std::floor(centre - across - reach)));
+    const int n1 = std::min(extent[minor], static_cast<int>(std::ceil(centre + across + reach)));
+    for (int n = n0; n < n1; ++n) {
+      glm::vec2 p;
+      p[major] = at;
+      p[minor] = static_cast<float>(n) + 0.5f;
+      const float s = length2 > 0.0f ? std::clamp(glm::dot(p - a, d) / length2, 0.0f, 1.0f) : 0.0f;
+      const float coverage =
+          std::clamp(0.5f * width + 0.5f - glm::length(p - (a + s * d)), 0.0f, 1.0f);
+      if (coverage <= 0.0f) continue;
+      const int x = steep ? n : m, y = steep ? m : n;
+      fillRect(image, x, y, x + 1, y + 1,
+               glm::u8vec4(color.r, color.g, color.b,
+                           static_cast<std::uint8_t>(color.a * coverage + 0.5f)));
+    }
+  }
+}
+
 std::string formatValue(float v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", static_cast<double>(v));
   return text;
 }
 
+// The size at which `text` fits `width` pixels: `size`, or smaller.
+float fittedSize(std::string_view text, float size, int width) {
+  const int needed = measureText(text, size).width;
+  return needed <= width || needed == 0
+             ? size
+             : std::max(1.0f, size * static_cast<float>(width) / static_cast<float>(needed));
+}
+
+// The top of a line box whose digits are centred on row `y`: DejaVu Sans's digits are 0.73 em
+// high on the baseline.
+int topForCentre(float y, const TextExtent& extent, float size) {
+  return static_cast<int>(std::lround(y - static_cast<float>(extent.ascent) + 0.365f * size));
+}
+
+bool overlaps(const glm::ivec4& a, const glm::ivec4& b) {
+  return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+}
+
 }  // namespace
 
-int textWidth(std::string_view text, int scale) {
-  std::string copy(text);
-  return stb_easy_font_width(copy.data()) * scale;
+AnnotationStyle annotationStyle(float fontSize, int height) {
+  AnnotationStyle style;
+  style.fontSize =
+      fontSize > 0.0f ? fontSize : std::max(10.0f, std::round(static_cast<float>(height) / 50.0f));
+  const float em = style.fontSize;
+  style.lineWidth = std::max(1.0f, em / 20.0f);
+  style.tickLength = 0.35f * em;
+  style.tickGap = 0.5f * em;
+  style.margin = static_cast<int>(std::lround(0.5f * em));
+  return style;
 }
 
 glm::u8vec4 inkFor(glm::vec3 background, std::uint8_t alpha) {
   const float luminance = 0.2126f * background.r + 0.7152f * background.g + 0.0722f * background.b;
   return luminance > 0.5f ? glm::u8vec4(0, 0, 0, alpha) : glm::u8vec4(255, 255, 255, alpha);
-}
-
-void drawText(RgbaImage& image, int x, int y, std::string_view text, glm::u8vec4 color, int scale) {
-  std::string copy(text);
-  // 4 vertices of 16 bytes per quad. stb's "about 270 bytes per character" is an average: an
-  // '8' takes 9 quads (576 bytes), and a short buffer silently drops the last strokes (0.008 was
-  // drawn as 0.003). 16 quads per character is more than any glyph has.
-  std::vector<char> buffer(16 * 64 * (copy.size() + 1));
-  const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, buffer.data(),
-                                        static_cast<int>(buffer.size()));
-  for (int q = 0; q < quads; ++q) {
-    const float* v0 = reinterpret_cast<const float*>(&buffer[static_cast<std::size_t>(q) * 64]);
-    const float* v2 =
-        reinterpret_cast<const float*>(&buffer[static_cast<std::size_t>(q) * 64 + 32]);
-    fillRect(image, x + static_cast<int>(v0[0]) * scale, y + static_cast<int>(v0[1]) * scale,
-             x + static_cast<int>(v2[0]) * scale, y + static_cast<int>(v2[1]) * scale, color);
-  }
 }
 
 std::string legendTitle(std::string_view quantity, std::string_view unit) {
@@ -103,45 +143,65 @@ std::vector<double> niceTicks(double low, double high, int count) {
 
 namespace {
 
-constexpr int kCharHeight = 12;  // stb_easy_font's line height at scale 1
+constexpr float kTitleScale = 1.25f;  // the picture's title against the other text
 
-int textScale(int height) { return std::max(1, height / 360); }
-
-// Legend geometry shared by the layout and the drawing: the bar's width and the gap to its
-// labels, and the labels (at the ticks).
+// The legend's geometry in a column of `height` pixels, shared by the layout (its width) and the
+// drawing: from the column's left, a margin, the bar (an em wide), the tick marks, the gap and the
+// labels; the title above, smaller where it is wider than `maxWidth` allows.
 struct LegendMetrics {
-  int margin = 0, bar = 0, gap = 0, labelWidth = 0, width = 0;
+  int bar = 0;
+  int labelsX = 0;  // where the labels start, from the column's left
+  int width = 0;
+  int titleTop = 0, barTop = 0, barBottom = 0;  // from the column's top
+  float titleSize = 0.0f;
   std::vector<double> ticks;
 };
 
-LegendMetrics legendMetrics(const LegendSpec& legend, int height, int scale) {
+LegendMetrics legendMetrics(const LegendSpec& legend, const AnnotationStyle& style, int height,
+                            int maxWidth) {
   LegendMetrics m;
-  m.margin = 10 * scale;
-  m.bar = std::max(10, height / 36);
-  m.gap = 4 * scale;
-  m.ticks = niceTicks(legend.low, legend.high, 6);
+  const float em = style.fontSize;
+  const int line = measureText("0", em).height;
+  m.bar = static_cast<int>(std::lround(em));
+  m.labelsX =
+      style.margin + m.bar + static_cast<int>(std::lround(style.tickLength + style.tickGap));
+  const int room = std::max(height / 10, style.margin);
+  m.titleTop = room;
+  m.titleSize = em;
+  const int titleWidth = legend.title.empty() ? 0 : measureText(legend.title, em).width;
+  const int titleHeight = legend.title.empty() ? 0 : measureText(legend.title, em).height;
+  m.barTop = m.titleTop + titleHeight + static_cast<int>(std::lround(0.85f * em));
+  m.barBottom = height - room - static_cast<int>(std::lround(0.65f * em));
+  // Labels at least 1.6 lines apart where the bar is long enough for two.
+  const int count = std::clamp((m.barBottom - m.barTop) * 10 / (16 * std::max(line, 1)) + 1, 2, 6);
+  m.ticks = niceTicks(legend.low, legend.high, count);
+  int labels = 0;
   for (const double t : m.ticks)
-    m.labelWidth = std::max(m.labelWidth, textWidth(formatValue(static_cast<float>(t)), scale));
-  // stb's width is the pen advance; a character's width spare keeps the last glyph inside.
-  const int labels = m.bar + m.gap + m.labelWidth + textWidth("0", scale);
-  m.width = 2 * m.margin + std::max(labels, textWidth(legend.title, scale) + textWidth("0", scale));
+    labels = std::max(labels, measureText(formatValue(static_cast<float>(t)), em).width);
+  m.width =
+      std::min(maxWidth, std::max(m.labelsX + labels, titleWidth + style.margin) + style.margin);
+  m.titleSize = fittedSize(legend.title, em, m.width - 2 * style.margin);
   return m;
+}
+
+int titleBand(std::string_view title, const AnnotationStyle& style, int height) {
+  if (title.empty()) return 0;
+  const float size = kTitleScale * style.fontSize;
+  return std::min(height / 4,
+                  measureText(title, size).height + static_cast<int>(std::lround(style.fontSize)));
 }
 
 }  // namespace
 
-PictureLayout pictureLayout(int width, int height, const LegendSpec* legend,
-                            std::string_view title) {
+PictureLayout pictureLayout(int width, int height, const LegendSpec* legend, std::string_view title,
+                            float fontSize) {
   PictureLayout layout;
-  layout.scale = textScale(height);
-  int top = 0;
-  if (!title.empty()) {
-    top = std::min(height / 4, (kCharHeight + 12) * layout.scale);
-    layout.title = {0, 0, width, top};
-  }
+  layout.style = annotationStyle(fontSize, height);
+  const int top = titleBand(title, layout.style, height);
+  if (top > 0) layout.title = {0, 0, width, top};
   int right = 0;
   if (legend) {
-    right = std::min(width / 2, legendMetrics(*legend, height - top, layout.scale).width);
+    right = legendMetrics(*legend, layout.style, height - top, width / 2).width;
     layout.legend = {width - right, top, right, height - top};
   }
   layout.picture = {0, top, std::max(width - right, 1), std::max(height - top, 1)};
@@ -150,15 +210,16 @@ PictureLayout pictureLayout(int width, int height, const LegendSpec* legend,
 
 LegendBox drawLegend(RgbaImage& image, const PictureLayout& layout, const LegendSpec& legend,
                      glm::vec3 background) {
-  const int scale = layout.scale;
+  const AnnotationStyle& style = layout.style;
+  const float em = style.fontSize;
   const glm::u8vec4 ink = inkFor(background, 255);
   const glm::ivec4 area = layout.legend;
-  const LegendMetrics m = legendMetrics(legend, area.w, scale);
+  const LegendMetrics m = legendMetrics(legend, style, area.w, area.z);
   LegendBox box;
-  box.x0 = area.x + m.margin;
+  box.x0 = area.x + style.margin;
   box.x1 = box.x0 + m.bar;
-  box.y0 = area.y + area.w / 6 + 2 * kCharHeight * scale;
-  box.y1 = area.y + area.w - area.w / 6;
+  box.y0 = area.y + m.barTop;
+  box.y1 = area.y + m.barBottom;
   if (box.y1 - box.y0 < 8) return box;
 
   for (int y = box.y0; y < box.y1; ++y) {
@@ -166,43 +227,66 @@ LegendBox drawLegend(RgbaImage& image, const PictureLayout& layout, const Legend
     const glm::vec3 c = glm::clamp(legend.color(t), 0.0f, 1.0f);
     fillRect(image, box.x0, y, box.x1, y + 1, glm::u8vec4(glm::vec3(c * 255.0f + 0.5f), 255));
   }
-  // A thin frame in the text colour keeps the bar readable on any background.
-  fillRect(image, box.x0 - 1, box.y0 - 1, box.x1 + 1, box.y0, ink);
-  fillRect(image, box.x0 - 1, box.y1, box.x1 + 1, box.y1 + 1, ink);
-  fillRect(image, box.x0 - 1, box.y0, box.x0, box.y1, ink);
-  fillRect(image, box.x1, box.y0, box.x1 + 1, box.y1, ink);
+  // A frame in the text colour keeps the bar readable on any background.
+  const int line = static_cast<int>(std::lround(style.lineWidth));
+  fillRect(image, box.x0 - line, box.y0 - line, box.x1 + line, box.y0, ink);
+  fillRect(image, box.x0 - line, box.y1, box.x1 + line, box.y1 + line, ink);
+  fillRect(image, box.x0 - line, box.y0, box.x0, box.y1, ink);
+  fillRect(image, box.x1, box.y0, box.x1 + line, box.y1, ink);
 
-  const int half = 5 * scale;  // half a character height: centre labels on their ticks
+  // Tick marks out of the bar's right edge, joined to its frame, and the labels half an em
+  // beyond their ends.
   const double span = legend.high - legend.low;
+  const int tickEnd = box.x1 + line + static_cast<int>(std::lround(style.tickLength));
   for (const double tick : m.ticks) {
     const double t = span > 0.0 ? (tick - legend.low) / span : 0.5;
-    const int y = box.y1 - 1 - static_cast<int>(std::lround(t * (box.y1 - box.y0 - 1)));
-    fillRect(image, box.x1, y, box.x1 + m.gap / 2 + scale, y + std::max(1, scale / 2 + 1), ink);
-    drawText(image, box.x1 + m.gap + scale, y - half, formatValue(static_cast<float>(tick)), ink,
-             scale);
+    const float y = static_cast<float>(box.y1) - 0.5f -
+                    static_cast<float>(t) * static_cast<float>(box.y1 - box.y0 - 1);
+    const std::string text = formatValue(static_cast<float>(tick));
+    const TextExtent extent = measureText(text, em);
+    const int x = area.x + m.labelsX + line;
+    const int top = topForCentre(y, extent, em);
+    const glm::ivec4 placed{x, top, x + extent.width, top + extent.height};
+    if (!box.texts.empty() && overlaps(placed, box.texts.back().box)) continue;
+    const int row = static_cast<int>(std::floor(y + 0.5f - 0.5f * static_cast<float>(line)));
+    fillRect(image, box.x1, row, tickEnd, row + line, ink);
+    drawText(image, x, top, text, ink, em);
+    box.texts.push_back({placed, text});
   }
-  drawText(image, area.x + m.margin, box.y0 - 2 * kCharHeight * scale, legend.title, ink, scale);
+  if (!legend.title.empty()) {
+    const TextExtent extent = measureText(legend.title, m.titleSize);
+    const int x = area.x + style.margin, y = area.y + m.titleTop;
+    drawText(image, x, y, legend.title, ink, m.titleSize);
+    box.texts.push_back({{x, y, x + extent.width, y + extent.height}, legend.title});
+  }
   return box;
 }
 
-void drawTitle(RgbaImage& image, const PictureLayout& layout, std::string_view title,
-               glm::vec3 background) {
-  if (title.empty() || layout.title.z == 0) return;
-  const int scale = layout.scale;
-  const int x = std::max(2, layout.title.x + (layout.title.z - textWidth(title, scale)) / 2);
-  const int y = layout.title.y + (layout.title.w - 10 * scale) / 2;
-  drawText(image, x, y, title, inkFor(background, 255), scale);
+std::vector<PlacedText> drawTitle(RgbaImage& image, const PictureLayout& layout,
+                                  std::string_view title, glm::vec3 background) {
+  if (title.empty() || layout.title.z == 0) return {};
+  const AnnotationStyle& style = layout.style;
+  const float size =
+      fittedSize(title, kTitleScale * style.fontSize, layout.title.z - 2 * style.margin);
+  const TextExtent extent = measureText(title, size);
+  const int x =
+      std::max(layout.title.x + style.margin, layout.title.x + (layout.title.z - extent.width) / 2);
+  const int y = layout.title.y + (layout.title.w - extent.height) / 2;
+  drawText(image, x, y, title, inkFor(background, 255), size);
+  return {{{x, y, x + extent.width, y + extent.height}, std::string(title)}};
 }
 
 RgbaImage annotatedPicture(const RgbaImage& picture, const LegendSpec* legend,
-                           std::string_view title, glm::vec3 background) {
+                           std::string_view title, glm::vec3 background, float fontSize) {
   if (!legend && title.empty()) return picture;
-  // The canvas grows by the legend's column and the title's band around the picture's size.
-  const PictureLayout probe = pictureLayout(picture.width * 2, picture.height, legend, title);
+  // The text's size from the picture's height, which the canvas then grows around: by the
+  // legend's column and the title's band.
+  const float size = annotationStyle(fontSize, picture.height).fontSize;
+  const PictureLayout probe = pictureLayout(picture.width * 2, picture.height, legend, title, size);
   const int height = picture.height + probe.title.w;
-  const PictureLayout sized = pictureLayout(picture.width * 2, height, legend, title);
+  const PictureLayout sized = pictureLayout(picture.width * 2, height, legend, title, size);
   const int width = picture.width + sized.legend.z;
-  const PictureLayout layout = pictureLayout(width, height, legend, title);
+  const PictureLayout layout = pictureLayout(width, height, legend, title, size);
   RgbaImage canvas;
   canvas.width = width;
   canvas.height = height;
@@ -219,8 +303,34 @@ RgbaImage annotatedPicture(const RgbaImage& picture, const LegendSpec* legend,
   return canvas;
 }
 
+namespace {
+
+// The convex hull of `points`, counter-clockwise in y-down pixels (Andrew's monotone chain).
+std::vector<glm::vec2> convexHull(std::vector<glm::vec2> points) {
+  std::sort(points.begin(), points.end(),
+            [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  const auto cross = [](glm::vec2 o, glm::vec2 a, glm::vec2 b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<glm::vec2> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size(), lower = k + 1; i-- > 1;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0.0f) --k;
+    hull[k++] = points[i - 1];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  return hull;
+}
+
+}  // namespace
+
 BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec3 halfExtent,
-                       Dims dims, const GridGeometry& geometry, glm::ivec4 area) {
+                       Dims dims, const GridGeometry& geometry, glm::ivec4 area,
+                       float tickSpacing) {
   BoxAxes axes;
   auto corner = [&](int i) {
     return glm::vec3(i & 1 ? halfExtent.x : -halfExtent.x, i & 2 ? halfExtent.y : -halfExtent.y,
@@ -254,13 +364,33 @@ BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec
       glm::vec2 a, b;
       if (front && project(corner(i), a) && project(corner(j), b)) axes.edges.push_back({a, b});
     }
+  std::vector<glm::vec2> corners;
+  for (int i = 0; i < 8; ++i) {
+    glm::vec2 p;
+    if (!project(corner(i), p)) return axes;  // the camera inside the box's reach: no axes
+    corners.push_back(p);
+  }
+  axes.outline = convexHull(corners);
   const char* names[3] = {"x", "y", "z"};
   glm::vec2 centre;
   if (!project(glm::vec3(0.0f), centre)) return axes;
+  // Whether every corner lies on one side of the line through a and b: an edge of the outline.
+  const auto onOutline = [&](glm::vec2 a, glm::vec2 b) {
+    const glm::vec2 d = b - a;
+    if (glm::length(d) < 1e-3f) return false;
+    const glm::vec2 normal = glm::normalize(glm::vec2(-d.y, d.x));
+    float low = 0.0f, high = 0.0f;
+    for (const glm::vec2 p : corners) {
+      low = std::min(low, glm::dot(p - a, normal));
+      high = std::max(high, glm::dot(p - a, normal));
+    }
+    return low > -0.5f || high < 0.5f;
+  };
   for (int axis = 0; axis < 3; ++axis) {
-    // Of the four edges along this axis, label the one on the outline: farthest from the centre
-    // on screen, so the text sits beside the volume rather than over it.
-    bool found = false;
+    // Of the four edges along this axis, label one on the outline, so the text sits beside the
+    // volume rather than over it; of those, the one farthest from the centre, bottom and left
+    // winning (the usual place of axes).
+    bool found = false, foundOnOutline = false;
     glm::vec3 bestLow{0.0f}, bestHigh{0.0f};
     float bestScore = 0.0f;
     for (int k = 0; k < 4; ++k) {
@@ -269,15 +399,17 @@ BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec
       glm::vec3 high = low;
       low[axis] = -halfExtent[axis];
       high[axis] = halfExtent[axis];
-      glm::vec2 at;
-      if (!project(0.5f * (low + high), at)) continue;
-      // Bottom and left outline edges win: the usual place of axes.
+      glm::vec2 at, a, b;
+      if (!project(0.5f * (low + high), at) || !project(low, a) || !project(high, b)) continue;
+      const bool outline = onOutline(a, b);
       const float score =
           glm::length(at - centre) + 0.25f * (at.y - centre.y) - 0.25f * (at.x - centre.x);
-      if (!found || score > bestScore) {
+      if (!found || (outline && !foundOnOutline) ||
+          (outline == foundOnOutline && score > bestScore)) {
         bestScore = score;
         bestLow = low;
         bestHigh = high;
+        foundOnOutline = outline;
       }
       found = true;
     }
@@ -285,82 +417,87 @@ BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec
     if (!found || !project(bestLow, a) || !project(bestHigh, b) ||
         !project(0.5f * (bestLow + bestHigh), middle))
       continue;
-    glm::vec2 outward = middle - centre;
-    outward = glm::length(outward) > 1e-3f ? glm::normalize(outward) : glm::vec2(0.0f, 1.0f);
+    // The edge's normal on screen, away from the box.
+    const glm::vec2 d = b - a;
+    glm::vec2 outward =
+        glm::length(d) > 1e-3f ? glm::normalize(glm::vec2(-d.y, d.x)) : glm::vec2(0.0f, 1.0f);
+    if (glm::dot(outward, middle - centre) < 0.0f) outward = -outward;
     const double first = geometry.origin[axis];
     const double last = first + geometry.spacing[axis] * (dims[axis] - 1);
     const float pixels = glm::length(b - a);
-    const int count = std::clamp(static_cast<int>(pixels / 70.0f), 2, 6);
+    const int count = std::clamp(static_cast<int>(pixels / std::max(tickSpacing, 1.0f)), 2, 6);
     for (const double value : niceTicks(first, last, count)) {
       const float t = last > first ? static_cast<float>((value - first) / (last - first)) : 0.5f;
       axes.ticks.push_back(
           {a + t * (b - a), outward, formatValue(static_cast<float>(value)), axis});
     }
-    const glm::vec2 end = b + 0.04f * (b - a);
-    axes.labels.push_back({end, names[axis], end.x < centre.x});
+    // The name at the edge's middle (drawn beyond its tick labels): labelled edges often meet at
+    // their ends, where two names would share a corner.
+    axes.labels.push_back({middle, outward, names[axis], outward.x < 0.0f, {a, b}, axis});
   }
   return axes;
 }
 
-void drawBoxAxes(RgbaImage& image, const BoxAxes& axes, glm::vec3 background) {
-  const int scale = std::max(1, image.height / 360);
+std::vector<PlacedText> drawBoxAxes(RgbaImage& image, const BoxAxes& axes, glm::vec3 background,
+                                    const AnnotationStyle& style) {
+  const float em = style.fontSize;
   const glm::u8vec4 line = inkFor(background, 160);
-  for (const auto& [a, b] : axes.edges) {
-    const glm::vec2 d = b - a;
-    const int steps = static_cast<int>(std::ceil(std::max(std::abs(d.x), std::abs(d.y)))) + 1;
-    for (int k = 0; k <= steps; ++k) {
-      const glm::vec2 p = a + d * (static_cast<float>(k) / static_cast<float>(steps));
-      const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
-      fillRect(image, x, y, x + scale, y + scale, line);
-    }
-  }
+  for (const auto& [a, b] : axes.edges) drawLine(image, a, b, style.lineWidth, line);
   const glm::u8vec4 ink = inkFor(background, 255);
-  std::vector<glm::ivec4> placed;  // x0, y0, x1, y1 of the labels drawn so far
+  std::vector<PlacedText> placed;
+  // The box of a text centred on the line from `at` along `outward`, `distance` from `at` to
+  // its nearest side.
+  const auto boxBeyond = [](glm::vec2 at, glm::vec2 outward, float distance, TextExtent extent) {
+    const glm::vec2 size(static_cast<float>(extent.width), static_cast<float>(extent.height));
+    const float half = 0.5f * (std::abs(outward.x) * size.x + std::abs(outward.y) * size.y);
+    const glm::vec2 low = at + (distance + half) * outward - 0.5f * size;
+    const int x = static_cast<int>(std::lround(low.x)), y = static_cast<int>(std::lround(low.y));
+    return glm::ivec4(x, y, x + extent.width, y + extent.height);
+  };
+  const auto inside = [&](const glm::ivec4& r) {
+    return r.x >= 1 && r.y >= 1 && r.z <= image.width - 1 && r.w <= image.height - 1;
+  };
+  const auto unoccupied = [&](const glm::ivec4& r) {
+    return std::none_of(placed.begin(), placed.end(),
+                        [&](const PlacedText& p) { return overlaps(p.box, r); });
+  };
   for (const AxisTick& tick : axes.ticks) {
-    const int width = textWidth(tick.text, scale), height = 10 * scale;
-    const glm::vec2 to = tick.at + static_cast<float>(8 * scale) * tick.outward;
-    // The text's box on the side the mark points to. A tick whose value would not fit in the
-    // image (the box reaches beyond it when the camera is close) is left out rather than moved
-    // away from its mark.
-    const int x = static_cast<int>(to.x) - (tick.outward.x < -0.3f  ? width
-                                            : tick.outward.x > 0.3f ? 0
-                                                                    : width / 2);
-    const int y = static_cast<int>(to.y) - (tick.outward.y < -0.3f  ? height
-                                            : tick.outward.y > 0.3f ? 0
-                                                                    : height / 2);
-    if (x < 1 || y < 1 || x + width > image.width - 1 || y + height > image.height - 1) continue;
-    bool overlaps = false;
-    for (const glm::ivec4& r : placed)
-      overlaps = overlaps || (x < r.z && r.x < x + width && y < r.w && r.y < y + height);
-    if (overlaps) continue;
-    // A short mark away from the box, the value beyond it.
-    for (int k = 0; k <= 5 * scale; ++k) {
-      const glm::vec2 p = tick.at + static_cast<float>(k) * tick.outward;
-      fillRect(image, static_cast<int>(p.x), static_cast<int>(p.y), static_cast<int>(p.x) + scale,
-               static_cast<int>(p.y) + scale, ink);
-    }
-    drawText(image, x, y, tick.text, ink, scale);
-    placed.push_back({x, y, x + width, y + height});
+    // A value that would leave the image (the box reaches beyond it when the camera is close) or
+    // cover another is left out with its mark rather than moved away from it.
+    const TextExtent extent = measureText(tick.text, em);
+    const glm::ivec4 box =
+        boxBeyond(tick.at, tick.outward, style.tickLength + style.tickGap, extent);
+    if (!inside(box) || !unoccupied(box)) continue;
+    drawLine(image, tick.at, tick.at + style.tickLength * tick.outward, style.lineWidth, ink);
+    drawText(image, box.x, box.y, tick.text, ink, em);
+    placed.push_back({box, tick.text});
   }
   for (const AxisLabel& label : axes.labels) {
-    const int width = textWidth(label.text, scale);
-    const int height = 12 * scale;
-    const int x = std::clamp(label.leftOfBox ? static_cast<int>(label.at.x) - width - 6 * scale
-                                             : static_cast<int>(label.at.x) + 6 * scale,
-                             2, std::max(2, image.width - width - 2));
-    int y = static_cast<int>(label.at.y) - 5 * scale;
-    // Labels of edges that meet would overlap: move this one down until it is clear.
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (const glm::ivec4& r : placed)
-        if (x < r.z && r.x < x + width && y < r.w && r.y < y + height) {
-          y = r.w + scale;
-          moved = true;
-        }
+    // Beyond the band of the edge's tick labels, on the line through the edge's normal: nearer
+    // its own edge than any other, and not read as one of the values.
+    const TextExtent extent = measureText(label.text, em);
+    float band = 0.0f;
+    for (const AxisTick& tick : axes.ticks)
+      if (tick.axis == label.axis) {
+        const TextExtent e = measureText(tick.text, em);
+        band = std::max(band, std::abs(tick.outward.x) * static_cast<float>(e.width) +
+                                  std::abs(tick.outward.y) * static_cast<float>(e.height));
+      }
+    float distance = style.tickLength + 2.0f * style.tickGap + band;
+    glm::ivec4 box = boxBeyond(label.at, label.outward, distance, extent);
+    for (int step = 0; step < 64 && !unoccupied(box); ++step) {
+      distance += 0.25f * em;
+      box = boxBeyond(label.at, label.outward, distance, extent);
     }
-    drawText(image, x, y, label.text, ink, scale);
-    placed.push_back({x, y, x + width, y + height});
+    if (!inside(box)) {
+      const int x = std::clamp(box.x, 1, std::max(1, image.width - 1 - extent.width));
+      const int y = std::clamp(box.y, 1, std::max(1, image.height - 1 - extent.height));
+      box = {x, y, x + extent.width, y + extent.height};
+    }
+    drawText(image, box.x, box.y, label.text, ink, em);
+    placed.push_back({box, label.text});
   }
+  return placed;
 }
 
 }  // namespace lic3d
