@@ -121,11 +121,13 @@ VolumeFacts LicRenderer::volumeFacts() const {
 }
 
 Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
-                                     const ViewParams& view, std::uint32_t slotBase) {
+                                     const ViewParams& given, std::uint32_t slotBase) {
   if (!hasVolume()) return {};
-  LIC3D_TRY(validate(view));
-  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
+  LIC3D_TRY(validate(given));
   const VolumeFacts facts = volumeFacts();
+  // A signed scalar's diverging map and its opacity by size (core/view_params.h).
+  const ViewParams view = shownView(given, facts.transfer());
+  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
   const bool sideBySide = view.stereo == StereoMode::SideBySide;
   const VkExtent2D eyeExtent{sideBySide ? area.extent.width / 2 : area.extent.width,
                              area.extent.height};
