@@ -69,8 +69,9 @@ Result<void> checkFlagNeeds(const SessionOptions& options) {
       return inputError(std::string(flag) + ": the --tf opacities replace it; give one");
   if (givenFlag(options, "--colormap") && givenFlag(options, "--tf") && !v.transfer.colors.empty())
     return inputError("--colormap and --tf both set the colours: give one");
+  // applyViewOptions has made the colour Magnitude for --color-by: the flag's own text tells.
   if (givenFlag(options, "--color-by") && givenFlag(options, "--color") &&
-      v.color != ColorMode::Magnitude)
+      options.app->get_option("--color")->as<ColorMode>() == ColorMode::None)
     return inputError("--color-by colours by a scalar: not with --color none");
   return {};
 }
