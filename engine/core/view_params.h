@@ -92,9 +92,9 @@ struct ViewParams {
   // LIC grey modulates it. The legend is drawn beside the picture.
   ColorMode color = ColorMode::None;
   Colormap colormap = Colormap::Thesis;
-  // A signed colour scalar (its automatic range has low < 0 < high: helicity) under the automatic colour
-  // map and range is drawn with the diverging cool-warm map over a range symmetric about zero,
-  // and a signed opacity scalar weighs by its size |value| (shownView). Choosing the map
+  // A signed colour scalar (its automatic range has low < 0 < high: helicity) under the automatic
+  // colour map and range is drawn with the diverging cool-warm map over a range symmetric about
+  // zero, and a signed opacity scalar weighs by its size |value| (shownView). Choosing the map
   // (--colormap, --tf) or the range (--color-range) turns it off.
   bool divergingWhenSigned = true;
   // What colour and opacity follow: "speed" (|v|), "vorticity" (|curl v|), "helicity"

@@ -71,10 +71,10 @@ VectorField isotropicPlane(const VectorField& plane);
 
 // A plane at any orientation through a 3D field: through `point` (fractions of the box) with
 // `normal` (in box axes, so that (0,0,1) is the z layers' normal on any box). Its picture axes are
-// planePictureAxes of the normal in physical space. The plane's grid has the field's smallest spacing
-// over the rectangle that bounds the plane's cut through the box; each point gets the field's
-// trilinear interpolation projected onto u and v. Points outside the box get zero vectors and
-// are marked in `outside` (1 per voxel of the plane's grid), which the picture paints as
+// planePictureAxes of the normal in physical space. The plane's grid has the field's smallest
+// spacing over the rectangle that bounds the plane's cut through the box; each point gets the
+// field's trilinear interpolation projected onto u and v. Points outside the box get zero vectors
+// and are marked in `outside` (1 per voxel of the plane's grid), which the picture paints as
 // background. InvalidInput when the plane misses the box or the normal is zero.
 struct ObliquePlane {
   VectorField field;
