@@ -262,6 +262,7 @@ Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
 // The picture of the session's view, as `lic3d render` makes it.
 Result<RgbaImage> picture(const Request& request, SessionInputs& inputs) {
   const Session& session = request.session();
+  LIC3D_TRY(checkViewScalarNames(session, &inputs));
   LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
   LIC3D_TRY(checkRequestMemory(context, session, inputs.field.dims,
                                {.frame = true,

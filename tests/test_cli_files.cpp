@@ -246,6 +246,7 @@ TEST_F(CliTest, EveryPngCarriesTheSessionThatMadeIt) {
   expected.view.camera.elevation = -10.0f;
   expected.view.color = ColorMode::Magnitude;
   expected.view.colormap = Colormap::Viridis;
+  expected.view.divergingWhenSigned = false;  // the map was chosen
   expected.view.background = {0.2f, 0.1f, 0.0f};
   const Result<Session> stored = sessionInPng(path("picture.png"));
   ASSERT_TRUE(stored.ok()) << stored.error().message;

@@ -172,8 +172,9 @@ TEST_F(CliTest, ColourByAScalarFollowsItOnTheGpuAndTheCpu) {
   int worst = 0;
   for (std::size_t i = 0; i < lic.values.size(); ++i) {
     const float grey = std::clamp(lic.values[i], 0.0f, 1.0f);
-    const float t = (ramp.values[i] + 5.0f) / 22.0f;
-    const glm::vec3 rgb = sampleColormap(Colormap::Thesis, t) * grey;
+    // The ramp is signed: the diverging map over [-17, 17] (docs/LOOKS.md).
+    const float t = (ramp.values[i] + 17.0f) / 34.0f;
+    const glm::vec3 rgb = sampleColormap(Colormap::CoolWarm, t) * grey;
     for (int c = 0; c < 3; ++c)
       worst = std::max(
           worst, std::abs(rgba->rgba[4 * i + c] - static_cast<int>(std::lround(rgb[c] * 255.0f))));

@@ -279,6 +279,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   const Result<FramePlan> plan = planFrames(batch, options, *domain);
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
+  if (auto r = checkViewScalarNames(session, nullptr); !r) return reportError(r.error());
   if (options.cpu && !options.devices.empty())
     return reportError(
         inputError("--devices " + options.devices + ": --cpu computes on the CPU, not on devices"));
@@ -306,6 +307,8 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   Result<SessionInputs> inputs = loadInputs(
       options, !options.cpu && batch.rgbaVolume.empty() && !viewDerivesFromField(session.view));
   if (!inputs) return finish(*contexts, reportError(inputs.error()));
+  if (auto r = checkViewScalarNames(session, &*inputs); !r)
+    return finish(*contexts, reportError(r.error()));
   if (auto r = checkOutputsAreNotInputs(batch, *plan); !r)
     return finish(*contexts, reportError(r.error()));
   reportFieldFile(global, session.field, *inputs);

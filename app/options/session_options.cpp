@@ -92,6 +92,7 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
 void addInputOptions(CLI::App& app, SessionOptions& options, bool planar, bool volume) {
   Session& s = options.session;
   options.planar = planar;
+  options.app = &app;
   app.add_option("--session", options.sessionFile,
                  "Start from a session file (JSON, as the viewer saves it); other flags override "
                  "its values");
@@ -358,6 +359,7 @@ Result<void> finishSessionOptions(SessionOptions& options, bool withView) {
     LIC3D_TRY_ASSIGN(s.field.grid, parseGrid(options.grid.text, options.planar));
   }
   if (withView) LIC3D_TRY(applyViewOptions(options));
+  LIC3D_TRY(applyFlagRules(options));
   // The CLI's one validation of the session: every parameter against its range
   // (core/parameter_ranges.h), the flags named by reportError.
   return validate(s);

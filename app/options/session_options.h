@@ -74,6 +74,7 @@ struct SessionOptions {
   CLI::Option* colorBy = nullptr;  // to tell a given --color-by from the session's
   CLI::Option* opacityBy = nullptr;
   float scale = 1.0f;  // --scale: the picture's sizes times this (scaledView), after the rest
+  CLI::App* app = nullptr;  // the command the flags belong to: which were given (flag_rules.cpp)
 };
 
 struct ComputeOptions {
@@ -125,6 +126,9 @@ Result<glm::ivec2> parseSize(const std::string& text, const char* flag, int min,
 // Looks for --session FILE among the arguments and loads it into `options.session` before
 // CLI11 parses them, so that explicit flags override the file.
 Result<void> preloadSession(int argc, const char* const* argv, SessionOptions& options);
+// Flags given win over what a look or session set (--alpha turns the optical depth off, ...);
+// a flag that acts only with another is refused naming it (flag_rules.cpp).
+Result<void> applyFlagRules(SessionOptions& options);
 // Applies the text flags to the session and checks it (InvalidInput naming the flag).
 Result<void> finishSessionOptions(SessionOptions& options, bool withView);
 

@@ -108,7 +108,8 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
   app.add_flag("--ortho", view.camera.orthographic, "Orthographic projection");
   nameFlag("view.camera.orthographic", "--ortho");
   addRanged(app, "--alpha", view.alpha, ranges::kAlpha,
-            "Opacity per voxel of depth, corrected for the slice spacing (0: invisible)");
+            "Opacity per voxel of depth, corrected for the slice spacing (0: invisible); "
+            "turns the look's --optical-depth off");
   addEnumOption(app, "--opacity", view.opacityMode,
                 "Opacity transfer: constant (alpha everywhere) or intensity (alpha x grey, so "
                 "dark gaps between streamlines turn clear)");
@@ -128,7 +129,9 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
   options.colorBy =
       app.add_option(
              "--color-by", view.colorBy,
-             "What the colour follows (implies --color magnitude): speed, vorticity "
+             "What the colour follows (implies --color magnitude; the opacity follows it too "
+             "unless --opacity-by is given; a signed scalar takes coolwarm over a range "
+             "symmetric about 0 unless --colormap, --tf or --color-range): speed, vorticity "
              "(|curl v|), helicity (v . curl v), a scalar array of the field's file by name "
              "(VTK SCALARS, a 1-component VTI array), or a scalar .nrrd on the field's grid")
           ->capture_default_str();

@@ -26,6 +26,7 @@ void applyLook(Look look, Session& session) {
   // What every look sets: start from the thesis' dense look.
   v.color = defaults.color;
   v.colormap = defaults.colormap;
+  v.divergingWhenSigned = defaults.divergingWhenSigned;
   v.colorBy = defaults.colorBy;
   v.opacityBy = defaults.opacityBy;
   v.rangeTail = defaults.rangeTail;

@@ -101,6 +101,7 @@ void visitSession(Fields& f, S& s) {
     o.value("brightness", v.brightness);
     o.value("color", v.color);
     o.value("colormap", v.colormap);
+    o.value("diverging_when_signed", v.divergingWhenSigned);
     o.value("color_by", v.colorBy);
     o.value("opacity_by", v.opacityBy);
     o.value("range_tail", v.rangeTail);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <string>
+#include <vector>
 
 #include "core/parameter_ranges.h"
 
@@ -36,6 +37,14 @@ glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts) {
 
 namespace {
 
+bool straddlesZero(double min, double max) { return min < 0.0 && max > 0.0; }
+
+// [-m, m], m the larger magnitude of the range's ends.
+ColorRange symmetric(ColorRange range) {
+  const float m = std::max(std::abs(range.low), std::abs(range.high));
+  return {-m, m};
+}
+
 ColorRange automaticRange(const ViewParams& view, const ValueHistogram* values, float min,
                           float max) {
   if (view.rangeTail > 0.0f && values && values->total() > 0) {
@@ -48,16 +57,69 @@ ColorRange automaticRange(const ViewParams& view, const ValueHistogram* values, 
 
 }  // namespace
 
+namespace {
+
+ColorRange automaticColorRange(const ViewParams& view, const TransferFacts& facts) {
+  return automaticRange(view, facts.colorValues.get(), facts.minMagnitude, facts.maxMagnitude);
+}
+
+ColorRange automaticOpacityRange(const ViewParams& view, const ValueHistogram& values) {
+  return automaticRange(view, &values, static_cast<float>(values.min),
+                        static_cast<float>(values.max));
+}
+
+}  // namespace
+
+bool divergingColor(const ViewParams& view, const TransferFacts& facts) {
+  if (!view.divergingWhenSigned || !view.autoColorRange || !view.transfer.colors.empty())
+    return false;
+  const ColorRange range = automaticColorRange(view, facts);
+  return straddlesZero(range.low, range.high);
+}
+
+bool signedOpacity(const ViewParams& view, const TransferFacts& facts) {
+  if (view.opacityBy == view.colorBy || !facts.opacityValues) return divergingColor(view, facts);
+  if (!view.divergingWhenSigned) return false;
+  const ColorRange range = automaticOpacityRange(view, *facts.opacityValues);
+  return straddlesZero(range.low, range.high);
+}
+
 ColorRange colorRange(const ViewParams& view, const TransferFacts& facts) {
   if (!view.autoColorRange) return {view.colorLow, view.colorHigh};
-  return automaticRange(view, facts.colorValues.get(), facts.minMagnitude, facts.maxMagnitude);
+  const ColorRange range = automaticColorRange(view, facts);
+  return divergingColor(view, facts) ? symmetric(range) : range;
 }
 
 ColorRange opacityRange(const ViewParams& view, const TransferFacts& facts) {
   if (view.opacityBy == view.colorBy || !facts.opacityValues) return colorRange(view, facts);
-  const ValueHistogram& values = *facts.opacityValues;
-  return automaticRange(view, &values, static_cast<float>(values.min),
-                        static_cast<float>(values.max));
+  const ColorRange range = automaticOpacityRange(view, *facts.opacityValues);
+  return signedOpacity(view, facts) ? symmetric(range) : range;
+}
+
+ViewParams shownView(const ViewParams& view, const TransferFacts& facts) {
+  ViewParams shown = view;
+  if (divergingColor(view, facts)) shown.colormap = Colormap::CoolWarm;
+  const bool ramp = view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f;
+  if (ramp && view.transfer.opacities.empty() && signedOpacity(view, facts)) {
+    // The ramp of the size s = |2t - 1| (t = 0.5 is zero), at 33 sizes and at the threshold's
+    // step, mirrored about t = 0.5.
+    std::vector<double> sizes;
+    for (int k = 0; k <= 32; ++k) sizes.push_back(k / 32.0);
+    const double threshold = view.magnitudeThreshold;
+    if (threshold > 0.0) {
+      std::erase_if(sizes, [&](double s) { return s < threshold; });
+      sizes.insert(sizes.begin(), {0.0, std::max(threshold - 1e-4, 0.0), threshold});
+    }
+    std::vector<OpacityPoint>& points = shown.transfer.opacities;
+    for (const double s : sizes) {
+      const double alpha = s < threshold ? 0.0 : std::pow(s, view.magnitudeOpacity);
+      points.push_back({0.5 + 0.5 * s, alpha});
+      if (s > 0.0) points.push_back({0.5 - 0.5 * s, alpha});
+    }
+    std::sort(points.begin(), points.end(),
+              [](const OpacityPoint& a, const OpacityPoint& b) { return a.x < b.x; });
+  }
+  return shown;
 }
 
 glm::vec3 viewColor(const ViewParams& view, float t) {

@@ -99,6 +99,11 @@ struct ViewParams {
   // LIC grey modulates it. The legend is drawn beside the picture.
   ColorMode color = ColorMode::None;
   Colormap colormap = Colormap::Thesis;
+  // A signed colour scalar (its automatic range has low < 0 < high: helicity) under the automatic
+  // colour map and range is drawn with the diverging cool-warm map over a range symmetric about
+  // zero, and a signed opacity scalar weighs by its size |value| (shownView). Choosing the map
+  // (--colormap, --tf) or the range (--color-range) turns it off.
+  bool divergingWhenSigned = true;
   // What colour and opacity follow: "speed" (|v|), "vorticity" (|curl v|), "helicity"
   // (v . curl v) or a point scalar of the field's file by name (loading/scalars.h).
   std::string colorBy = "speed";
@@ -218,6 +223,20 @@ ColorRange colorRange(const ViewParams& view, const TransferFacts& facts);
 // The range the opacity scalar is normalised over: the colour range when it is the colour
 // scalar, else its own automatic range.
 ColorRange opacityRange(const ViewParams& view, const TransferFacts& facts);
+// Whether the colour scalar is drawn diverging: its automatic range (min and max, or the
+// percentiles of rangeTail) has low < 0 < high, under the view's automatic map and range
+// (ViewParams::divergingWhenSigned).
+bool divergingColor(const ViewParams& view, const TransferFacts& facts);
+// Whether the opacity scalar weighs by its size: signed, with divergingWhenSigned, its range
+// symmetric about zero (the colour range when it is the colour scalar: then diverging too).
+bool signedOpacity(const ViewParams& view, const TransferFacts& facts);
+
+// The view as drawn for these data: with divergingColor, the cool-warm map; with signedOpacity
+// and the magnitude opacity, a transfer function of opacities |2t - 1|^E (0 below the threshold)
+// in its place, so that both signs of the scalar show. The passes, the legend and the CPU
+// colouring draw this view; sessions keep the one given.
+ViewParams shownView(const ViewParams& view, const TransferFacts& facts);
+
 // t = (|v| - x) * y maps the colour range to [0, 1].
 glm::vec2 magnitudeTransfer(const ColorRange& range);
 

@@ -15,8 +15,8 @@ std::optional<LegendSpec> viewLegend(const ViewParams& view, const TransferFacts
                                      std::string_view colorName, std::string_view colorUnit) {
   if (!view.legend || view.color != ColorMode::Magnitude) return std::nullopt;
   const ColorRange range = colorRange(view, facts);
-  return LegendSpec{[view](float t) { return viewColor(view, t); }, range.low, range.high,
-                    viewLegendTitle(view, colorName, colorUnit)};
+  return LegendSpec{[shown = shownView(view, facts)](float t) { return viewColor(shown, t); },
+                    range.low, range.high, viewLegendTitle(view, colorName, colorUnit)};
 }
 
 PictureLayout viewLayout(const ViewParams& view, const LegendSpec* legend) {

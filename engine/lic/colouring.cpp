@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/colormap.h"
 #include "lic/annotation.h"
@@ -33,10 +34,13 @@ RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const V
   };
   // The image's own statistics feed the contrast stretch, as the histogram pass does in 3D.
   double sum = 0.0, squares = 0.0, n = 0.0;
+  std::vector<float> drawn;  // the percentile window's values
+  drawn.reserve(lic.values.size());
   for (int j = 0; j < lic.dims.y; ++j)
     for (int i = 0; i < lic.dims.x; ++i) {
       if (isOutside(i, j)) continue;
       const double v = lic.at(i, j, 0);
+      drawn.push_back(static_cast<float>(v));
       sum += v;
       squares += v * v;
       n += 1.0;
@@ -48,6 +52,9 @@ RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const V
   facts.intensityMean = static_cast<float>(sum / n);
   facts.intensityDeviation =
       static_cast<float>(std::sqrt(std::max(0.0, squares / n - (sum / n) * (sum / n))));
+  // The percentile window's values; the sparse rule of the contrast stretch stays 3D's alone.
+  if (view.percentileWindow)
+    facts.intensities = std::make_shared<const ValueHistogram>(histogramOf(drawn));
   // The slices' own numbers for this view: grey = transfer.x * I + transfer.y,
   // t = (|v| - magnitude.x) * magnitude.y.
   const glm::vec2 transfer = greyTransfer(view, facts);
@@ -92,8 +99,9 @@ RgbaImage colourLic2D(const ScalarVolume& lic, const VectorField& field, const V
 }
 
 RgbaVolume colourLicVolume(const ScalarVolume& lic, const VectorField& field,
-                           const ViewParams& view, const TransferFacts& facts,
+                           const ViewParams& given, const TransferFacts& facts,
                            const VolumeScalars& scalars) {
+  const ViewParams view = shownView(given, facts);
   const glm::vec2 transfer = greyTransfer(view, facts);
   const glm::vec2 colorT = magnitudeTransfer(colorRange(view, facts));
   const glm::vec2 opacityT = magnitudeTransfer(opacityRange(view, facts));

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <numbers>
 #include <string>
 
 namespace lic3d {
@@ -44,6 +45,45 @@ Result<VectorField> planarField(const VectorField& field, const std::string& wha
   return extractPlane(field, flat, 0);
 }
 
+PlaneAxes planePictureAxes(glm::dvec3 normal) {
+  const glm::dvec3 n = glm::normalize(normal);
+  // Within 30 degrees of z the projected z axis shrinks to nothing: the projected y axis takes
+  // over, weighted linearly in |n.z| so that the axes stay continuous across the cone's edge.
+  const double coneCos = std::cos(std::numbers::pi / 6.0);
+  const double w = std::clamp((std::abs(n.z) - coneCos) / (1.0 - coneCos), 0.0, 1.0);
+  const glm::dvec3 z(0.0, 0.0, 1.0), y(0.0, 1.0, 0.0);
+  const glm::dvec3 up = glm::normalize((z - n.z * n) + w * (y - n.y * n));
+  return {glm::cross(up, n), up};
+}
+
+VectorField isotropicPlane(const VectorField& plane) {
+  const glm::dvec3 s = plane.geometry.spacing;
+  const Dims d = plane.dims;
+  if (std::abs(s.x - s.y) <= 1e-6 * std::max(s.x, s.y) || d.x < 2 || d.y < 2) return plane;
+  const double finer = std::min(s.x, s.y);
+  VectorField out;
+  out.unit = plane.unit;
+  out.dims = Dims(static_cast<int>(std::lround((d.x - 1) * s.x / finer)) + 1,
+                  static_cast<int>(std::lround((d.y - 1) * s.y / finer)) + 1, 1);
+  out.geometry = plane.geometry;
+  // The same extent: the spacing of each axis is its extent over the new intervals.
+  out.geometry.spacing.x = (d.x - 1) * s.x / (out.dims.x - 1);
+  out.geometry.spacing.y = (d.y - 1) * s.y / (out.dims.y - 1);
+  out.vectors.resize(voxelCount(out.dims));
+  for (int j = 0; j < out.dims.y; ++j)
+    for (int i = 0; i < out.dims.x; ++i) {
+      const double x = static_cast<double>(i) * (d.x - 1) / (out.dims.x - 1);
+      const double y = static_cast<double>(j) * (d.y - 1) / (out.dims.y - 1);
+      const int i0 = std::min(static_cast<int>(x), d.x - 2),
+                j0 = std::min(static_cast<int>(y), d.y - 2);
+      const float tx = static_cast<float>(x - i0), ty = static_cast<float>(y - j0);
+      const glm::vec3 a = glm::mix(plane.at(i0, j0, 0), plane.at(i0 + 1, j0, 0), tx);
+      const glm::vec3 b = glm::mix(plane.at(i0, j0 + 1, 0), plane.at(i0 + 1, j0 + 1, 0), tx);
+      out.vectors[voxelIndex(out.dims, i, j, 0)] = glm::mix(a, b, ty);
+    }
+  return out;
+}
+
 Result<ObliquePlane> obliquePlane(const VectorField& field, glm::dvec3 point, glm::dvec3 normal) {
   const GridGeometry& g = field.geometry;
   const Dims d = field.dims;
@@ -54,13 +94,8 @@ Result<ObliquePlane> obliquePlane(const VectorField& field, glm::dvec3 point, gl
   if (!(glm::length(n) > 0.0)) return parameterError("plane.normal", "must not be zero");
   n = glm::normalize(n);
   const glm::dvec3 p = g.origin + point * size;
-  int least = 0;
-  for (int a = 1; a < 3; ++a)
-    if (std::abs(n[a]) < std::abs(n[least])) least = a;
-  glm::dvec3 axis(0.0);
-  axis[least] = 1.0;
-  const glm::dvec3 u = glm::normalize(axis - glm::dot(axis, n) * n);
-  const glm::dvec3 v = glm::cross(n, u);
+  const PlaneAxes axes = planePictureAxes(n);
+  const glm::dvec3 u = axes.right, v = axes.up;
 
   // The rectangle in (u, v) around the plane's cut through the box: the points where the plane
   // crosses the box's 12 edges.

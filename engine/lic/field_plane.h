@@ -52,13 +52,29 @@ inline bool isPlanar(const VectorField& field) { return field.dims.z == 1; }
 // dropped: 2D LIC follows the vectors' projection onto the plane.
 Result<VectorField> extractPlane(const VectorField& field, int axis, int index);
 
+// The picture axes of a plane whose unit normal (physical space) is `normal`: up is the z axis
+// projected onto the plane, plus near z (|n.z| > cos 30 degrees) the y axis projected, weighted
+// from 0 at 30 degrees to 1 at the z axis; right = up x n, so n = right x up points at the
+// viewer. Continuous in the normal but at one normal near each of +z and -z (about 23 degrees
+// from z towards +y, and towards -y from -z), where the picture turns: a field of directions on
+// a sphere has such a point. (1,0,0) gives the --slice x picture (right y, up z), (0,-1,0)
+// --slice y (right x, up z), (0,0,1) --slice z (right x, up y).
+struct PlaneAxes {
+  glm::dvec3 right, up;
+};
+PlaneAxes planePictureAxes(glm::dvec3 normal);
+
+// A plane of a grid with different spacings along its two axes, resampled bilinearly onto the
+// finer spacing over the same extent, so that a pixel of its picture is square in physical space
+// (a plane whose spacings agree to 1e-6 is returned as it is).
+VectorField isotropicPlane(const VectorField& plane);
+
 // A plane at any orientation through a 3D field: through `point` (fractions of the box) with
 // `normal` (in box axes, so that (0,0,1) is the z layers' normal on any box). Its picture axes are
-// u (right) and v (up), orthonormal in physical space with n = u x v: u the box axis least
-// aligned with n, made perpendicular to it. The plane's grid has the field's smallest spacing
-// over the rectangle that bounds the plane's cut through the box; each point gets the field's
-// trilinear interpolation projected onto u and v. Points outside the box get zero vectors and
-// are marked in `outside` (1 per voxel of the plane's grid), which the picture paints as
+// planePictureAxes of the normal in physical space. The plane's grid has the field's smallest
+// spacing over the rectangle that bounds the plane's cut through the box; each point gets the
+// field's trilinear interpolation projected onto u and v. Points outside the box get zero vectors
+// and are marked in `outside` (1 per voxel of the plane's grid), which the picture paints as
 // background. InvalidInput when the plane misses the box or the normal is zero.
 struct ObliquePlane {
   VectorField field;

@@ -28,12 +28,16 @@ Result<VectorField> planeOfFile(const VectorField& field, const Session& session
     inputs.outside = std::move(plane.outside);
     return std::move(plane.field);
   }
+  // Pixels square in physical space whatever the grid's spacings (field_plane.h).
   const bool flat = field.dims.x == 1 || field.dims.y == 1 || field.dims.z == 1;
-  if (flat && p.index < 0 && p.axis == 2) return planarField(field, what);
+  if (flat && p.index < 0 && p.axis == 2) {
+    LIC3D_TRY_ASSIGN(const VectorField plane, planarField(field, what));
+    return isotropicPlane(plane);
+  }
   Result<VectorField> plane =
       extractPlane(field, p.axis, p.index >= 0 ? p.index : field.dims[p.axis] / 2);
   if (!plane) return parameterError("plane.index", what + ": " + plane.error().message);
-  return plane;
+  return isotropicPlane(*plane);
 }
 
 }  // namespace
@@ -64,7 +68,7 @@ Result<VectorField> planeField(const Session& session, bool gridGiven, double ti
                                 std::to_string(source.grid[p.axis]) + " layers across " +
                                 std::string(1, static_cast<char>('x' + p.axis)) + " (0.." +
                                 std::to_string(source.grid[p.axis] - 1) + ")");
-    return makeAnalyticFieldPlane(*field3D, source.grid, p.axis, index, time);
+    return isotropicPlane(makeAnalyticFieldPlane(*field3D, source.grid, p.axis, index, time));
   }
   if (gridGiven)
     return parameterError("field.grid",

@@ -7,6 +7,7 @@
 #include "core/stage_times.h"
 #include "core/text.h"
 #include "io/file_util.h"
+#include "lic/analytic_fields.h"
 #include "lic/derived_fields.h"
 #include "lic/resample.h"
 
@@ -52,6 +53,45 @@ Result<std::optional<PointScalars>> loadScalars(const std::string& name, const s
                                    ", the field " + gridText(inputs.field.dims) +
                                    ": they must be the same");
   return std::optional<PointScalars>(std::move(scalars));
+}
+
+namespace {
+
+Result<void> checkScalarName(const std::string& name, const std::string& key,
+                             const Session& session, const SessionInputs* inputs) {
+  const std::optional<DerivedQuantity> derived = derivedQuantity(name);
+  if (derived == DerivedQuantity::Speed) return {};
+  if (inputs && inputs->series)
+    return parameterError(key, "'" + name +
+                                   "': a time series is blended on the GPU, which has the speed "
+                                   "alone; colour and opacity of a series follow speed");
+  if (derived || isScalarFile(name)) return {};
+  const bool analytic = parseEnum<AnalyticField>(session.field.field).has_value() ||
+                        parseEnum<AnalyticField2D>(session.field.field).has_value();
+  if (!inputs && !analytic) return {};  // the file's arrays are known once it is read
+  std::vector<std::string> names = {"speed", "vorticity", "helicity"};
+  if (inputs) {
+    for (const std::string& array : inputs->info.scalarNames)
+      if (array == name) return {};
+    names = scalarChoices(*inputs);
+  }
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return parameterError(
+      key, "'" + name + "' is not a scalar of " + session.field.field + ": the names are " + list +
+               (analytic ? " (an analytic field has no arrays)" : " (the arrays of its file)") +
+               ", or a scalar file (.nrrd, .nhdr) on the field's grid");
+}
+
+}  // namespace
+
+Result<void> checkViewScalarNames(const Session& session, const SessionInputs* inputs) {
+  const ViewParams& view = session.view;
+  if (view.color == ColorMode::Magnitude)
+    LIC3D_TRY(checkScalarName(view.colorBy, "view.color_by", session, inputs));
+  if (opacityWeighted(view))
+    LIC3D_TRY(checkScalarName(view.opacityBy, "view.opacity_by", session, inputs));
+  return {};
 }
 
 std::vector<std::string> scalarChoices(const SessionInputs& inputs) {

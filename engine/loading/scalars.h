@@ -28,6 +28,12 @@ Result<std::optional<PointScalars>> loadScalars(const std::string& name, const s
                                                 const Session& session,
                                                 const SessionInputs& inputs);
 
+// Whether the view's colour and opacity name scalars these inputs have (InvalidInput naming
+// view.color_by or view.opacity_by and listing the names), before any work: without `inputs`
+// (the field not read yet) what the names alone tell (an analytic field has no arrays), with
+// them the arrays of the field's file too.
+Result<void> checkViewScalarNames(const Session& session, const SessionInputs* inputs);
+
 // The names a colour-by or opacity-by choice can take for these inputs: the derived quantities,
 // then the scalar arrays of the field's file (the app's menu).
 std::vector<std::string> scalarChoices(const SessionInputs& inputs);

@@ -139,10 +139,11 @@ std::vector<LicRenderer::EyeDraw> LicRenderer::eyeDraws(VkRect2D area,
   return {};
 }
 
-Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const ViewParams& view,
+Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const ViewParams& given,
                                       std::uint32_t slotBase) {
   if (!hasVolume()) return {};
-  LIC3D_TRY(validate(view));
+  LIC3D_TRY(validate(given));
+  const ViewParams view = shownView(given, volumeFacts().transfer());
   LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
   const std::vector<EyeDraw> draws = eyeDraws(area, view);
   for (std::uint32_t i = 0; i < draws.size(); ++i)
@@ -152,9 +153,11 @@ Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const 
 }
 
 Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
-                                     const ViewParams& view, std::uint32_t slotBase) {
+                                     const ViewParams& given, std::uint32_t slotBase) {
   if (!hasVolume()) return {};
-  LIC3D_TRY(validate(view));
+  LIC3D_TRY(validate(given));
+  // A signed scalar's diverging map and its opacity by size (core/view_params.h).
+  const ViewParams view = shownView(given, volumeFacts().transfer());
   LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
   const std::vector<EyeDraw> draws = eyeDraws(area, view);
   for (std::uint32_t i = 0; i < draws.size(); ++i)
