@@ -186,12 +186,30 @@ TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
   EXPECT_EQ(test::readRgbaPng(path("out.png")).width, 64);
 }
 
+// How much neighbouring pixels of the box differ (mean over both directions, red channel): LIC
+// made at the screen's pixels has the noise's grain; a smaller image stretched over the view is
+// smooth.
+double grain(const test::RgbaPixels& image, Box box) {
+  double sum = 0.0;
+  int n = 0;
+  const auto red = [&](int x, int y) {
+    return static_cast<double>(image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)]);
+  };
+  for (int y = box.y0; y < box.y1 - 1; ++y)
+    for (int x = box.x0; x < box.x1 - 1; ++x, ++n)
+      sum += std::abs(red(x + 1, y) - red(x, y)) + std::abs(red(x, y + 1) - red(x, y));
+  return n ? sum / (2.0 * n) : 0.0;
+}
+
 // The 2D mode (thesis chapter 3): the 2D LIC picture of the circle fills the window's height,
-// centred, keeping its aspect; the panels switch to the plane's controls.
-TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlane) {
-  const CommandRun r = view(
-      "--look dense --mode 2d --field circle --grid 64 --image-size 256x256 --frames 3 --hide-ui "
-      "--save-session out.json --screenshot shot.png");
+// centred, keeping its aspect, made at the view's pixels (the session's image size stays 0); an
+// image size given is kept and stretched over the view. The panels switch to the plane's
+// controls.
+TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlaneAtTheViewsResolution) {
+  const std::string args =
+      "--look dense --mode 2d --field circle --grid 64 --frames 3 --hide-ui "
+      "--save-session out.json --screenshot shot.png";
+  const CommandRun r = view(args);
   ASSERT_EQ(r.status, 0) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
@@ -211,7 +229,20 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlane) {
   Result<Session> saved = readSession(path("out.json"));
   ASSERT_TRUE(saved) << saved.error().message;
   EXPECT_TRUE(saved->twoD);
-  EXPECT_EQ(saved->plane.width, 256);
+  EXPECT_EQ(saved->plane.width, 0) << "the view's size is not the session's";
+
+  // The same plane as a 64x64 image, stretched ten times: its grain is a fraction of the one
+  // made at the view's pixels.
+  const CommandRun small = view(args + " --image-size 64x64");
+  ASSERT_EQ(small.status, 0) << small.output;
+  const test::RgbaPixels stretched = test::readRgbaPng(path("shot.png"));
+  ASSERT_EQ(stretched.width, kWidth) << small.output;
+  const double sharp = grain(shot, kVolume), smooth = grain(stretched, kVolume);
+  EXPECT_GT(sharp, 3.0 * smooth) << "grain " << sharp << " at the view's size, " << smooth
+                                 << " stretched from 64x64";
+  saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(saved->plane.width, 64);
 }
 
 // Colour by a derived quantity with its legend: the legend has a column of its own between the
@@ -264,6 +295,9 @@ TEST_F(ViewerTest, SoakKeepsMemoryFlat) {
   const CommandRun r = view("--grid 16 --frames 500 --soak", "320x240");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("lic3d-view soak: 5"), std::string::npos) << r.output;
+  // A long scripted run reports its progress on stderr, a line every tenth of it in a log.
+  EXPECT_NE(r.output.find("lic3d-view: frame 250 of 500 (50 %)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("lic3d-view: frame 500 of 500 (100 %)"), std::string::npos) << r.output;
   // The first swapchain and one after each resize.
   const std::size_t at = r.output.find(" swapchains");
   ASSERT_NE(at, std::string::npos) << r.output;

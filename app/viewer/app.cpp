@@ -236,6 +236,22 @@ void App::updateStats() {
   stats_.colorValues = facts.colorValues;
   stats_.opacityValues = facts.opacityValues;
   stats_.hiddenFraction = renderer_->hiddenFraction().value_or(-1.0);
+  stats_.resolvedAlpha = !session_.twoD && renderer_->hasVolume()
+                             ? resolvedAlpha(session_.view, facts.transfer(), facts.dims)
+                             : -1.0f;
+  stats_.picture2D = session_.twoD;
+}
+
+void App::reportProgress(bool waiting) {
+  if (!progress_.scripted()) return;
+  const std::uint64_t frame = std::min<std::uint64_t>(frameNumber_ + 1, options_.frames);
+  stats_.scriptText = progress_.windowText(frame, waiting);
+  stats_.scriptFraction = progress_.fraction(frame);
+  const std::string line = progress_.update(frame, secondsSince(startTime_), waiting);
+  if (!line.empty()) {
+    std::fputs(line.c_str(), stderr);
+    std::fflush(stderr);
+  }
 }
 
 // One step of the endurance run (--soak).
@@ -284,10 +300,11 @@ Result<void> App::applySession() {
 // Whether a scripted run may take its screenshot: the volume for the current parameters is
 // shown (stopped: at once, showing the error).
 bool App::readyForShot() const {
-  return stopped_ || (session_.twoD ? planeView_ && planeView_->hasPicture()
-                                    : !stats_.loading && renderer_->hasVolume() &&
-                                          !renderer_->licStatus().pending &&
-                                          !loader_.timePending(session_.time));
+  return stopped_ ||
+         (session_.twoD
+              ? planeView_ && planeView_->hasPicture() && planeView_->tried(session_, pictureArea_)
+              : !stats_.loading && renderer_->hasVolume() && !renderer_->licStatus().pending &&
+                    !loader_.timePending(session_.time));
 }
 
 // Draws one frame; false when the app should quit.
@@ -334,6 +351,9 @@ Result<bool> App::frame() {
   updateStats();
   // Laid out once per frame: the annotations and the picture's viewport share it.
   const PictureLayout layout = viewLayout();
+  pictureArea_ = {layout.picture.z, layout.picture.w};
+  reportProgress(options_.frames > 0 &&
+                 frameNumber_ + 1 > static_cast<std::uint64_t>(options_.frames));
   drawAnnotations(layout);
   Actions actions = drawUi(session_, ui_, stats_);
   if (stopped_ && actions.dismissAlert) return false;  // the dialog's OK quits
@@ -442,6 +462,7 @@ int App::run() {
     if (!*more) break;
   }
   if (!context_) return exitStatus_;  // the device was lost and could not be made again
+  std::fputs(progress_.finish().c_str(), stderr);
   // Let the last screenshot's frame finish (a scripted run quits right after recording it).
   vkDeviceWaitIdle(context_->device());
   for (std::uint64_t i = 0; i < FramePresenter::kFramesInFlight; ++i) {

@@ -23,6 +23,7 @@
 #include "viewer/input.h"
 #include "viewer/loading.h"
 #include "viewer/plane.h"
+#include "viewer/script_progress.h"
 #include "viewer/soak.h"
 #include "viewer/ui.h"
 #include "viewer/viewer.h"
@@ -70,6 +71,8 @@ class App {
   Result<void> collectFrame(FramePresenter::Frame& f, std::uint32_t slot);
   void updateStats();
   void stepSoak();
+  // The scripted run's progress, in the window and on stderr.
+  void reportProgress(bool waiting);
   Result<void> applySession();
   bool readyForShot() const;
   Result<void> recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
@@ -124,12 +127,16 @@ class App {
   // The 2D mode's picture.
   std::optional<PlaneView> planeView_;
   std::optional<std::pair<FieldSource, TimeDomain>> planeDomain_;
+  glm::ivec2 pictureArea_{0};  // the view's size in pixels this frame
+  SettledSize planeArea_;      // the view's size the 2D picture is made for
   FieldSource loadedField_;
   NoiseSource loadedNoise_;
   // The inputs of the field shown (without the noise): colour-by scalars are made from them.
   std::optional<SessionInputs> shownInputs_;
   std::optional<std::pair<std::string, std::string>> shownScalars_;  // colour, opacity
   std::chrono::steady_clock::time_point lastTime_ = std::chrono::steady_clock::now();
+  const std::chrono::steady_clock::time_point startTime_ = std::chrono::steady_clock::now();
+  ScriptProgress progress_;
   int exitStatus_ = cli::kExitOk;
   Soak soak_;
 };

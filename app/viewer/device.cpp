@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,12 +19,14 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/slice_geometry.h"
+#include "core/stage_times.h"
 #include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "io/png_writer.h"
 #include "io/session_file.h"
 #include "lic/legend.h"
 #include "loading/scalars.h"
+#include "viewer/panel_logic.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -93,6 +97,16 @@ Result<void> App::init() {
   ui_.pendingField = session_.field;
   ui_.pendingNoise = session_.noise;
   ui_.pendingTimeSteps = session_.timeSteps;
+  // The preset box names the file the transfer function was read from.
+  if (const std::string preset = startupPresetFile(inputs_); !preset.empty()) {
+    ui_.transferPath = preset;
+    ui_.transferMessage = "loaded " + preset;
+  } else if (!session_.view.transfer.empty()) {
+    ui_.transferMessage =
+        "from the session" +
+        (session_.view.transfer.name.empty() ? std::string() : ": " + session_.view.transfer.name);
+  }
+  progress_ = ScriptProgress(options_.frames, isatty(STDERR_FILENO) != 0, global_.quiet);
   // The 2D mode makes its own plane; the volume's field is read when the 3D mode is chosen.
   if (!session_.twoD) LIC3D_TRY(startLoading(session_.field, session_.noise));
   loadedOnce_ = session_.twoD;
@@ -331,7 +345,8 @@ void App::updatePlane() {
     }
     planeView_.emplace(std::move(*created));
   }
-  if (auto r = planeView_->update(session_); !r) {
+  const double now = secondsSince(startTime_);
+  if (auto r = planeView_->update(session_, planeArea_.update(pictureArea_, now)); !r) {
     stats_.message = uiMessage(r.error());
     return;
   }
@@ -344,6 +359,7 @@ void App::updatePlane() {
   stats_.timeEnd = planeDomain_->second.end;
   stats_.timePeriodic = planeDomain_->second.periodic;
   stats_.dims = planeView_->imageDims();
+  stats_.picture2D = true;
   stats_.minMagnitude = planeView_->minMagnitude();
   stats_.maxMagnitude = planeView_->maxMagnitude();
   stats_.licMs = planeView_->licMilliseconds();

@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
       "2D mode: the plane of a 3D field, AXIS or AXIS:INDEX (default z, the middle layer)");
   std::string imageSize;
   app.add_option("--image-size", imageSize,
-                 "2D mode: the LIC image WxH in pixels (default: the field's grid)");
+                 "2D mode: the LIC image WxH in pixels (default: the view's size, one image "
+                 "pixel per screen pixel)");
 
   viewer::ViewerOptions options;
   std::string windowSize;
@@ -57,7 +58,8 @@ int main(int argc, char** argv) {
       ->default_str("on");
   app.add_flag("--hide-ui", options.hideUi, "Start with the panels hidden (H or Tab shows them)");
   app.add_option("--frames", options.frames,
-                 "Scripted run: quit after this many frames, once the LIC volume is shown")
+                 "Scripted run: quit after this many frames, once the LIC volume is shown "
+                 "(from 100 frames on, progress on stderr)")
       ->check(CLI::Range(1, 1000000));
   app.add_option("--screenshot", options.screenshot,
                  "Scripted run: save the window as this PNG before quitting (needs --frames)");

@@ -2,9 +2,11 @@
 #include "viewer/plane.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "gpu/submit.h"
 #include "lic/lic2d_reference.h"
+#include "loading/plane_inputs.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -17,6 +19,26 @@ bool samePicture(const Session& a, const Session& b) {
 
 }  // namespace
 
+Dims pictureSize(Dims plane, const PlaneParams& params, glm::ivec2 area) {
+  if (params.width > 0 || params.height > 0 || area.x <= 0 || area.y <= 0 || plane.x <= 0 ||
+      plane.y <= 0)
+    return imageSize(plane, params);
+  const double scale =
+      std::min(static_cast<double>(area.x) / plane.x, static_cast<double>(area.y) / plane.y);
+  return {std::clamp(static_cast<int>(std::lround(plane.x * scale)), 1, area.x),
+          std::clamp(static_cast<int>(std::lround(plane.y * scale)), 1, area.y), 1};
+}
+
+glm::ivec2 SettledSize::update(glm::ivec2 now, double seconds) {
+  if (settled_ == glm::ivec2(0)) settled_ = now;
+  if (now != seen_) {
+    seen_ = now;
+    seenSince_ = seconds;
+  }
+  if (now != settled_ && seconds - seenSince_ >= settleSeconds_) settled_ = now;
+  return settled_;
+}
+
 Result<PlaneView> PlaneView::create(const Context& context) {
   PlaneView view;
   view.context_ = &context;
@@ -24,25 +46,47 @@ Result<PlaneView> PlaneView::create(const Context& context) {
   return view;
 }
 
-Result<void> PlaneView::update(const Session& session) {
-  if (made_ && samePicture(*made_, session)) return {};
+Session PlaneView::sized(const Session& session, glm::ivec2 area) const {
+  Session s = session;
+  const Dims size = pictureSize(plane_.field().dims, session.plane, area);
+  s.plane.width = size.x;
+  s.plane.height = size.y;
+  return s;
+}
+
+bool PlaneView::tried(const Session& session, glm::ivec2 area) const {
+  const Session wanted = sized(session, area);
+  return (made_ && samePicture(*made_, wanted)) || (failed_ && samePicture(*failed_, wanted));
+}
+
+Result<void> PlaneView::update(const Session& session, glm::ivec2 area) {
+  const Session wanted = sized(session, area);
+  if (made_ && samePicture(*made_, wanted)) return {};
   // A picture that could not be made is tried again only once the session changes, not every
   // frame (a field file that cannot be read would be read at each).
-  if (failed_ && samePicture(*failed_, session)) return {};
-  Result<void> made = make(session);
+  if (failed_ && samePicture(*failed_, wanted)) return {};
+  Result<void> made = make(session, area);
   if (made)
     failed_.reset();
   else
-    failed_ = session;
+    failed_ = wanted;
   return made;
 }
 
-Result<void> PlaneView::make(const Session& session) {
+Result<void> PlaneView::make(const Session& session, glm::ivec2 area) {
   LIC3D_TRY(checkLic2DParams(session.lic));
-  LIC3D_TRY(plane_.setInputs(session));
-  LIC3D_TRY(plane_.computeLic(session.lic));
+  // The size fitting the view follows the plane's aspect, known once the plane is made: a new
+  // field or plane is sized a second time (only the noise is made again).
+  Session s = sized(session, area);
+  const Dims before = plane_.field().dims;
+  LIC3D_TRY(plane_.setInputs(s));
+  if (plane_.field().dims != before) {
+    s = sized(session, area);
+    LIC3D_TRY(plane_.setInputs(s));
+  }
+  LIC3D_TRY(plane_.computeLic(s.lic));
   // The app draws its own legend over the window.
-  ViewParams view = session.view;
+  ViewParams view = s.view;
   view.legend = false;
   const RgbaImage rgba = plane_.colour(view);
 
@@ -66,7 +110,7 @@ Result<void> PlaneView::make(const Session& session) {
                      VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
       },
       "2d lic picture layout"));
-  made_ = session;
+  made_ = s;
   return {};
 }
 

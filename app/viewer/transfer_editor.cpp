@@ -192,11 +192,7 @@ void transferFunctionPanel(ViewParams& view, UiState& ui, const Stats& stats) {
         view.opacityBy.c_str());
   if (editOpacity) opacityPoints(tf, stats.opacityValues.get());
 
-  std::array<char, 1024> path{};
-  std::snprintf(path.data(), path.size(), "%s", ui.transferPath.c_str());
-  if (ImGui::InputText("preset", path.data(), path.size())) ui.transferPath = path.data();
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A ParaView colour-map preset (.json): RGBPoints and Points");
+  pathText("preset", ui.transferPath, "A ParaView colour-map preset (.json): RGBPoints and Points");
   if (ImGui::Button("Load preset")) {
     Result<TransferFunction> loaded = readTransferFunction(ui.transferPath);
     ui.transferMessage = loaded ? "loaded " + ui.transferPath : loaded.error().message;

@@ -18,6 +18,7 @@
 #include "core/look.h"
 #include "core/parameter_ranges.h"
 #include "lic/analytic_fields.h"
+#include "viewer/panel_logic.h"
 
 namespace lic3d::viewer {
 namespace {
@@ -73,6 +74,49 @@ bool text(const char* label, std::string& value, const char* help) {
   return changed;
 }
 
+}  // namespace
+
+bool pathText(const char* label, std::string& value, const char* help) {
+  // The box being edited; it edits the whole path until it loses the keyboard.
+  static ImGuiID editing = 0;
+  static bool focusPending = false;
+  const ImGuiID id = ImGui::GetID(label);
+  // A path takes the panel's width beside the longest path label, so that more of it is read
+  // without eliding and the path boxes end in one column.
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float boxWidth = std::max(ImGui::CalcItemWidth(), ImGui::GetContentRegionAvail().x -
+                                                              ImGui::CalcTextSize("noise file").x -
+                                                              style.ItemInnerSpacing.x);
+  const float room = boxWidth - 2.0f * style.FramePadding.x;
+  const auto width = [](std::string_view t) {
+    return ImGui::CalcTextSize(t.data(), t.data() + t.size()).x;
+  };
+  if (editing != id && width(value) > room) {
+    std::array<char, 1024> shown{};
+    std::snprintf(shown.data(), shown.size(), "%s", elidePath(value, room, width).c_str());
+    ImGui::SetNextItemWidth(boxWidth);
+    ImGui::InputText((std::string(label) + "##shown").c_str(), shown.data(), shown.size(),
+                     ImGuiInputTextFlags_ReadOnly);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s\n\n%s", value.c_str(), help);
+    if (ImGui::IsItemActivated()) {  // edited from the next frame on
+      editing = id;
+      focusPending = true;
+    }
+    return false;
+  }
+  const bool focusing = editing == id && focusPending;
+  if (focusing) {
+    ImGui::SetKeyboardFocusHere();
+    focusPending = false;
+  }
+  ImGui::SetNextItemWidth(boxWidth);
+  const bool changed = text(label, value, help);
+  if (editing == id && !focusing && !ImGui::IsItemActive()) editing = 0;
+  return changed;
+}
+
+namespace {
+
 template <class E>
 bool combo(const char* label, E& value, const char* help) {
   bool changed = false;
@@ -111,9 +155,9 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   tip("An analytic field: tornado (Crawfis), corner (thesis 4.5), solenoidal (thesis 6.2), "
       "vortex, ABC flow; in 2D also circle (thesis Figure 3.7), saddle and the time-varying "
       "wave (thesis 3.5)");
-  text("file", f.field,
-       "Or a field file: .vtk, .vti, .nrrd, or a time series step_%03d.vti / step_*.vti "
-       "(press Load)");
+  pathText("file", f.field,
+           "Or a field file: .vtk, .vti, .nrrd, or a time series step_%03d.vti / step_*.vti "
+           "(press Load)");
   if (parseEnum<AnalyticField>(f.field) && timePeriod(*parseEnum<AnalyticField>(f.field)) > 0.0 &&
       !session.twoD) {
     ImGui::InputInt("time steps", &ui.pendingTimeSteps);
@@ -137,8 +181,8 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   n.seedSpots = std::max(n.seedSpots, 0);
   tip("Sparse seed noise: this many bright spots on black instead of white noise (0: white "
       "noise)");
-  text("noise file", n.file,
-       "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
+  pathText("noise file", n.file,
+           "A noise volume (.nrrd) on the field's grid instead (empty: generated)");
   if (ImGui::Button("Load")) actions.reloadField = true;
   tip("Load the field and noise above (the LIC volume is recomputed)");
   if (!session.twoD) return;
@@ -153,7 +197,8 @@ void fieldPanel(Session& session, UiState& ui, Actions& actions) {
   p.width = std::clamp(p.width, 0, 16384);
   p.height = std::clamp(p.height, 0, 16384);
   tip("The LIC image in pixels: noise at this size, finer than the field stays sharp (0: the "
-      "field's grid; one side alone keeps the grid's aspect)");
+      "view's size, one image pixel per screen pixel, made again when the window is resized; one "
+      "side alone keeps the grid's aspect)");
 }
 
 void timePanel(Session& session, UiState& ui, const Stats& stats) {
@@ -248,13 +293,41 @@ void scalarCombo(const char* label, std::string& value, const Stats& stats, cons
   tip(help);
 }
 
-void colourPanel(ViewParams& v, const Stats& stats) {
+// What sets the alpha per voxel: an optical depth (alpha chosen from the data, the looks' way) or
+// the alpha slider. Only the control that acts is shown, and a line says which it is.
+void opacityControls(ViewParams& v, UiState& ui, const Stats& stats) {
+  int source = opacitySource(v) == OpacitySource::OpticalDepth ? 0 : 1;
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("opacity from");
+  ImGui::SameLine();
+  bool switched = ImGui::RadioButton("optical depth##source", &source, 0);
+  ImGui::SameLine();
+  switched |= ImGui::RadioButton("alpha##source", &source, 1);
+  tip("optical depth: alpha is chosen from the data so that a ray through the volume meets this "
+      "optical depth (what the looks set); alpha: a fixed opacity per voxel of depth. Switching "
+      "keeps the alpha in use");
+  if (switched)
+    setOpacitySource(v, source == 0 ? OpacitySource::OpticalDepth : OpacitySource::Alpha,
+                     stats.resolvedAlpha, ui.lastOpticalDepth);
+  if (opacitySource(v) == OpacitySource::OpticalDepth) {
+    slider("optical depth", v.opticalDepth, ranges::kOpticalDepth, "%.2f");
+    // Dragged to 0 the depth would hand the opacity to alpha while the slider is held: the
+    // switch above does that.
+    v.opticalDepth = std::max(v.opticalDepth, 0.01f);
+    tip("Alpha is chosen from the data so that a ray through the volume meets this optical depth "
+        "(1: about a third of the light crosses it)");
+  } else {
+    slider("alpha", v.alpha, ranges::kAlpha);
+    tip("Opacity per voxel of depth, corrected for the slice spacing (thesis 5.1.1)");
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", opacityCaption(v, stats.resolvedAlpha).c_str());
+  ImGui::PopStyleColor();
+}
+
+void colourPanel(ViewParams& v, UiState& ui, const Stats& stats) {
   if (!ImGui::CollapsingHeader("Colour and opacity", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  slider("alpha", v.alpha, ranges::kAlpha);
-  tip("Opacity per voxel of depth, corrected for the slice spacing (thesis 5.1.1)");
-  slider("optical depth", v.opticalDepth, ranges::kOpticalDepth, "%.2f");
-  tip("Chooses alpha from the data so that a ray through the volume meets this optical depth "
-      "(0: alpha above)");
+  opacityControls(v, ui, stats);
   combo("opacity", v.opacityMode, "constant alpha, or alpha x grey (dark gaps turn clear)");
   combo("color", v.color, "Colour by a scalar, modulated by the LIC intensity (thesis 5.1.2)");
   nameWidget("view.color_by", "color by");
@@ -375,13 +448,13 @@ void renderingPanel(ViewParams& v, UiState& ui, Actions& actions) {
 
 void filesPanel(UiState& ui, Actions& actions) {
   if (!ImGui::CollapsingHeader("Session and images")) return;
-  text("session", ui.sessionPath, "JSON file with every parameter");
+  pathText("session", ui.sessionPath, "JSON file with every parameter");
   if (ImGui::Button("Save session")) actions.saveSession = true;
   ImGui::SameLine();
   if (ImGui::Button("Load session")) actions.loadSession = true;
   if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
   tip("The window as it is, UI included, to lic3d-screenshot-N.png");
-  text("image", ui.imagePath, "PNG file for the image below");
+  pathText("image", ui.imagePath, "PNG file for the image below");
   ImGui::InputInt2("size", &ui.imageWidth);
   ui.imageWidth = std::clamp(ui.imageWidth, 16, 16384);
   ui.imageHeight = std::clamp(ui.imageHeight, 16, 16384);
@@ -394,8 +467,11 @@ void filesPanel(UiState& ui, Actions& actions) {
 void statusSection(const Stats& stats) {
   ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
               stats.licMs, stats.frameMs);
-  ImGui::Text("%dx%dx%d volume, %.1f MiB on the device", stats.dims.x, stats.dims.y, stats.dims.z,
-              stats.volumeMiB);
+  if (stats.picture2D)
+    ImGui::Text("%dx%d picture", stats.dims.x, stats.dims.y);
+  else
+    ImGui::Text("%dx%dx%d volume, %.1f MiB on the device", stats.dims.x, stats.dims.y, stats.dims.z,
+                stats.volumeMiB);
   ImGui::TextUnformatted(stats.device.c_str());
   if (stats.loading) ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "loading the field...");
   if (stats.waitingForMask)
@@ -403,6 +479,12 @@ void statusSection(const Stats& stats) {
   else if (stats.computing)
     ImGui::TextColored(ImVec4(1, 0.8f, 0.2f, 1), "computing LIC %3.0f %%",
                        100.0 * stats.computeFraction);
+  if (!stats.scriptText.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_PlotHistogram, ImGui::GetStyleColorVec4(ImGuiCol_Header));
+    ImGui::ProgressBar(stats.scriptFraction, ImVec2(-1.0f, 0.0f), stats.scriptText.c_str());
+    ImGui::PopStyleColor();
+    tip("--frames: the run quits after this many frames, once the picture is complete");
+  }
   if (!stats.message.empty()) ImGui::TextWrapped("%s", stats.message.c_str());
   ImGui::Separator();
 }
@@ -528,7 +610,7 @@ Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
     timePanel(session, ui, stats);
     licPanel(session);
     if (!session.twoD) sparsityPanel(session, stats);
-    colourPanel(session.view, stats);
+    colourPanel(session.view, ui, stats);
     if (!session.twoD) transferFunctionPanel(session.view, ui, stats);
     if (!session.twoD) {
       localPanel(session.view);

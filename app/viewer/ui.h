@@ -41,6 +41,11 @@ struct Stats {
   std::shared_ptr<const ValueHistogram> colorValues;
   std::shared_ptr<const ValueHistogram> opacityValues;
   double hiddenFraction = -1.0;  // of the voxels, by the sparsity mask (< 0: no mask)
+  float resolvedAlpha = -1.0f;   // the alpha per voxel the slices use (< 0: unknown)
+  bool picture2D = false;        // dims are the 2D picture's, not a volume's
+  // A scripted run's progress (viewer/script_progress.h); empty when not scripted.
+  std::string scriptText;
+  float scriptFraction = 0.0f;
   // The field's time (docs/TIME.md): the slider runs over [0, timeEnd].
   bool timeDependent = false;
   bool timePeriodic = false;  // an analytic field: timeEnd is its period
@@ -75,6 +80,7 @@ struct UiState {
   std::string transferPath = "lic3d-transfer.json";  // a ParaView colour-map preset
   int selectedColorPoint = -1;                       // of the transfer function editor
   std::string transferMessage;                       // the preset last loaded or saved
+  float lastOpticalDepth = 0.0f;  // restored when the optical depth sets the opacity again
 };
 
 // The panels are docked at the right, the full height of the window; the picture takes the
@@ -88,6 +94,11 @@ void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background)
 // lic/legend.h's inkFor as an ImGui colour.
 ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha = 255);
 void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background);
+
+// A text box for a file's path. While it is not edited, a path wider than the box shows its file
+// name with the directory elided in the middle (elidePath), the whole path in its tooltip; a
+// click edits the whole path. True when the path changed.
+bool pathText(const char* label, std::string& value, const char* help);
 
 // The transfer function editor (viewer/transfer_editor.cpp): colour and opacity control points over
 // a histogram of their scalar, a preset file to load or save.

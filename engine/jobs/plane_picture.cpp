@@ -9,6 +9,18 @@
 #include "loading/session_inputs.h"
 
 namespace lic3d {
+namespace {
+
+// The plane's field does not depend on the image's size: a new size (the app's window resized)
+// makes only the noise and the LIC again, and does not read the field's file again.
+bool sameField(const PlaneParams& a, const PlaneParams& b) {
+  PlaneParams sizeless = b;
+  sizeless.width = a.width;
+  sizeless.height = a.height;
+  return a == sizeless;
+}
+
+}  // namespace
 
 Result<void> PlanePicture::useGpu(const Context& context) {
   LIC3D_TRY_ASSIGN(Lic2DPass pass, Lic2DPass::create(context));
@@ -21,7 +33,7 @@ Result<void> PlanePicture::useGpu(const Context& context) {
 
 Result<void> PlanePicture::setInputs(const Session& session, bool gridGiven) {
   const bool newSource = !fieldOf_ || !(fieldOf_->field == session.field);
-  if (newSource || !(fieldOf_->plane == session.plane) || fieldOf_->time != session.time) {
+  if (newSource || !sameField(fieldOf_->plane, session.plane) || fieldOf_->time != session.time) {
     // A series' files and steps stay while the source does: the next time blends them again.
     if (newSource) source_ = PlaneSource{};
     // Until the plane is made again, what field_ holds is no session's.
