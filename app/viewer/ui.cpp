@@ -399,7 +399,16 @@ void localPanel(ViewParams& v) {
 }
 
 void depthPanel(ViewParams& v) {
-  if (!ImGui::CollapsingHeader("Depth: fog, lighting, stereo")) return;
+  if (!ImGui::CollapsingHeader("Depth: halos, occlusion, fog, lighting, stereo")) return;
+  slider("halos", v.halo, ranges::kHalo);
+  tip("Dark borders around streaks in the background colour, so a near streak cuts the far ones "
+      "it crosses (0: off)");
+  if (v.halo > 0.0f) {
+    slider("halo radius", v.haloRadius, ranges::kHaloRadius, "%.2f voxels");
+  }
+  slider("occlusion", v.occlusion, ranges::kOcclusion);
+  tip("Each slice darkened by the opacity in front of it, spread over a cone towards the viewer "
+      "(slices drawn front to back; 0: off)");
   ImGui::Checkbox("fog", &v.fog);
   tip("Intensity depth cueing (thesis 5.3.1)");
   if (v.fog) {
@@ -410,7 +419,8 @@ void depthPanel(ViewParams& v) {
     if (!v.fogColorFromBackground) ImGui::ColorEdit3("fog colour", &v.fogColor.x);
   }
   combo("lighting", v.lighting,
-        "phong: normals from the streamline's TNB frame (5.3.3); lines: lit from the tangent");
+        "phong: normals from the streamline's TNB frame (5.3.3); lines: lit from the tangent; "
+        "gradient: Phong with the streak's normal, the LIC gradient across the flow");
   if (v.lighting != Lighting::None) {
     slider("ambient", v.light.ambient, ranges::kAmbient);
     slider("diffuse", v.light.diffuse, ranges::kDiffuse);
@@ -434,7 +444,11 @@ void renderingPanel(ViewParams& v, UiState& ui, Actions& actions) {
   combo("slicing", v.slicing, "view-aligned planes, or the thesis' axis-aligned planes (4.1.2)");
   slider("slices", v.slices, ranges::kSlices);
   tip("Number of slices (0: one per voxel along the view direction)");
-  combo("filter", v.filter, "Nearest keeps neighbouring streamlines apart, linear smooths (6.4)");
+  combo("filter", v.filter,
+        "Nearest keeps neighbouring streamlines apart, linear smooths (6.4), cubic is smooth "
+        "across voxel faces; auto: cubic where a voxel covers more than 2 pixels");
+  ImGui::Checkbox("jitter", &v.jitter);
+  tip("Offset each pixel's samples along its ray by part of a slice spacing (no wood grain)");
   ImGui::Checkbox("orthographic", &v.camera.orthographic);
   nameWidget("view.camera.orthographic", "orthographic");
   slider("field of view", v.camera.fovY, ranges::kFov, "%.0f deg");
