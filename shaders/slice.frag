@@ -84,13 +84,14 @@ vec3 world;
 
 // Thesis 6.4: nearest filtering keeps neighbouring streamlines apart, linear smooths them. Cubic:
 // the cubic B-spline from 8 linear fetches (Sigg and Hadwiger 2005), smooth across voxel faces
-// where linear filtering shows the voxels as facets when a voxel covers several pixels.
-vec2 sampleLic(vec3 uvw) {
+// where linear filtering shows the voxels as facets when a voxel covers several pixels. `coarse`
+// samples (halo rings, gradients) take linear filtering instead of cubic: they are not seen.
+vec2 sampleLic(vec3 uvw, bool coarse) {
   if (FILTER == 0) {
     ivec3 size = textureSize(licVolume, 0);
     return texelFetch(licVolume, clamp(ivec3(floor(uvw * vec3(size))), ivec3(0), size - 1), 0).rg;
   }
-  if (FILTER == 1) return texture(licVolume, uvw).rg;
+  if (FILTER == 1 || coarse) return texture(licVolume, uvw).rg;
   vec3 size = vec3(textureSize(licVolume, 0));
   vec3 coord = uvw * size - 0.5;
   vec3 index = floor(coord);
@@ -152,10 +153,10 @@ vec3 applyLighting(vec3 base, vec3 toEye) {
     // The streak as a tube: its normal is the LIC intensity's gradient across the flow (the
     // intensity falls away from a streak's core), lit from both sides.
     vec3 h = 1.0 / vec3(textureSize(licVolume, 0));
-    float here = sampleLic(texCoord).r;
-    vec3 gradient = (vec3(sampleLic(texCoord + vec3(h.x, 0, 0)).r,
-                          sampleLic(texCoord + vec3(0, h.y, 0)).r,
-                          sampleLic(texCoord + vec3(0, 0, h.z)).r) -
+    float here = sampleLic(texCoord, true).r;
+    vec3 gradient = (vec3(sampleLic(texCoord + vec3(h.x, 0, 0), true).r,
+                          sampleLic(texCoord + vec3(0, h.y, 0), true).r,
+                          sampleLic(texCoord + vec3(0, 0, h.z), true).r) -
                      here) /
                     u.voxelSize.xyz;
     vec3 across = gradient - dot(gradient, tangent) * tangent;
@@ -210,8 +211,8 @@ struct Sample {
   float alpha;
 };
 
-Sample shadeAt(vec3 uvw) {
-  vec2 lic = sampleLic(uvw);
+Sample shadeAt(vec3 uvw, bool coarse) {
+  vec2 lic = sampleLic(uvw, coarse);
   float grey = clamp(u.transfer.x * lic.r + u.transfer.y, 0.0, 1.0);
   float alpha = OPACITY_MODE == 1 ? u.halfExtent.w * grey : u.halfExtent.w;
   if (SPARSITY == 1) alpha *= lic.g;
@@ -256,7 +257,7 @@ float ringOpacity(vec3 p, float turn) {
   for (int k = 0; k < 4; ++k) {
     float angle = 1.57079633 * (float(k) + turn);
     vec3 q = p + u.screenRight.w * (cos(angle) * u.screenRight.xyz + sin(angle) * u.screenUp.xyz);
-    strongest = max(strongest, shadeAt(q / (2.0 * u.halfExtent.xyz) + 0.5).alpha);
+    strongest = max(strongest, shadeAt(q / (2.0 * u.halfExtent.xyz) + 0.5, true).alpha);
   }
   return strongest;
 }
@@ -320,7 +321,7 @@ void main() {
   if (removed && OCCLUSION == 0) discard;
 
   float inFront = OCCLUSION == 1 ? occlusionInFront() : 0.0;
-  Sample s = shadeAt(texCoord);
+  Sample s = shadeAt(texCoord, false);
   vec3 rgb = s.rgb;
   float alpha = removed ? 0.0 : s.alpha;
   if (LIGHTING != 0) rgb = applyLighting(rgb, toEye);
