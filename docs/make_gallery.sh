@@ -59,7 +59,82 @@ looks_row "ABC flow" abc --field abc
 
 cat >> "$page" <<'EOF'
 
+## Depth cues
+
+Each field in the default look without depth cues (`--halo 0`), as it is (halos 0.3), with
+occlusion shading added (`--occlusion 0.5`) and with lighting from the LIC gradient added
+(`--lighting gradient`) ([LOOKS.md, Depth cues](LOOKS.md#depth-cues---halo---occlusion---lighting-gradient-the-apps-depth-panel)).
+The last row is the depth criterion's scene: two layers of flow one behind the other, seen face
+on, the near one streaked horizontally.
+
+| field | no cues | halos (the default) | + occlusion | + gradient lighting |
+|---|---|---|---|---|
+EOF
+
+depth_row() {  # title, key, flags...
+  row_title=$1 row_key=$2
+  shift 2
+  render "depth-$row_key-none" "$@" --halo 0
+  render "depth-$row_key-halo" "$@"
+  render "depth-$row_key-occlusion" "$@" --occlusion 0.5
+  render "depth-$row_key-lit" "$@" --lighting gradient
+  # shellcheck disable=SC2001
+  printf '| %s: `%s` | ![](%s) | ![](%s) | ![](%s) | ![](%s) |\n' "$row_title" \
+    "$(echo "$*" | sed 's#\.\./assets#assets#; s#[^ ]*/layers.nrrd#layers.nrrd#')" \
+    "$OUT/depth-$row_key-none.png" "$OUT/depth-$row_key-halo.png" \
+    "$OUT/depth-$row_key-occlusion.png" "$OUT/depth-$row_key-lit.png" >> "$page"
+}
+depth_row "Tornado" tornado --field tornado
+depth_row "Carotid artery, twice as fine" carotid --field ../assets/data/carotid.vtk \
+  --resolution 2x --distance 1.7 --azimuth 20
+depth_row "Magnetic mirror, twice as fine" femm --field ../assets/data/example-femm-3d.vtk \
+  --resolution 2x --azimuth 60 --elevation 20
+depth_row "ABC flow" abc --field abc
+layers=$(mktemp -d)
+# The scene of tests/test_cli_depth.cpp: 64^3, flow along y for 0.6 < x < 0.8 (near the camera
+# at azimuth 0), along z for 0.2 < x < 0.4.
+python3 - "$layers/layers.nrrd" <<'PY'
+import array, sys
+n = 64
+v = array.array('f', [0.0]) * (3 * n * n * n)
+for z in range(n):
+    for y in range(n):
+        for x in range(n):
+            f, i = (x + 0.5) / n, 3 * ((z * n + y) * n + x)
+            if 0.6 < f < 0.8: v[i + 1] = 1.0
+            if 0.2 < f < 0.4: v[i + 2] = 1.0
+head = ("NRRD0004\ntype: float\ndimension: 4\nsizes: 3 %d %d %d\nkinds: vector domain domain "
+        "domain\nencoding: raw\nendian: little\nspacings: nan 1 1 1\n\n" % (n, n, n))
+with open(sys.argv[1], 'wb') as out:
+    out.write(head.encode() + v.tobytes())
+PY
+depth_row "Two layers, seen face on" layers --field "$layers/layers.nrrd" --azimuth 0 --elevation 0
+rm -rf "$layers"
+
+cat >> "$page" <<'EOF'
+
+Without halos a near streak and a far one merge where they cross; with them the near one cuts
+the far one. Occlusion darkens what lies behind the first layer of flow (the carotid's vessels
+behind others, the tornado's far side); the gradient's relief shows most on the carotid's thick
+streaks.
+
+## A figure for print
+
+One picture at poster size: `--scale 2` doubles the width, height and font size of a 720²
+figure with a title, a legend named by `--legend-title`, and ticked axes. Shown here at 320
+pixels wide; [the full picture](images/gallery/poster-carotid.png) is 1440².
+
+EOF
+"$LIC3D" render -q --field ../assets/data/carotid.vtk --resolution 2x --distance 1.6 --azimuth 20 \
+  --width 720 --height 720 --legend --legend-title "blood speed (units not given by the file)" --axes \
+  --title "Carotid bifurcation, MRI velocity, systole" --scale 2 -o "$OUT/poster-carotid.png"
+cat >> "$page" <<'EOF'
+<img src="images/gallery/poster-carotid.png" width="320">
+
+`lic3d render --field assets/data/carotid.vtk --resolution 2x --distance 1.6 --azimuth 20 --width 720 --height 720 --legend --legend-title "blood speed (units not given by the file)" --axes --title "Carotid bifurcation, MRI velocity, systole" --scale 2`
+
 ## The thesis' techniques on the dense look
+
 
 A dense 3D LIC volume is a solid block: its faces hide the inside (the "before" column,
 `--look dense`). The thesis' chapter 5 techniques open it up. Each row shows one technique on
@@ -130,6 +205,11 @@ for f in tornado solenoidal; do
 done
 technique "Nearest filtering of a 32³ LIC volume, close up" tornado tornado-nearest --grid 32 --filter nearest --distance 1.9
 technique "Linear filtering of a 32³ LIC volume, close up" tornado tornado-linear --grid 32 --filter linear --distance 1.9
+technique "Cubic filtering (the default when zoomed), close up" tornado tornado-cubic --grid 32 --filter cubic --distance 1.9
+technique "Plain slicing from close by: linear, no jitter (facets and bands)" tornado tornado-plain --grid 96 --distance 1.0 --filter linear --jitter off
+technique "The same with the defaults (cubic, jitter, exact slice ends)" tornado tornado-zoom --grid 96 --distance 1.0
+technique "Lighting: Phong from the LIC gradient" tornado tornado-gradient --lighting gradient
+technique "Occlusion shading" tornado tornado-occlusion --occlusion 0.6
 
 cat >> "$page" <<'EOF'
 
@@ -153,7 +233,7 @@ realdata() {  # title, file, picture name, flags...
 realdata "Carotid artery, 76×49×45: LIC on a grid twice as fine, closer, with a title, the legend and ticked axes" \
   carotid.vtk carotid --resolution 2x --distance 1.6 --azimuth 20 --legend --axes \
   --title "Carotid bifurcation, MRI velocity"
-realdata "Carotid artery: colour by vorticity \|curl v\|, opacity still by speed" \
+realdata "Carotid artery: colour (and opacity) by vorticity \|curl v\|" \
   carotid.vtk carotid-vorticity --resolution 2x --distance 1.6 --azimuth 20 \
   --color-by vorticity --legend
 realdata "Magnetic mirror, 47×47×47, spacing 0.05, 0.05, 0.125: cut by an oblique plane, colour by \|B\| in tesla" \
