@@ -136,7 +136,7 @@ LIC3D_CONST kSliceDefaultOpacitySource = 0;
 LIC3D_CONST kSliceDefaultHalo = 0;
 LIC3D_CONST kSliceDefaultOcclusion = 0;
 LIC3D_CONST kSliceDefaultJitter = 1;
-LIC3D_CONST kSliceBindingOcclusion = 5;   // sampler2D: the occlusion buffer of the slice in front
+LIC3D_CONST kSliceBindingOcclusion = 5;  // sampler2D: the occlusion buffer of the slice in front
 LIC3D_CONST kOcclusionTaps = 6;  // the occlusion buffer blurred by a ring of taps and the centre
 // The composite of the occlusion-shaded image into the frame (passes/occlusion_pass.h).
 LIC3D_CONST kOcclusionBindingImage = 0;  // sampler2D: the finished image

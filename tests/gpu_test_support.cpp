@@ -93,9 +93,9 @@ double ProjectedBox::signedDistance(glm::vec2 p) const {
 ProjectedBox projectBox(const ViewParams& view, Dims dims, glm::vec3 min, glm::vec3 max) {
   VolumeFacts facts;
   facts.dims = dims;
-  const SliceFrame frame =
-      makeSliceFrame(view, facts, Eye::Mono,
-                     {static_cast<std::uint32_t>(view.width), static_cast<std::uint32_t>(view.height)});
+  const SliceFrame frame = makeSliceFrame(
+      view, facts, Eye::Mono,
+      {static_cast<std::uint32_t>(view.width), static_cast<std::uint32_t>(view.height)});
   std::vector<glm::vec2> points;
   for (int c = 0; c < 8; ++c) {
     const glm::vec3 fraction(c & 1 ? max.x : min.x, c & 2 ? max.y : min.y, c & 4 ? max.z : min.z);

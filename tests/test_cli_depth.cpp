@@ -87,7 +87,7 @@ constexpr double kNearShare = 0.6;
 constexpr double kFarShare = 0.25;
 
 struct LayerShares {
-  double nearFirst = 0.0;  // the near layer's share, near layer streaked horizontally
+  double nearFirst = 0.0;   // the near layer's share, near layer streaked horizontally
   double nearSecond = 0.0;  // the same with the layers swapped (near layer vertical)
   bool meets() const {
     return std::min(nearFirst, nearSecond) >= kNearShare &&
@@ -102,9 +102,9 @@ class DepthTest : public CliTest {
     for (const bool swapped : {false, true}) {
       const std::string field = swapped ? "swapped.nrrd" : "layers.nrrd";
       if (!std::filesystem::exists(path(field))) writeTwoLayers(path(field), swapped);
-      const CommandRun r = run("render -q --field " + field +
-                               " --azimuth 0 --elevation 0 --width 256 --height 256 " + flags +
-                               " -o layers.png");
+      const CommandRun r =
+          run("render -q --field " + field +
+              " --azimuth 0 --elevation 0 --width 256 --height 256 " + flags + " -o layers.png");
       EXPECT_EQ(r.status, 0) << r.output;
       const double horizontal = horizontalShare(test::readRgbaPng(path("layers.png")));
       (swapped ? shares.nearSecond : shares.nearFirst) = swapped ? 1.0 - horizontal : horizontal;
@@ -133,8 +133,7 @@ TEST_F(DepthTest, TheCriterionTellsPicturesThatHideOrFlattenALayer) {
   // order the far layer has the larger share).
   const LayerShares unordered = layerShares("--look streamlines --halo 0");
   EXPECT_FALSE(unordered.meets()) << describe(unordered);
-  EXPECT_LT(std::min(unordered.nearFirst, unordered.nearSecond), kNearShare)
-      << describe(unordered);
+  EXPECT_LT(std::min(unordered.nearFirst, unordered.nearSecond), kNearShare) << describe(unordered);
   // The thesis' dense look: an opaque block whose noise on the box's face says nothing of either
   // layer.
   const LayerShares flat = layerShares("--look dense");
@@ -147,8 +146,10 @@ TEST_F(DepthTest, HalosAndOcclusionPutTheNearLayerInFront) {
   const LayerShares halos = layerShares("--optical-depth 0.5 --halo 0.6");
   const LayerShares occluded = layerShares(base + "--occlusion 0.8");
   for (const LayerShares* cue : {&halos, &occluded}) {
-    EXPECT_GT(cue->nearFirst, none.nearFirst + 0.02) << describe(*cue) << " against " << describe(none);
-    EXPECT_GT(cue->nearSecond, none.nearSecond + 0.02) << describe(*cue) << " against " << describe(none);
+    EXPECT_GT(cue->nearFirst, none.nearFirst + 0.02)
+        << describe(*cue) << " against " << describe(none);
+    EXPECT_GT(cue->nearSecond, none.nearSecond + 0.02)
+        << describe(*cue) << " against " << describe(none);
   }
 }
 
@@ -167,8 +168,9 @@ TEST_F(DepthTest, LightingFromTheLicGradientIsVisible) {
   ASSERT_EQ(run(common + "-o unlit.png").status, 0);
   const CommandRun lit = run(common + "--lighting gradient -o lit.png");
   ASSERT_EQ(lit.status, 0) << lit.output;
-  EXPECT_GT(meanDifference(test::readRgbaPng(path("unlit.png")), test::readRgbaPng(path("lit.png"))),
-            2.0);
+  EXPECT_GT(
+      meanDifference(test::readRgbaPng(path("unlit.png")), test::readRgbaPng(path("lit.png"))),
+      2.0);
 }
 
 TEST_F(DepthTest, ZoomedSlicesShowNeitherFacetsNorBands) {

@@ -73,7 +73,7 @@ struct SessionOptions {
   TextOption jitter;
   CLI::Option* colorBy = nullptr;  // to tell a given --color-by from the session's
   CLI::Option* opacityBy = nullptr;
-  float scale = 1.0f;  // --scale: the picture's sizes times this (scaledView), after the rest
+  float scale = 1.0f;       // --scale: the picture's sizes times this (scaledView), after the rest
   CLI::App* app = nullptr;  // the command the flags belong to: which were given (flag_rules.cpp)
 };
 

@@ -420,10 +420,10 @@ Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
   const bool drawVolume = !session_.twoD && !stopped_;
   if (drawVolume) LIC3D_TRY(renderer_->prepareDraw(cmd, area, session_.view, 2 * slot));
   beginClearedRendering(cmd, offscreen.view(), extent, session_.view.background);
-  const Result<void> drawn = drawVolume ? renderer_->recordDraw(cmd,
-                                                                FramePresenter::kOffscreenFormat,
-                                                                area, session_.view, 2 * slot)
-                                        : Result<void>();
+  const Result<void> drawn = drawVolume
+                                 ? renderer_->recordDraw(cmd, FramePresenter::kOffscreenFormat,
+                                                         area, session_.view, 2 * slot)
+                                 : Result<void>();
   vkCmdEndRendering(cmd);
   if (f.timed) f.timer.end(cmd, 1);
   LIC3D_TRY(drawn);

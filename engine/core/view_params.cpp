@@ -129,9 +129,9 @@ glm::vec3 viewColor(const ViewParams& view, float t) {
 float opacityWeight(const ViewParams& view, float t) {
   if (!view.transfer.opacities.empty()) return static_cast<float>(view.transfer.opacity(t));
   if (view.magnitudeOpacity > 0.0f || view.magnitudeThreshold > 0.0f)
-    return t < view.magnitudeThreshold ? 0.0f
-                                       : std::max(std::pow(t, view.magnitudeOpacity),
-                                                  view.opacityFloor);
+    return t < view.magnitudeThreshold
+               ? 0.0f
+               : std::max(std::pow(t, view.magnitudeOpacity), view.opacityFloor);
   return 1.0f;
 }
 

@@ -33,7 +33,7 @@ enum class OpacityMode {
 // covers more than kCubicFromPixels pixels on the screen, else linear.
 enum class VolumeFilter { Nearest, Linear, Cubic, Auto };
 inline constexpr float kCubicFromPixels = 2.0f;
-enum class ColorMode { None, Magnitude };     // grey, or coloured by |v| (thesis 5.1.2)
+enum class ColorMode { None, Magnitude };              // grey, or coloured by |v| (thesis 5.1.2)
 enum class RoiShape { None, Sphere, Cube, Cylinder };  // thesis 5.2.2
 enum class StereoMode { None, Anaglyph, SideBySide };  // thesis 5.3.2
 // Thesis 5.3.3 (Phong with the streamline's principal normal), illuminated lines, and Phong with

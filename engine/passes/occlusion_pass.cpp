@@ -144,16 +144,15 @@ Result<void> OcclusionPass::composite(VkCommandBuffer cmd, int eye, VkFormat for
   LIC3D_ASSERT(eye >= 0 && eye < kEyes);
   const EyeImages& images = eyes_[eye];
   LIC3D_TRY_ASSIGN(
-      VkPipeline pipeline,
-      composites_.get({format, writeMask}, [&](const CompositeVariant& v) {
+      VkPipeline pipeline, composites_.get({format, writeMask}, [&](const CompositeVariant& v) {
         const std::array<VkPipelineColorBlendAttachmentState, 1> blends{blendOver(v.writeMask)};
-        return createGraphicsPipeline(
-            *context_, {.vertex = vertexShader_.get(),
-                        .fragment = compositeShader_.get(),
-                        .colorFormats = std::span<const VkFormat>(&v.format, 1),
-                        .blends = blends,
-                        .layout = &layout_,
-                        .name = "occlusion composite"});
+        return createGraphicsPipeline(*context_,
+                                      {.vertex = vertexShader_.get(),
+                                       .fragment = compositeShader_.get(),
+                                       .colorFormats = std::span<const VkFormat>(&v.format, 1),
+                                       .blends = blends,
+                                       .layout = &layout_,
+                                       .name = "occlusion composite"});
       }));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
   setViewport(cmd, viewport);

@@ -290,22 +290,22 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
   // The cone's spread over one slice: 45 degrees, one slice spacing sideways, in pixels at the
   // volume's centre.
   const glm::vec4 centre = frame.camera.viewProjection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  const glm::vec4 aside = frame.camera.viewProjection *
-                          glm::vec4(frame.camera.up * frame.plan.spacing, 1.0f);
+  const glm::vec4 aside =
+      frame.camera.viewProjection * glm::vec4(frame.camera.up * frame.plan.spacing, 1.0f);
   const float pixels = glm::length(glm::vec2(aside) / aside.w - glm::vec2(centre) / centre.w) *
                        0.5f * static_cast<float>(extent.height);
   uniforms.occlusion.y = std::max(pixels, 0.5f);
   writeUniforms(uniforms, slot);
   const int count = frame.plan.count;
-  return occlusion_.record(
-      cmd, frame.eyeIndex, extent, count,
-      [&](VkCommandBuffer c, int index, VkImageView inFront) {
-        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        pushDescriptors(c, volume, field, scalars, inFront, slot);
-        // Slice 0 is the farthest: the index-th from the front is count - 1 - index.
-        vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0,
-                  static_cast<std::uint32_t>(count - 1 - index));
-      });
+  return occlusion_.record(cmd, frame.eyeIndex, extent, count,
+                           [&](VkCommandBuffer c, int index, VkImageView inFront) {
+                             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+                             pushDescriptors(c, volume, field, scalars, inFront, slot);
+                             // Slice 0 is the farthest: the index-th from the front is count - 1 -
+                             // index.
+                             vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0,
+                                       static_cast<std::uint32_t>(count - 1 - index));
+                           });
 }
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,

@@ -169,6 +169,17 @@ class Lic3dModule(unittest.TestCase):
                              noise=self.noise, session=session)
         np.testing.assert_array_equal(again, image)
 
+    def test_depth_cues_are_keyword_parameters(self):
+        common = dict(spacing=self.spacing, origin=self.origin, noise=self.noise, width=64,
+                      height=64, look="dense")
+        plain = lic3d.render(self.vectors, **common)
+        for cue in (dict(halo=1.0), dict(occlusion=0.8), dict(lighting="gradient")):
+            image = lic3d.render(self.vectors, **common, **cue)
+            self.assertGreater(np.abs(image.astype(int) - plain.astype(int)).mean(), 0.5, cue)
+        session = lic3d.session(halo=0.5, occlusion=0.25, halo_radius=2)
+        self.assertEqual((session["view"]["halo"], session["view"]["occlusion"],
+                          session["view"]["halo_radius"]), (0.5, 0.25, 2))
+
     def test_sessions_are_dicts(self):
         session = lic3d.session(length=7, look="streamlines", integrator="euler")
         self.assertEqual(session["lic"]["length"], 7)
