@@ -125,13 +125,13 @@ figure with a title, a legend named by `--legend-title`, and ticked axes. Shown 
 pixels wide; [the full picture](images/gallery/poster-carotid.png) is 1440².
 
 EOF
-"$LIC3D" render -q --field ../assets/data/carotid.vtk --resolution 2x --distance 1.6 --azimuth 20 \
-  --width 720 --height 720 --legend --legend-title "blood speed (units not given by the file)" --axes \
+"$LIC3D" render -q --field ../assets/data/carotid.vtk --resolution 2x --distance 3.0 --azimuth 20 \
+  --width 720 --height 720 --legend --legend-title "blood speed" --axes \
   --title "Carotid bifurcation, MRI velocity, systole" --scale 2 -o "$OUT/poster-carotid.png"
 cat >> "$page" <<'EOF'
 <img src="images/gallery/poster-carotid.png" width="320">
 
-`lic3d render --field assets/data/carotid.vtk --resolution 2x --distance 1.6 --azimuth 20 --width 720 --height 720 --legend --legend-title "blood speed (units not given by the file)" --axes --title "Carotid bifurcation, MRI velocity, systole" --scale 2`
+`lic3d render --field assets/data/carotid.vtk --resolution 2x --distance 3.0 --azimuth 20 --width 720 --height 720 --legend --legend-title "blood speed" --axes --title "Carotid bifurcation, MRI velocity, systole" --scale 2`
 
 ## The thesis' techniques on the dense look
 

@@ -13,6 +13,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/look.h"
 #include "core/stage_times.h"
 #include "core/volume_compare.h"
 #include "gpu/shader_library.h"
@@ -344,6 +345,33 @@ Result<nlohmann::json> runVariants(const Context& context, const BenchOptions& o
   all.view.roiSize = 0.8f;
   all.view.lighting = Lighting::Phong;
   variants.push_back(all);
+  // The depth cues and the filters against facets (docs/LOOKS.md), each on the colour row.
+  Variant halos{"colour + halos 0.3", plain, colour.view};
+  halos.view.halo = 0.3f;
+  variants.push_back(halos);
+  Variant occlusion{"colour + occlusion 0.5", plain, colour.view};
+  occlusion.view.occlusion = 0.5f;
+  variants.push_back(occlusion);
+  Variant gradient{"colour + gradient lighting", plain, colour.view};
+  gradient.view.lighting = Lighting::Gradient;
+  variants.push_back(gradient);
+  Variant cubic{"colour + cubic filter", plain, colour.view};
+  cubic.view.filter = VolumeFilter::Cubic;
+  variants.push_back(cubic);
+  Variant plainSlicing{"colour, linear, no jitter", plain, colour.view};
+  plainSlicing.view.filter = VolumeFilter::Linear;
+  plainSlicing.view.jitter = false;
+  variants.push_back(plainSlicing);
+  Variant jittered{"colour, linear, jitter", plain, colour.view};
+  jittered.view.filter = VolumeFilter::Linear;
+  variants.push_back(jittered);
+  // The default look's view (its optical depth, halos, opacity floor), on this frame.
+  Session seeThrough;
+  applyLook(Look::SeeThrough, seeThrough);
+  Variant look{"the see-through look", plain, seeThrough.view};
+  look.view.width = look.view.height = size;
+  look.view.slices = n;
+  variants.push_back(look);
 
   const DeviceInfo& device = context.deviceInfo();
   std::printf("lic3d bench --variants on %s (%s), %s\n", device.name.c_str(), device.driver.c_str(),

@@ -114,7 +114,8 @@ void addViewOptions(CLI::App& app, SessionOptions& options) {
                 "Opacity transfer: constant (alpha everywhere) or intensity (alpha x grey, so "
                 "dark gaps between streamlines turn clear)");
   addEnumOption(app, "--filter", view.filter,
-                "Sampling of the LIC volume by the slices (thesis 6.4)");
+                "Sampling of the LIC volume by the slices: nearest and linear (thesis 6.4), the "
+                "cubic B-spline, or auto (cubic where a voxel covers more than 6 pixels)");
   addText(app, "--background", options.background,
           "Background colour R,G,B: components in 0..1, or 0..255 if any exceeds 1", "0,0,0",
           "view.background");

@@ -84,7 +84,6 @@ void App::drawAxes(const PictureLayout& layout) const {
   const ImU32 line = imguiInk(session_.view.background, 160);
   const ImU32 ink = imguiInk(session_.view.background);
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const float font = ImGui::GetFontSize();
   for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
   for (const AxisTick& tick : axes.ticks) {
     const glm::vec2 end = tick.at + 5.0f * tick.outward;
@@ -103,11 +102,23 @@ void App::drawAxes(const PictureLayout& layout) const {
     draw->AddText(ImVec2(low.x, low.y), ink, tick.text.c_str());
   }
   for (const AxisLabel& label : axes.labels) {
-    const float width = ImGui::CalcTextSize(label.text.c_str()).x;
-    const float x = std::clamp(label.leftOfBox ? label.at.x - width - 6.0f : label.at.x + 6.0f,
-                               static_cast<float>(area.x) + 2.0f,
-                               std::max(2.0f, static_cast<float>(area.x + area.z) - width - 2.0f));
-    draw->AddText(ImVec2(x, label.at.y - 0.5f * font), ink, label.text.c_str());
+    // Beyond its edge's tick labels, on the line through the middle of the edge along its
+    // outward normal (as the CLI's pictures place it, lic/legend.h): at its own axis.
+    float band = 0.0f;
+    for (const AxisTick& tick : axes.ticks)
+      if (tick.axis == label.axis) {
+        const ImVec2 t = ImGui::CalcTextSize(tick.text.c_str());
+        band = std::max(band, std::abs(tick.outward.x) * t.x + std::abs(tick.outward.y) * t.y);
+      }
+    const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
+    const float half =
+        0.5f * (std::abs(label.outward.x) * size.x + std::abs(label.outward.y) * size.y);
+    const glm::vec2 centre = label.at + (5.0f + 6.0f + band + half) * label.outward;
+    const float x = std::clamp(centre.x - 0.5f * size.x, static_cast<float>(area.x) + 2.0f,
+                               std::max(2.0f, static_cast<float>(area.x + area.z) - size.x - 2.0f));
+    const float y = std::clamp(centre.y - 0.5f * size.y, static_cast<float>(area.y) + 2.0f,
+                               std::max(2.0f, static_cast<float>(area.y + area.w) - size.y - 2.0f));
+    draw->AddText(ImVec2(x, y), ink, label.text.c_str());
   }
 }
 

@@ -446,7 +446,7 @@ void renderingPanel(ViewParams& v, UiState& ui, Actions& actions) {
   tip("Number of slices (0: one per voxel along the view direction)");
   combo("filter", v.filter,
         "Nearest keeps neighbouring streamlines apart, linear smooths (6.4), cubic is smooth "
-        "across voxel faces; auto: cubic where a voxel covers more than 2 pixels");
+        "across voxel faces; auto: cubic where a voxel covers more than 6 pixels");
   ImGui::Checkbox("jitter", &v.jitter);
   tip("Offset each pixel's samples along its ray by part of a slice spacing (no wood grain)");
   ImGui::Checkbox("orthographic", &v.camera.orthographic);

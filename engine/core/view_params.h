@@ -30,9 +30,11 @@ enum class OpacityMode {
 
 // How slices sample the LIC volume: thesis 6.4's nearest and linear; the cubic B-spline, smooth
 // across voxel faces where linear sampling shows the voxels as facets; auto: cubic where a voxel
-// covers more than kCubicFromPixels pixels on the screen, else linear.
+// covers more than kCubicFromPixels pixels on the screen, else linear. The B-spline smooths as
+// it goes (a 1024^2 picture of a 128^3 grid, 5 pixels per voxel, turned soft) and its 8 fetches
+// cost 2.7 times linear's on an H200 (docs/LOOKS.md): it is for close-ups.
 enum class VolumeFilter { Nearest, Linear, Cubic, Auto };
-inline constexpr float kCubicFromPixels = 2.0f;
+inline constexpr float kCubicFromPixels = 6.0f;
 enum class ColorMode { None, Magnitude };              // grey, or coloured by |v| (thesis 5.1.2)
 enum class RoiShape { None, Sphere, Cube, Cylinder };  // thesis 5.2.2
 enum class StereoMode { None, Anaglyph, SideBySide };  // thesis 5.3.2

@@ -332,6 +332,7 @@ BoxAxes projectBoxAxes(const CameraMatrices& camera, bool orthographic, glm::vec
                        Dims dims, const GridGeometry& geometry, glm::ivec4 area,
                        float tickSpacing) {
   BoxAxes axes;
+  axes.area = area;
   auto corner = [&](int i) {
     return glm::vec3(i & 1 ? halfExtent.x : -halfExtent.x, i & 2 ? halfExtent.y : -halfExtent.y,
                      i & 4 ? halfExtent.z : -halfExtent.z);
@@ -442,7 +443,29 @@ std::vector<PlacedText> drawBoxAxes(RgbaImage& image, const BoxAxes& axes, glm::
                                     const AnnotationStyle& style) {
   const float em = style.fontSize;
   const glm::u8vec4 line = inkFor(background, 160);
-  for (const auto& [a, b] : axes.edges) drawLine(image, a, b, style.lineWidth, line);
+  // The box reaches beyond the picture when the camera is close: its edges are cut at the
+  // picture's border (Liang-Barsky), so they never cross the legend's column or the title.
+  const glm::vec2 areaLow(axes.area.x, axes.area.y);
+  const glm::vec2 areaHigh = areaLow + glm::vec2(axes.area.z, axes.area.w);
+  for (const auto& [a, b] : axes.edges) {
+    const glm::vec2 d = b - a;
+    float t0 = 0.0f, t1 = 1.0f;
+    bool visible = true;
+    const auto clip = [&](float p, float q) {  // keep where p t <= q
+      if (p == 0.0f) {
+        visible = visible && q >= 0.0f;
+      } else if (p < 0.0f) {
+        t0 = std::max(t0, q / p);
+      } else {
+        t1 = std::min(t1, q / p);
+      }
+    };
+    clip(-d.x, a.x - areaLow.x);
+    clip(d.x, areaHigh.x - a.x);
+    clip(-d.y, a.y - areaLow.y);
+    clip(d.y, areaHigh.y - a.y);
+    if (visible && t0 < t1) drawLine(image, a + t0 * d, a + t1 * d, style.lineWidth, line);
+  }
   const glm::u8vec4 ink = inkFor(background, 255);
   std::vector<PlacedText> placed;
   // The box of a text centred on the line from `at` along `outward`, `distance` from `at` to
@@ -455,7 +478,9 @@ std::vector<PlacedText> drawBoxAxes(RgbaImage& image, const BoxAxes& axes, glm::
     return glm::ivec4(x, y, x + extent.width, y + extent.height);
   };
   const auto inside = [&](const glm::ivec4& r) {
-    return r.x >= 1 && r.y >= 1 && r.z <= image.width - 1 && r.w <= image.height - 1;
+    return r.x >= std::max(1, axes.area.x) && r.y >= std::max(1, axes.area.y) &&
+           r.z <= std::min(image.width - 1, axes.area.x + axes.area.z) &&
+           r.w <= std::min(image.height - 1, axes.area.y + axes.area.w);
   };
   const auto unoccupied = [&](const glm::ivec4& r) {
     return std::none_of(placed.begin(), placed.end(),

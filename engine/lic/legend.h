@@ -115,6 +115,7 @@ struct AxisLabel {
   int axis = 0;
 };
 struct BoxAxes {
+  glm::ivec4 area{0};  // the picture (x, y, width, height): nothing is drawn outside it
   std::vector<std::pair<glm::vec2, glm::vec2>> edges;
   std::vector<glm::vec2> outline;  // the convex hull of the box's corners on screen
   std::vector<AxisLabel> labels;
