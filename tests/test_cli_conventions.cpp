@@ -97,6 +97,8 @@ TEST_F(CliTest, FlagsThatNeedAnotherAreRefusedNamingIt) {
       {"--alpha 0.5 --optical-depth 1", "give one"},
       {"--window 0.2,0.8 --window-percentiles 0.1,0.9", "give one"},
       {"--color none --color-by vorticity", "--color none"},
+      {"--look dense --halo-radius 2", "--halo"},
+      {"--look dense --opacity-floor 0.2", "--magnitude-opacity"},
   };
   for (const auto& c : cases) {
     const CommandRun r = run(kTiny + c.flags + " -o x.png");
@@ -106,6 +108,7 @@ TEST_F(CliTest, FlagsThatNeedAnotherAreRefusedNamingIt) {
   }
   // With what they need, they act.
   EXPECT_EQ(run(kTiny + "--sparsity halton --sparsity-amount 0.5 -o x.png").status, 0);
+  EXPECT_EQ(run(kTiny + "--halo 0.5 --halo-radius 2 --opacity-floor 0.2 -o x.png").status, 0);
 }
 
 TEST_F(CliTest, ABadScalarNameIsRefusedBeforeTheLic) {
