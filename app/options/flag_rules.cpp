@@ -60,9 +60,9 @@ Result<void> checkFlagNeeds(const SessionOptions& options) {
     LIC3D_TRY(needs(options, flag, v.roi != RoiShape::None,
                     "with a region of interest: add --roi sphere, cube or cylinder"));
   LIC3D_TRY(needs(options, "--halo-radius", v.halo > 0.0f, "with halos: add --halo S"));
-  LIC3D_TRY(needs(options, "--opacity-floor",
-                  v.magnitudeOpacity > 0.0f || v.magnitudeThreshold > 0.0f,
-                  "with opacity by a scalar: add --magnitude-opacity E or --magnitude-threshold T"));
+  LIC3D_TRY(
+      needs(options, "--opacity-floor", v.magnitudeOpacity > 0.0f || v.magnitudeThreshold > 0.0f,
+            "with opacity by a scalar: add --magnitude-opacity E or --magnitude-threshold T"));
   LIC3D_TRY(notBoth(options, "--alpha", "--optical-depth", "set the opacity per voxel"));
   LIC3D_TRY(notBoth(options, "--window", "--window-percentiles", "set the grey window"));
   LIC3D_TRY(notBoth(options, "--contrast", "--window-percentiles", "set the grey window"));
