@@ -228,7 +228,12 @@ realdata() {  # title, file, picture name, flags...
   shift 3
   render "$picture-default" --field "../assets/data/$file"
   render "$picture" --field "../assets/data/$file" "$@"
-  row "$title" "$picture-default" "$picture" "--field assets/data/$file $*"
+  shown="--field assets/data/$file"
+  for arg in "$@"; do  # quoted where it holds a space, as one would type it
+    case $arg in *" "*) shown="$shown \"$arg\"" ;; *) shown="$shown $arg" ;; esac
+  done
+  # shellcheck disable=SC2001
+  row "$title" "$picture-default" "$picture" "$(echo "$shown" | sed 's/|/\\|/g')"
 }
 realdata "Carotid artery, 76×49×45: LIC on a grid twice as fine, closer, with a title, the legend and ticked axes" \
   carotid.vtk carotid --resolution 2x --distance 1.6 --azimuth 20 --legend --axes \
@@ -238,7 +243,7 @@ realdata "Carotid artery: colour (and opacity) by vorticity \|curl v\|" \
   --color-by vorticity --legend
 realdata "Magnetic mirror, 47×47×47, spacing 0.05, 0.05, 0.125: cut by an oblique plane, colour by \|B\| in tesla" \
   example-femm-3d.vtk femm --resolution 2x --clip-plane 0.5,0.5,0.5,1,1,0 --azimuth 60 \
-  --elevation 20 --legend --axes
+  --elevation 20 --legend --legend-title "|B| [T]" --axes
 render abc-helicity --field abc --color-by helicity --tf ../assets/presets/blue-orange.json --legend
 cat >> "$page" <<'EOF'
 | ABC flow: colour by helicity v · curl v through a ParaView preset ([blue-orange.json](../assets/presets/blue-orange.json), its opacities too) | ![](images/gallery/look-abc-see-through.png) | ![](images/gallery/abc-helicity.png) | `--field abc --color-by helicity --tf assets/presets/blue-orange.json --legend` |
