@@ -570,5 +570,76 @@ TEST_F(VtiTest, PvtiAssemblesItsPiecesByTheirExtents) {
   EXPECT_EQ(outside.error().kind, ErrorKind::InvalidInput);
 }
 
+// What a .pvti may not make the reader do: take an extent beyond int as a small one, allocate the
+// grid of a whole extent its pieces do not fill, let the last of two disagreeing pieces win, or
+// ignore a piece placed elsewhere than the whole's Origin and Spacing say.
+TEST_F(VtiTest, PvtiRefusesExtentsAndPiecesThatDisagree) {
+  const auto piece = [&](const std::string& name, int x0, int x1, double bump,
+                         const std::string& origin = "1 2 3",
+                         const std::string& spacing = "0.5 0.25 2") {
+    Image image;
+    image.wholeExtent = std::to_string(x0) + " " + std::to_string(x1) + " 0 1 0 1";
+    image.origin = origin;
+    image.spacing = spacing;
+    Array v{.name = "v"};
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = x0; i <= x1; ++i) v.values.insert(v.values.end(), {i + bump, 1.0, -1.0});
+    image.arrays.push_back(v);
+    fs::create_directories(path("p"));
+    writeBytes("p/" + name, makeVti(image, Encoding{.format = "appended"}));
+  };
+  const auto pvti = [&](const std::string& name, const std::string& whole,
+                        const std::string& pieces) {
+    return writeBytes(name, "<VTKFile type=\"PImageData\" version=\"0.1\"><PImageData WholeExtent=\"" +
+                                whole + "\" Origin=\"1 2 3\" Spacing=\"0.5 0.25 2\">" + pieces +
+                                "</PImageData></VTKFile>");
+  };
+  const auto refused = [&](const fs::path& file, const fs::path& named, const std::string& text) {
+    const Result<VectorField> field = readVectorField(file);
+    ASSERT_FALSE(field.ok()) << file;
+    EXPECT_EQ(field.error().kind, ErrorKind::InvalidInput) << field.error().message;
+    EXPECT_NE(field.error().message.find(named.string()), std::string::npos)
+        << field.error().message;
+    EXPECT_NE(field.error().message.find(text), std::string::npos) << field.error().message;
+  };
+  piece("a.vti", 0, 2, 0.0);
+  piece("b.vti", 2, 3, 0.0);
+  piece("b_differs.vti", 2, 3, 0.5);
+  piece("b_spacing.vti", 2, 3, 0.0, "1 2 3", "1 1 1");
+  piece("b_origin.vti", 2, 3, 0.0, "5 2 3");
+  const std::string a = "<Piece Extent=\"0 2 0 1 0 1\" Source=\"p/a.vti\"/>";
+  const auto b = [](const std::string& source) {
+    return "<Piece Extent=\"2 3 0 1 0 1\" Source=\"p/" + source + "\"/>";
+  };
+  ASSERT_TRUE(readVectorField(pvti("good.pvti", "0 3 0 1 0 1", a + b("b.vti"))).ok());
+  // 4294967311 is 15 modulo 2^32: read as 64 bits, it is refused, by its file and attribute.
+  refused(pvti("wraps.pvti", "0 4294967311 0 0 0 0", a), path("wraps.pvti"),
+          "PImageData WholeExtent '0 4294967311 0 0 0 0'");
+  refused(pvti("piece_wraps.pvti", "0 3 0 1 0 1", "<Piece Extent=\"0 4294967298 0 1 0 1\"/>"),
+          path("piece_wraps.pvti"), "Piece Extent '0 4294967298 0 1 0 1' leaves the WholeExtent");
+  // A whole extent its pieces do not fill is refused before any piece is read (the piece's file
+  // does not exist) or the grid of 2^26 points allocated.
+  refused(pvti("claims.pvti", "0 1023 0 1023 0 63",
+               "<Piece Extent=\"0 1 0 0 0 0\" Source=\"p/none.vti\"/>"),
+          path("claims.pvti"), "without data");
+  refused(pvti("gap.pvti", "0 3 0 1 0 1",
+               "<Piece Extent=\"0 1 0 1 0 1\" Source=\"p/none.vti\"/>"
+               "<Piece Extent=\"3 3 0 1 0 1\" Source=\"p/none.vti\"/>"
+               "<Piece Extent=\"2 2 0 0 0 1\" Source=\"p/none.vti\"/>"
+               "<Piece Extent=\"2 2 1 1 0 0\" Source=\"p/none.vti\"/>"),
+          path("gap.pvti"), "without data");
+  // Pieces share the points of x = 2: b_differs holds other vectors there.
+  refused(pvti("differs.pvti", "0 3 0 1 0 1", a + b("b_differs.vti")), path("p/b_differs.vti"),
+          "overlaps an earlier piece at point (2, 0, 0)");
+  refused(pvti("spacing.pvti", "0 3 0 1 0 1", a + b("b_spacing.vti")), path("p/b_spacing.vti"),
+          "Spacing");
+  refused(pvti("origin.pvti", "0 3 0 1 0 1", a + b("b_origin.vti")), path("p/b_origin.vti"),
+          "Origin");
+  refused(pvti("origin_first.pvti", "0 3 0 1 0 1",
+               "<Piece Extent=\"2 3 0 1 0 1\" Source=\"p/b_origin.vti\"/>" + a),
+          path("p/b_origin.vti"), "Origin");
+}
+
 }  // namespace
 }  // namespace lic3d

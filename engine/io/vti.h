@@ -41,9 +41,11 @@ Result<VectorField> readVectorFieldVtiPiece(const std::filesystem::path& path,
 
 // A parallel .pvti (what ParaView and VTK write under MPI): its pieces' .vti files (Source,
 // relative to the .pvti's folder) read as readVectorFieldVti reads one and placed by their
-// Extent in the WholeExtent, which they must cover; overlapping points (pieces share their
-// boundaries) hold the same values. The array is chosen in the first piece. Errors name the
-// .pvti or the piece.
+// Extent in the WholeExtent. Extents are 64-bit (never wrapped to int); the whole extent is held
+// to the grid limits, the pieces' coverage and the host's memory before any piece is read.
+// Overlapping points (pieces share their boundaries) must hold the same vectors, and every piece
+// must lie where PImageData's Origin and Spacing (and the first piece) put it. The array is
+// chosen in the first piece. Errors name the .pvti or the piece.
 Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
                                         std::string_view arrayName = {},
                                         FieldReadInfo* info = nullptr);
