@@ -150,8 +150,8 @@ TEST_F(RawVolumeTest, MalformedSidecarsAreInputErrorsNamingBothFiles) {
     const char* fragment;
   };
   const Case cases[] = {
-      {"empty", "", "invalid JSON"},
-      {"not json", "dims = 2 2 2", "invalid JSON"},
+      {"empty", "", "not valid JSON"},
+      {"not json", "dims = 2 2 2", "not valid JSON"},
       {"array", "[2, 2, 2]", "expected a JSON object"},
       {"missing dims", R"({"spacing": [1, 1, 1]})", "missing \"dims\""},
       {"two dims", R"({"dims": [2, 2]})",
@@ -175,7 +175,9 @@ TEST_F(RawVolumeTest, MalformedSidecarsAreInputErrorsNamingBothFiles) {
       {"endian", R"({"dims": [2, 2, 2], "endian": 1})", "endian: expected \"little\" or \"big\""},
       {"unknown key", R"({"dims": [2, 2, 2], "spacings": [1, 1, 1]})", "unknown key 'spacings'"},
       {"deep", std::string(5000, '[') + std::string(5000, ']'), "nested deeper than"},
-      {"trailing", R"({"dims": [2, 2, 2]} x)", "invalid JSON"},
+      {"trailing", R"({"dims": [2, 2, 2]} x)", "not valid JSON"},
+      {"key twice", R"({"dims": [2, 2, 2], "dims": [4, 4, 4]})",
+       "the key 'dims' appears twice in one object"},
       {"too large", R"({"dims": [2, 2, 2], "pad": ")" + std::string(70000, ' ') + "\"}",
        "too large"},
   };

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// JSON text as lic3d reads its own files (sessions, colour-map presets): malformed text, a
+// JSON text as lic3d reads every JSON file (sessions, colour-map presets, raw sidecars): malformed
+// text, a
 // number beyond a double (1e400), nesting deeper than a file of lic3d can be and a key given twice
 // in one object are InvalidInput errors naming the source, never exceptions or a silent choice.
+// `source` ends the message's prefix ("session.json: ..."); `maxDepth` is the deepest nesting the
+// file's format can have.
 
 #include <nlohmann/json.hpp>
 #include <set>
@@ -16,12 +19,13 @@ namespace lic3d {
 inline constexpr int kMaxJsonDepth = 64;
 
 template <class Json = nlohmann::ordered_json>
-Result<Json> parseJsonStrictly(const std::string& text, const std::string& source) {
+Result<Json> parseJsonStrictly(const std::string& text, const std::string& source,
+                               int maxDepth = kMaxJsonDepth) {
   struct TooDeep {};
   std::vector<std::set<std::string>> keys;  // of the objects open at each depth
   std::string duplicate;
   const auto check = [&](int depth, typename Json::parse_event_t event, Json& parsed) {
-    if (depth > kMaxJsonDepth) throw TooDeep{};
+    if (depth > maxDepth) throw TooDeep{};
     if (event == Json::parse_event_t::object_start) keys.emplace_back();
     if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
     if (event == Json::parse_event_t::key && !keys.empty() &&
@@ -33,7 +37,7 @@ Result<Json> parseJsonStrictly(const std::string& text, const std::string& sourc
   try {
     json = Json::parse(text, check);
   } catch (const TooDeep&) {
-    return inputError(source + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return inputError(source + ": nested deeper than " + std::to_string(maxDepth) + " levels");
   } catch (const typename Json::exception& e) {
     return inputError(source + ": not valid JSON: " + e.what());
   }

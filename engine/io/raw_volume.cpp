@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/strict_json.h"
 #include "core/text.h"
 #include "io/file_util.h"
 #include "io/number_type.h"
@@ -20,13 +21,11 @@ namespace {
 
 constexpr std::uint64_t kMaxSidecarBytes = 64 * 1024;
 // The sidecar is a flat object of short arrays; deeper nesting is refused while parsing.
-constexpr int kMaxJsonDepth = 4;
+constexpr int kMaxSidecarDepth = 4;
 constexpr std::string_view kKnownKeys[] = {"dims",  "spacing", "origin", "components",
                                            "order", "type",    "endian"};
 
 using Json = nlohmann::json;
-
-struct TooDeep {};
 
 bool fileExists(const std::filesystem::path& path) {
   std::error_code error;
@@ -125,19 +124,11 @@ Result<RawLayout> readSidecar(const std::filesystem::path& rawPath,
                               const std::filesystem::path& sidecarPath, std::uint64_t maxVoxels) {
   const SidecarReader reader(rawPath, sidecarPath, maxVoxels);
   LIC3D_TRY_ASSIGN(const std::string text, readFile(sidecarPath, kMaxSidecarBytes));
-  Json json;
-  try {
-    json = Json::parse(text, [](int depth, Json::parse_event_t, Json&) {
-      if (depth > kMaxJsonDepth) throw TooDeep{};
-      return true;
-    });
-  } catch (const TooDeep&) {
-    return reader.fail("nested deeper than " + std::to_string(kMaxJsonDepth) +
-                       " levels (expected a flat object)");
-  } catch (const Json::exception& error) {
-    return reader.fail(std::string("invalid JSON: ") + error.what());
-  }
-  return reader.interpret(json);
+  // A key given twice is refused as in sessions (strict_json.h): "last wins" would read a grid
+  // the file's author may not have meant.
+  Result<Json> json = parseJsonStrictly<Json>(text, "", kMaxSidecarDepth);
+  if (!json) return reader.fail(json.error().message.substr(2));  // without parseJsonStrictly's ": "
+  return reader.interpret(*json);
 }
 
 }  // namespace
