@@ -99,6 +99,22 @@ class AdversarialTest : public CliTest {
     writeBytes("garbage.vti", randomBytes(4096, 2));
     writeBytes("nested.vti", "<?xml version=\"1.0\"?>" + std::string(100000, '<') + "a");
     writeBytes("empty.vtk", "");
+    // .pvti files whose whole extent wraps int, claims far more than its pieces, or has a gap:
+    // refused before any piece is read (none of the pieces exists).
+    const auto pvti = [&](const std::string& name, const std::string& extent,
+                          const std::string& pieces) {
+      writeBytes(name, "<VTKFile type=\"PImageData\"><PImageData WholeExtent=\"" + extent + "\">" +
+                           pieces + "</PImageData></VTKFile>");
+    };
+    const std::string twoPoints = "<Piece Extent=\"0 1 0 0 0 0\" Source=\"none.vti\"/>";
+    pvti("wraps.pvti", "0 4294967311 0 0 0 0", twoPoints);
+    pvti("claims.pvti", "0 99999999999 0 0 0 0", twoPoints);
+    pvti("claims_within.pvti", "0 1023 0 1023 0 63", twoPoints);
+    pvti("gap.pvti", "0 3 0 0 0 0",
+         twoPoints + "<Piece Extent=\"3 3 0 0 0 0\" Source=\"none.vti\"/>");
+    // A raw field whose sidecar gives a key twice.
+    writeBytes("key_twice.raw", std::string(8 * 3 * 4, '\0'));
+    writeBytes("key_twice.json", R"({"dims": [2, 2, 2], "dims": [1, 1, 8]})");
     for (const char* step : {"dup_1.vti", "dup_01.vti", "dup_001.vti"})
       fs::copy_file(path("base.nrrd"), path(step));  // the names are refused before reading
   }
@@ -140,6 +156,13 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"empty number", render + "--length ''", 2, "--length"},
       {"empty angle", render + "--azimuth ''", 2, "--azimuth"},
       {"unknown flag", render + "--no-such-flag 1", 2, "--no-such-flag"},
+      {"devices empty", render + "--devices ''", 2, "--devices: needs 'all'"},
+      {"kernel foo", render + "--kernel foo", 2,
+       "--kernel: must be one of box, hann, gauss; got 'foo'"},
+      {"clip plane zero", render + "-o o.png --clip-plane 0.5,0.5,0.5,0,0,0", 2,
+       "the normal given is (0, 0, 0)"},
+      {"resolution 1e-300x", field + "base.nrrd --resolution 1e-300x", 2,
+       "each axis must be in [2, "},
       // Class 6: integers that would wrap or truncate.
       {"seed -1", render + "--seed -1", 2, "--seed"},
       {"sparsity-seed -5", render + "--sparsity-seed -5", 2, "--sparsity-seed"},
@@ -147,7 +170,20 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"session grid wraps", "render --session grid_wraps.json -o o.png", 2, "field.grid"},
       {"session length wraps", "render --session length_wraps.json -o o.png", 2, "lic.length"},
       {"session length 4.7", "render --session length_frac.json -o o.png", 2, "lic.length"},
-      {"session length 1e30", "render --session length_huge.json -o o.png", 2, "got '1e+30'"},
+      {"session length 1e30", "render --session length_huge.json -o o.png", 2,
+       "lic.length must be a whole number in [0, 4096], got '1e+30'"},
+      {"seed beyond 64 bits", render + "--seed 99999999999999999999999", 2,
+       "from 0 to 18446744073709551615, got 99999999999999999999999"},
+      {"budget 0", render + "--memory-budget 0", 2, "from 1 byte to 18446744073709551615 bytes"},
+      {"budget -0", render + "--memory-budget -0", 2, "got '-0'"},
+      {"budget -1", render + "--memory-budget -1", 2, "got '-1'"},
+      {"budget 2^64", render + "--memory-budget 18446744073709551616", 2,
+       "got '18446744073709551616'"},
+      {"budget -16MiB", render + "--memory-budget -16MiB", 2, "got '-16MiB'"},
+      {"budget 1KiB", "compute --grid 8 -q --memory-budget 1KiB -o o.nrrd", 3,
+       "the memory budget given is 1.0 KiB (1024 bytes)"},
+      {"budget 1KiB to draw", render + "--memory-budget 1KiB -o o.png", 3,
+       "within --memory-budget 1024 bytes"},
       {"session slices wrap", "render --session slices_wrap.json -o o.png", 2, "view.slices"},
       {"session version 1.9", "render --session version.json -o o.png", 2, "lic3d_session"},
       {"session seed -1", "render --session seed.json -o o.png", 2, "noise.seed"},
@@ -172,6 +208,11 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"garbage VTI", field + "garbage.vti", 2, "garbage.vti"},
       {"XML nested deeply", field + "nested.vti", 2, "nested.vti"},
       {"empty VTK", field + "empty.vtk", 2, "empty.vtk"},
+      {"pvti extent wraps int", field + "wraps.pvti", 2, "WholeExtent '0 4294967311 0 0 0 0'"},
+      {"pvti extent 1e11", field + "claims.pvti", 2, "WholeExtent '0 99999999999 0 0 0 0'"},
+      {"pvti pieces fill little", field + "claims_within.pvti", 2, "without data"},
+      {"pvti pieces leave a gap", field + "gap.pvti", 2, "without data"},
+      {"raw sidecar key twice", field + "key_twice.raw", 2, "the key 'dims' appears twice"},
       {"a folder as field", field + "sub", 2, "sub"},
       {"/dev/zero as field", field + "/dev/zero", 2, "/dev/zero"},
       {"one step three ways", field + "dup_%d.vti", 2, "dup_"},

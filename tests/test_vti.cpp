@@ -591,9 +591,10 @@ TEST_F(VtiTest, PvtiRefusesExtentsAndPiecesThatDisagree) {
   };
   const auto pvti = [&](const std::string& name, const std::string& whole,
                         const std::string& pieces) {
-    return writeBytes(name, "<VTKFile type=\"PImageData\" version=\"0.1\"><PImageData WholeExtent=\"" +
-                                whole + "\" Origin=\"1 2 3\" Spacing=\"0.5 0.25 2\">" + pieces +
-                                "</PImageData></VTKFile>");
+    return writeBytes(
+        name, "<VTKFile type=\"PImageData\" version=\"0.1\"><PImageData WholeExtent=\"" + whole +
+                  "\" Origin=\"1 2 3\" Spacing=\"0.5 0.25 2\">" + pieces +
+                  "</PImageData></VTKFile>");
   };
   const auto refused = [&](const fs::path& file, const fs::path& named, const std::string& text) {
     const Result<VectorField> field = readVectorField(file);

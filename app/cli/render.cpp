@@ -94,7 +94,11 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
     if (!factor)
       return resourceLimitError("the LIC of " + session.field.field + " (" + gridText(dims) +
                                 ") cannot be drawn even as every 64th voxel on " +
-                                contexts.front().deviceInfo().name);
+                                contexts.front().deviceInfo().name +
+                                (options.memoryBudget > 0
+                                     ? " within --memory-budget " +
+                                           std::to_string(options.memoryBudget) + " bytes"
+                                     : ""));
     made.factor = *factor;
   }
   ReducedVolume reduced(dims, inputs.field.geometry, made.factor);

@@ -54,14 +54,25 @@ CLI::Option* addRanged(CLI::App& app, const std::string& flags, T& value,
   return app.add_option(flags, value, help)->check(rangeCheck(range))->capture_default_str();
 }
 
-// An option taking one of the names of E (enum_names.h).
+// An option taking one of the names of E (enum_names.h); any other value is refused with the
+// names in table order ("must be one of box, hann, gauss; got 'foo'"), not CLI11's map dump.
 template <class E>
 CLI::Option* addEnumOption(CLI::App& app, const std::string& flag, E& value,
                            const std::string& help) {
-  std::map<std::string, E> names;
-  for (const EnumName<E>& n : enumNames<E>()) names.emplace(std::string(n.name), n.value);
   return app.add_option(flag, value, help + ": " + enumChoices<E>())
-      ->transform(CLI::CheckedTransformer(names).description(""))
+      ->transform(CLI::Validator(
+          [](std::string& text) -> std::string {
+            std::string list;
+            for (const EnumName<E>& n : enumNames<E>()) {
+              if (text == n.name) {
+                text = std::to_string(static_cast<long long>(n.value));
+                return {};
+              }
+              list += (list.empty() ? "" : ", ") + std::string(n.name);
+            }
+            return "must be one of " + list + "; got '" + text + "'";
+          },
+          ""))
       ->default_str(std::string(enumName(value)));
 }
 

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -62,10 +63,59 @@ void printTimings(double totalSeconds) {
 CLI::Validator wholeNumberText() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) return {};
+        // Only digits, and within 64 bits: CLI11 would take 99999999999999999999999 as 2^64 - 1.
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos &&
+            error == std::errc() && end == text.data() + text.size())
+          return {};
         return "must be a whole number from 0 to 18446744073709551615, got " + text;
       },
       "");
+}
+
+// --memory-budget: BYTES with an optional unit (kB, MB, GB, TB in 1000s; KiB, MiB, GiB, TiB in
+// 1024s; any case), from 1 byte to 2^64 - 1. CLI11's AsSizeValue took 0, -1 (as 2^64 - 1) and
+// 2^64 (as 0) alike as "no budget".
+CLI::Validator memorySizeText() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::string given = text;
+        const std::string range =
+            "must be a size from 1 byte to 18446744073709551615 bytes (BYTES, or with kB, MB, GB, "
+            "TB or KiB, MiB, GiB, TiB), got '" +
+            given + "'";
+        const std::size_t digits = text.find_first_not_of("0123456789");
+        std::uint64_t number = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+        if (digits == 0 || error != std::errc() ||
+            end != text.data() + (digits == std::string::npos ? text.size() : digits))
+          return range;
+        std::string unit = asciiLowerCase(text.substr(end - text.data()));
+        while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+        static const std::map<std::string, std::uint64_t> kUnits = {
+            {"", 1},
+            {"b", 1},
+            {"k", 1000},
+            {"kb", 1000},
+            {"m", 1000'000},
+            {"mb", 1000'000},
+            {"g", 1000'000'000},
+            {"gb", 1000'000'000},
+            {"t", 1000'000'000'000},
+            {"tb", 1000'000'000'000},
+            {"kib", std::uint64_t{1} << 10},
+            {"mib", std::uint64_t{1} << 20},
+            {"gib", std::uint64_t{1} << 30},
+            {"tib", std::uint64_t{1} << 40}};
+        const auto scale = kUnits.find(unit);
+        if (scale == kUnits.end() || number == 0 ||
+            number > std::numeric_limits<std::uint64_t>::max() / scale->second)
+          return range;
+        text = std::to_string(number * scale->second);
+        return {};
+      },
+      "SIZE");
 }
 
 void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
@@ -200,11 +250,17 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
                  "MiB, GiB (1024s); a LIC that does not fit is made in bricks with ghost layers, "
                  "and render draws a reduced copy of one too large to draw (docs/SCALE.md) "
                  "(default: what the device has)")
-      ->transform(CLI::AsSizeValue(true));
+      ->transform(memorySizeText());
   app.add_option("--devices", options.devices,
                  "Spread the LIC over several devices: all (every GPU of the best kind) or "
                  "indices or name parts of `lic3d devices`, separated by commas; the grid goes "
-                 "out in bricks, at least one a device (docs/SCALE.md); not with --device");
+                 "out in bricks, at least one a device (docs/SCALE.md); not with --device")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            // An empty list would silently mean --device's one device.
+            return text.empty() ? "needs 'all' or device indices or names, got ''" : "";
+          },
+          ""));
   options.output = defaultOutput;
   const bool picture = std::string_view(defaultOutput).ends_with(".png");
   options.outputOption =

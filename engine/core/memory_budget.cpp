@@ -13,9 +13,15 @@ namespace {
 
 constexpr double kMiB = 1.0 / (1 << 20);
 
+// MiB, the unit of device memory, except below 1 MiB, where "0 MiB" would say nothing.
 std::string mib(std::uint64_t bytes) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.0f MiB", static_cast<double>(bytes) * kMiB);
+  if (bytes < 1024)
+    std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
+  else if (bytes < (1 << 20))
+    std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
+  else
+    std::snprintf(text, sizeof text, "%.0f MiB", static_cast<double>(bytes) * kMiB);
   return text;
 }
 
@@ -153,8 +159,14 @@ Result<void> checkMemoryBudget(const MemoryRequest& request, const MemoryBudget&
   const std::uint64_t hostNeeded = hostBytesNeeded(e, budget);
   std::string problem;
   if (budget.deviceBytes > 0 && deviceNeeded > budget.deviceBytes)
-    problem = "needs " + mib(deviceNeeded) + " of device memory; the device has " +
-              mib(budget.deviceBytes) + (budget.fromBudgetExtension ? " free" : "");
+    problem =
+        "needs " + mib(deviceNeeded) + " of device memory; " +
+        (budget.deviceCapped ? "the memory budget given is " + mib(budget.deviceBytes) +
+                                   (budget.deviceBytes < 1024
+                                        ? ""
+                                        : " (" + std::to_string(budget.deviceBytes) + " bytes)")
+                             : "the device has " + mib(budget.deviceBytes) +
+                                   (budget.fromBudgetExtension ? " free" : ""));
   else if (budget.hostBytes > 0 && hostNeeded > budget.hostBytes)
     problem =
         "needs " + mib(hostNeeded) + " of host memory; " + mib(budget.hostBytes) + " are available";

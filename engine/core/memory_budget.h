@@ -55,6 +55,9 @@ struct MemoryBudget {
   std::uint64_t maxAllocation = 0;   // maxMemoryAllocationSize
   bool unifiedMemory = false;        // a CPU driver: device memory is host memory
   bool fromBudgetExtension = false;  // VK_EXT_memory_budget, else the heap size
+  // deviceBytes is the budget the user gave (--memory-budget), below what the device has: the
+  // message names that budget rather than the device.
+  bool deviceCapped = false;
 };
 
 // MemAvailable of /proc/meminfo, else the physical memory; at most what the address-space limit

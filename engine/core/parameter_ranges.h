@@ -122,4 +122,8 @@ inline constexpr ParameterRange kScale{"scale", 0.05, 64, 0.25, 8};
 inline constexpr ParameterRange kShininess{"view.light.shininess", 1, 1000, 1, 128};
 
 }  // namespace ranges
+
+// The range of the parameter with session key `key` among those above, or null.
+const ParameterRange* findParameterRange(std::string_view key);
+
 }  // namespace lic3d

@@ -74,4 +74,22 @@ Dims resolvedGrid(const Resolution& resolution, Dims fileDims) {
   return out;
 }
 
+Result<Dims> resolveGrid(const Resolution& resolution, Dims fileDims, std::string_view text) {
+  if (resolution.dims.x > 0 || !resolution.given()) return resolvedGrid(resolution, fileDims);
+  const int longest = std::max({fileDims.x, fileDims.y, fileDims.z});
+  const double factor = resolution.longest > 0
+                            ? static_cast<double>(resolution.longest - 1) / std::max(longest - 1, 1)
+                            : resolution.factor;
+  for (int a = 0; a < 3; ++a) {
+    if (fileDims[a] == 1) continue;
+    const double n = std::round(static_cast<double>(fileDims[a] - 1) * factor) + 1.0;
+    if (!(n >= 2.0 && n <= static_cast<double>(kMaxGridSize)))
+      return resolutionError(
+          text, "gives the file's " + gridText(fileDims) + " grid " + formatNumber(n) +
+                    " voxels along " + std::string(1, static_cast<char>('x' + a)) +
+                    "; each axis must be in [2, " + std::to_string(kMaxGridSize) + "]");
+  }
+  return resolvedGrid(resolution, fileDims);
+}
+
 }  // namespace lic3d

@@ -31,5 +31,9 @@ Result<Resolution> parseResolution(std::string_view text);
 // The grid `resolution` gives a file of `fileDims`. Axes of one voxel stay one voxel (a plane);
 // the others get at least 2.
 Dims resolvedGrid(const Resolution& resolution, Dims fileDims);
+// The same, refused (InvalidInput naming field.resolution, `text` and the range) where a factor
+// or N would put an axis outside [2, kMaxGridSize] rather than clamping it there: 1e-300x is not
+// a 2^3 LIC.
+Result<Dims> resolveGrid(const Resolution& resolution, Dims fileDims, std::string_view text);
 
 }  // namespace lic3d

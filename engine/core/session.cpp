@@ -291,8 +291,12 @@ class Reader {
       }
     } else {
       std::string expected;
-      if (!numberAs(*j, value, expected))
+      if (!numberAs(*j, value, expected)) {
+        // Reported with the parameter's range, which is what the user can give, not int's.
+        if (const ParameterRange* range = findParameterRange(join(key)))
+          expected = "a whole number in " + range->text();
         return fail(join(key), expected + ", got " + quoteForMessage(j->dump()));
+      }
     }
   }
   void numbers(const char* key, std::vector<double>& values, std::size_t stride) {
@@ -380,7 +384,10 @@ Result<void> validate(const Session& s) {
   }
   LIC3D_TRY(parseResolution(s.field.resolution));
   if (s.plane.oblique && !(glm::length(s.plane.normal) > 1e-6f))
-    return parameterError(ranges::kPlaneNormal.key, "must not be zero");
+    return parameterError(ranges::kPlaneNormal.key,
+                          "must not be zero: the normal given is (" +
+                              tripleText(glm::dvec3(s.plane.normal), ", ") +
+                              "), its length must exceed 1e-6");
   LIC3D_TRY(checkRange(ranges::kSeedSpots, s.noise.seedSpots));
   LIC3D_TRY(checkRange(ranges::kSeedFraction, s.noise.seedFraction));
   LIC3D_TRY(checkRange(ranges::kTime, s.time));

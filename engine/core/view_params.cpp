@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/parameter_ranges.h"
+#include "core/text.h"
 
 namespace lic3d {
 glm::vec2 greyTransfer(const ViewParams& view, const TransferFacts& facts) {
@@ -232,7 +233,10 @@ Result<void> validate(const ViewParams& view) {
     LIC3D_TRY(checkRange(r::kRoiRotation, view.roiRotation[a]));
   }
   if (view.clipPlane && !(glm::length(view.clipPlaneNormal) > 1e-6f))
-    return parameterError(r::kClipPlaneNormal.key, "must not be zero");
+    return parameterError(r::kClipPlaneNormal.key,
+                          "must not be zero: the normal given is (" +
+                              tripleText(glm::dvec3(view.clipPlaneNormal), ", ") +
+                              "), its length must exceed 1e-6");
   LIC3D_TRY(checkRange(r::kRoiSize, view.roiSize));
   LIC3D_TRY(checkRange(r::kFogRange, view.fogStart));
   LIC3D_TRY(checkRange(r::kFogRange, view.fogEnd));

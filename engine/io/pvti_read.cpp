@@ -79,8 +79,8 @@ bool piecesCover(const Extent& whole, const std::vector<PieceRef>& pieces) {
     const std::size_t z0 = index(2, e.bounds[4]), z1 = index(2, e.bounds[5] + 1);
     for (std::size_t z = z0; z < z1; ++z)
       for (std::size_t y = y0; y < y1; ++y)
-        std::fill_n(covered.begin() + static_cast<std::ptrdiff_t>((z * ny + y) * nx + x0),
-                    x1 - x0, std::uint8_t{1});
+        std::fill_n(covered.begin() + static_cast<std::ptrdiff_t>((z * ny + y) * nx + x0), x1 - x0,
+                    std::uint8_t{1});
   }
   return std::find(covered.begin(), covered.end(), 0) == covered.end();
 }
@@ -132,8 +132,8 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
   if (const std::string problem =
           gridLimitProblem(pointsAlong(whole, 0), pointsAlong(whole, 1), pointsAlong(whole, 2));
       !problem.empty())
-    return fileError(path, "PImageData WholeExtent " + quoteForMessage(extentText(whole)) + ": " +
-                               problem);
+    return fileError(
+        path, "PImageData WholeExtent " + quoteForMessage(extentText(whole)) + ": " + problem);
   const bool originGiven = static_cast<bool>(image.attribute("Origin"));
   const bool spacingGiven = static_cast<bool>(image.attribute("Spacing"));
   LIC3D_TRY_ASSIGN(const glm::dvec3 wholeOrigin, readTriple(path, image, "Origin", 0.0, false));
@@ -147,8 +147,7 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
       if (piece.extent.bounds[2 * a] < whole.bounds[2 * a] ||
           piece.extent.bounds[2 * a + 1] > whole.bounds[2 * a + 1])
         return fileError(path, "the Piece Extent " + quoteForMessage(extentText(piece.extent)) +
-                                   " leaves the WholeExtent " +
-                                   quoteForMessage(extentText(whole)));
+                                   " leaves the WholeExtent " + quoteForMessage(extentText(whole)));
     const std::string source = node.attribute("Source").as_string();
     if (source.empty()) return fileError(path, "a Piece has no Source file");
     piece.source = folder / source;
@@ -164,10 +163,10 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
   LIC3D_TRY(checkHostCanHold(path, voxelCount(wholePoints) * (sizeof(glm::vec3) + 1)));
   std::uint64_t piecePoints = 0;  // each piece within the whole, so no overflow
   for (const PieceRef& piece : pieces)
-    piecePoints = std::min(piecePoints + pointsAlong(piece.extent, 0) *
-                                             pointsAlong(piece.extent, 1) *
-                                             pointsAlong(piece.extent, 2),
-                           voxelCount(wholePoints));
+    piecePoints =
+        std::min(piecePoints + pointsAlong(piece.extent, 0) * pointsAlong(piece.extent, 1) *
+                                   pointsAlong(piece.extent, 2),
+                 voxelCount(wholePoints));
   if (piecePoints < voxelCount(wholePoints) || !piecesCover(whole, pieces))
     return fileError(path, "its pieces leave points of the whole extent " + extentText(whole) +
                                " without data (a missing piece?)");
@@ -204,8 +203,8 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
         piece.geometry.origin - glm::dvec3(offset) * piece.geometry.spacing;
     if (spacingGiven && !nearlyEqual(piece.geometry.spacing, wholeSpacing, wholeSpacing))
       return fileError(ref.source, "its Spacing " + tripleText(piece.geometry.spacing, " ") +
-                                       " differs from " + path.filename().string() +
-                                       "'s Spacing " + tripleText(wholeSpacing, " "));
+                                       " differs from " + path.filename().string() + "'s Spacing " +
+                                       tripleText(wholeSpacing, " "));
     if (p == 0) {
       first = read;
       field.dims = wholePoints;
@@ -216,8 +215,8 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
       field.unit = piece.unit;
       if (originGiven) {
         glm::dvec3 expected =
-            wholeOrigin + glm::dvec3(whole.bounds[0], whole.bounds[2], whole.bounds[4]) *
-                              piece.geometry.spacing;
+            wholeOrigin +
+            glm::dvec3(whole.bounds[0], whole.bounds[2], whole.bounds[4]) * piece.geometry.spacing;
         if (cellData)
           for (glm::length_t a = 0; a < 3; ++a)
             if (wholePoints[a] > 1) expected[a] += 0.5 * piece.geometry.spacing[a];
@@ -250,12 +249,11 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
           if (at >= field.vectors.size()) continue;  // a cell piece at the far end
           const glm::vec3 value = piece.at(i, j, k);
           if (covered[at] && !sameVector(field.vectors[at], value))
-            return fileError(ref.source,
-                             "overlaps an earlier piece at point (" +
-                                 std::to_string(offset.x + i + whole.bounds[0]) + ", " +
-                                 std::to_string(offset.y + j + whole.bounds[2]) + ", " +
-                                 std::to_string(offset.z + k + whole.bounds[4]) +
-                                 ") with a different vector (which one is meant?)");
+            return fileError(ref.source, "overlaps an earlier piece at point (" +
+                                             std::to_string(offset.x + i + whole.bounds[0]) + ", " +
+                                             std::to_string(offset.y + j + whole.bounds[2]) + ", " +
+                                             std::to_string(offset.z + k + whole.bounds[4]) +
+                                             ") with a different vector (which one is meant?)");
           field.vectors[at] = value;
           covered[at] = 1;
         }

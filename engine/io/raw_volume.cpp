@@ -127,7 +127,8 @@ Result<RawLayout> readSidecar(const std::filesystem::path& rawPath,
   // A key given twice is refused as in sessions (strict_json.h): "last wins" would read a grid
   // the file's author may not have meant.
   Result<Json> json = parseJsonStrictly<Json>(text, "", kMaxSidecarDepth);
-  if (!json) return reader.fail(json.error().message.substr(2));  // without parseJsonStrictly's ": "
+  if (!json)
+    return reader.fail(json.error().message.substr(2));  // without parseJsonStrictly's ": "
   return reader.interpret(*json);
 }
 

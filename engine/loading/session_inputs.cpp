@@ -61,7 +61,10 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
     request.frameHeight = shape.frameHeight > 0 ? shape.frameHeight : session.view.height;
   }
   MemoryBudget budget = queryMemoryBudget(context);
-  if (shape.deviceCap > 0) budget.deviceBytes = std::min(budget.deviceBytes, shape.deviceCap);
+  if (shape.deviceCap > 0 && shape.deviceCap < budget.deviceBytes) {
+    budget.deviceBytes = shape.deviceCap;
+    budget.deviceCapped = true;
+  }
   return checkMemoryBudget(request, budget, "the LIC of " + session.field.field);
 }
 
@@ -122,7 +125,7 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
 
 Result<VectorField> atResolution(VectorField field, const FieldSource& source) {
   LIC3D_TRY_ASSIGN(const Resolution resolution, parseResolution(source.resolution));
-  const Dims dims = resolvedGrid(resolution, field.dims);
+  LIC3D_TRY_ASSIGN(const Dims dims, resolveGrid(resolution, field.dims, source.resolution));
   if (dims == field.dims) return field;
   LIC3D_TRY(checkHostMemory(dims));
   const StageTimer timer("field (resample)");
