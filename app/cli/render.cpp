@@ -92,13 +92,12 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
           .ok();
     });
     if (!factor)
-      return resourceLimitError("the LIC of " + session.field.field + " (" + gridText(dims) +
-                                ") cannot be drawn even as every 64th voxel on " +
-                                contexts.front().deviceInfo().name +
-                                (options.memoryBudget > 0
-                                     ? " within --memory-budget " +
-                                           std::to_string(options.memoryBudget) + " bytes"
-                                     : ""));
+      return resourceLimitError(
+          "the LIC of " + session.field.field + " (" + gridText(dims) +
+          ") cannot be drawn even as every 64th voxel on " + contexts.front().deviceInfo().name +
+          (options.memoryBudget > 0
+               ? " within --memory-budget " + std::to_string(options.memoryBudget) + " bytes"
+               : ""));
     made.factor = *factor;
   }
   ReducedVolume reduced(dims, inputs.field.geometry, made.factor);
