@@ -273,6 +273,8 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   Result<SessionInputs> inputs = readComputeInputs(global, options, stream, scan);
   if (!inputs) return fail(inputs.error());
   if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
+  if (lowerCaseExtension(options.output) == ".raw")
+    if (auto r = checkRawSidecarReplaceable(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
   if (auto r = checkSliceIndex(*slice, inputs->field.dims); !r) return fail(r.error());
   RunSummary summary = makeSummary("compute", session.field, *inputs);
