@@ -185,7 +185,7 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"one step three ways", field + "dup_%d.vti", 2, "dup_"},
       {"name not UTF-8", field + "\"$(printf 'wa\\353.nrrd')\"", 2, "not UTF-8"},
       {"100 KB field name", field + std::string(100'000, 'f') + ".nrrd", 2, "fff"},
-      // Class 15: files that are not regular files hang no run.
+      // Class 16: files that are not regular files hang no run.
       {"FIFO as JSON session", "render --session fifo.json -o o.png", 2,
        "fifo.json: not a regular file"},
       {"FIFO as PNG session", "render --session fifo.png -o o.png", 2,
@@ -194,19 +194,19 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
        "fifo.png: not a regular file"},
       {"FIFO as a turntable frame", render + "--skip-existing --turntable 2 -o frame_%d.png", 2,
        "frame_1.png: not a regular file"},
-      // Class 16: a sidecar or a session that an output would replace.
+      // Class 17: a sidecar or a session that an output would replace.
       {"raw sidecar over the session", "compute --session run.json --grid 8 -q -o run.raw", 2,
        "run.json: is an input"},
       {"raw sidecar over another JSON", "compute --grid 8 -q -o keep.raw", 2,
        "keep.json: exists and is not the JSON sidecar"},
-      // Class 17: --skip-existing keeps only a PNG that decodes.
+      // Class 18: --skip-existing keeps only a PNG that decodes.
       {"forged PNG redone", render + "--skip-existing -o forged.png", 0, "", "forged.png"},
   };
   int handled = 0;
   for (const Case& c : cases) {
     std::map<std::string, std::string> before = snapshot();
     // A hang (a FIFO opened blocking) fails its case instead of the suite.
-    const CommandRun r = run(c.args, "timeout -k 5 60");
+    const CommandRun r = run(c.args, "timeout -k 5 30");
     EXPECT_EQ(r.status, c.status) << c.name << ": " << r.output.substr(0, 500);
     EXPECT_NE(r.output.find(c.mentions), std::string::npos)
         << c.name << ": " << r.output.substr(0, 500);

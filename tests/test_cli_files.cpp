@@ -695,8 +695,8 @@ TEST_F(CliTest, SkipExistingRedoesPngsThatDoNotDecode) {
   ASSERT_EQ(run(args + " -q").status, 0);
   const std::string original0 = test::readWhole(path("f_0.png"));
   const std::string original1 = test::readWhole(path("f_1.png"));
-  writeBytes("f_0.png", std::string("\x89PNG\r\n\x1a\n", 8) +
-                            std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
+  writeBytes("f_0.png",
+             std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
   std::string zeroed = original1;
   std::fill(zeroed.begin() + 60, zeroed.end() - 20, '\0');
   writeBytes("f_1.png", zeroed);

@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 #include <png.h>
-
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -136,8 +135,8 @@ TEST_F(PngTest, CompleteMeansEveryRowDecodes) {
   const std::string whole = test::readWhole(path("whole.png"));
   EXPECT_TRUE(isCompletePng(path("whole.png")).value());
   EXPECT_FALSE(isCompletePng(path("missing.png")).value());
-  writeBytes("forged.png", std::string("\x89PNG\r\n\x1a\n", 8) +
-                               std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
+  writeBytes("forged.png",
+             std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
   EXPECT_FALSE(isCompletePng(path("forged.png")).value());
   std::string zeroed = whole;
   std::fill(zeroed.begin() + 60, zeroed.end() - 20, '\0');

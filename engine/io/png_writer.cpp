@@ -4,10 +4,10 @@
 #include <png.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <string>

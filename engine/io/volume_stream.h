@@ -54,8 +54,9 @@ class ScalarVolumeStream {
   Result<void> write(Dims offset, Dims dims, const float* values);
 
   // Flushes the file to disk and renames it into place, or hands it to the open OutputGroup. A
-  // .raw's sidecar is complete on disk before the data is renamed and renamed right after it. An error, leaving no file under the name, unless the blocks written cover
-  // every voxel exactly once (by count).
+  // .raw's sidecar is complete on disk before the data is renamed and renamed right after it. An
+  // error, leaving no file under the name, unless the blocks written cover every voxel exactly once
+  // (by count).
   Result<void> finish();
 
  private:
