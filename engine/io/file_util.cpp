@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -212,6 +213,18 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
     return fileError(path, "file is too large (it grew while being read; the limit is " +
                                std::to_string(maxBytes) + " bytes)");
   return bytes;
+}
+
+Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes) {
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  struct statvfs info {};
+  if (::statvfs(folder.c_str(), &info) != 0) return {};
+  const std::uint64_t available =
+      static_cast<std::uint64_t>(info.f_bavail) * static_cast<std::uint64_t>(info.f_frsize);
+  if (bytes <= available) return {};
+  return resourceLimitError(path.string() + ": the output takes " + std::to_string(bytes) +
+                            " bytes, but its file system has " + std::to_string(available) +
+                            " bytes free: free space or write it elsewhere");
 }
 
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {

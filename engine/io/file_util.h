@@ -73,6 +73,12 @@ void guardInputsFromWrites(bool on);
 // file read by other means or kept as it is (a frame --skip-existing leaves).
 void noteInput(const std::filesystem::path& path);
 
+// Whether the file system that will hold `path` has `bytes` free for an unprivileged writer
+// (statvfs's f_bavail): ResourceLimit (exit status 3) naming the path with both numbers when it
+// has not, so a run stops before its work rather than at its last write. A folder that cannot
+// be asked passes (the write itself still reports a full disk).
+Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes);
+
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 // The same, for content streamed by `writer`; a writer that returns false fails the write.
 Result<void> writeFileAtomically(const std::filesystem::path& path,
