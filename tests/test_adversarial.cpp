@@ -4,6 +4,7 @@
 // end with its exit status and a message naming the flag or file, leave every file it found as it
 // was (inputs untouched) and add nothing: no output, no temporary file.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -31,7 +32,7 @@ struct Case {
   std::string args;        // of lic3d, run in the test's folder
   int status;              // the exit status it must give
   std::string mentions;    // what its message must contain
-  std::string makes = "";  // the one file it may add (a case that succeeds)
+  std::string makes = "";  // the one file it may add or replace (a case that succeeds)
 };
 
 std::string randomBytes(std::size_t count, unsigned seed) {
@@ -117,6 +118,13 @@ class AdversarialTest : public CliTest {
     writeBytes("key_twice.json", R"({"dims": [2, 2, 2], "dims": [1, 1, 8]})");
     for (const char* step : {"dup_1.vti", "dup_01.vti", "dup_001.vti"})
       fs::copy_file(path("base.nrrd"), path(step));  // the names are refused before reading
+    // FIFOs, which a reader that opens them blocking waits on forever.
+    for (const char* fifo : {"fifo.json", "fifo.png", "frame_1.png"})
+      ASSERT_EQ(::mkfifo(path(fifo).c_str(), 0600), 0) << fifo;
+    writeBytes("run.json", R"({"lic": {"length": 5}})");
+    writeBytes("keep.json", "notes of the user\n");
+    writeBytes("forged.png", std::string("\x89PNG\r\n\x1a\n", 8) +
+                                 std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
   }
 };
 
@@ -218,11 +226,28 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"one step three ways", field + "dup_%d.vti", 2, "dup_"},
       {"name not UTF-8", field + "\"$(printf 'wa\\353.nrrd')\"", 2, "not UTF-8"},
       {"100 KB field name", field + std::string(100'000, 'f') + ".nrrd", 2, "fff"},
+      // Class 16: files that are not regular files hang no run.
+      {"FIFO as JSON session", "render --session fifo.json -o o.png", 2,
+       "fifo.json: not a regular file"},
+      {"FIFO as PNG session", "render --session fifo.png -o o.png", 2,
+       "fifo.png: not a regular file"},
+      {"FIFO as --skip-existing output", render + "--skip-existing -o fifo.png", 2,
+       "fifo.png: not a regular file"},
+      {"FIFO as a turntable frame", render + "--skip-existing --turntable 2 -o frame_%d.png", 2,
+       "frame_1.png: not a regular file"},
+      // Class 17: a sidecar or a session that an output would replace.
+      {"raw sidecar over the session", "compute --session run.json --grid 8 -q -o run.raw", 2,
+       "run.json: is an input"},
+      {"raw sidecar over another JSON", "compute --grid 8 -q -o keep.raw", 2,
+       "keep.json: exists and is not the JSON sidecar"},
+      // Class 18: --skip-existing keeps only a PNG that decodes.
+      {"forged PNG redone", render + "--skip-existing -o forged.png", 0, "", "forged.png"},
   };
   int handled = 0;
   for (const Case& c : cases) {
-    const std::map<std::string, std::string> before = snapshot();
-    const CommandRun r = run(c.args);
+    std::map<std::string, std::string> before = snapshot();
+    // A hang (a FIFO opened blocking) fails its case instead of the suite.
+    const CommandRun r = run(c.args, "timeout -k 5 30");
     EXPECT_EQ(r.status, c.status) << c.name << ": " << r.output.substr(0, 500);
     EXPECT_NE(r.output.find(c.mentions), std::string::npos)
         << c.name << ": " << r.output.substr(0, 500);
@@ -230,7 +255,9 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
     std::map<std::string, std::string> after = snapshot();
     if (!c.makes.empty()) {
       EXPECT_EQ(after.count(c.makes), 1u) << c.name;
+      EXPECT_NE(after[c.makes], before[c.makes]) << c.name << ": not made again";
       after.erase(c.makes);
+      before.erase(c.makes);
       fs::remove(path(c.makes));
     }
     EXPECT_TRUE(after == before) << c.name << ": the folder changed";

@@ -688,5 +688,24 @@ TEST_F(CliTest, SkipExistingRedoesOnlyMissingOrCutFrames) {
   EXPECT_EQ(done.output.find("LIC "), std::string::npos) << "no LIC for a finished task";
 }
 
+// --skip-existing keeps a PNG only if it decodes whole: a forged one (the signature and an IEND
+// chunk, 20 bytes) and one zeroed in the middle (start and end intact) are made again.
+TEST_F(CliTest, SkipExistingRedoesPngsThatDoNotDecode) {
+  const std::string args = "render --grid 8 --width 32 --height 32 --turntable 2 -o 'f_%d.png'";
+  ASSERT_EQ(run(args + " -q").status, 0);
+  const std::string original0 = test::readWhole(path("f_0.png"));
+  const std::string original1 = test::readWhole(path("f_1.png"));
+  writeBytes("f_0.png",
+             std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
+  std::string zeroed = original1;
+  std::fill(zeroed.begin() + 60, zeroed.end() - 20, '\0');
+  writeBytes("f_1.png", zeroed);
+  const CommandRun again = run(args + " --skip-existing");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(again.output.find("already whole"), std::string::npos) << again.output;
+  EXPECT_EQ(test::readWhole(path("f_0.png")), original0);
+  EXPECT_EQ(test::readWhole(path("f_1.png")), original1);
+}
+
 }  // namespace
 }  // namespace lic3d

@@ -440,7 +440,32 @@ TEST_F(ScalarVolumeStreamTest, RawReadsBackWithItsSidecar) {
   EXPECT_EQ(test::readWhole(path("lic.raw")), bytesOf(volume.values, std::endian::little));
   EXPECT_EQ(test::readWhole(path("lic.json")),
             "{\"dims\": [9, 7, 5], \"spacing\": [0.5, 0.25, 2], \"origin\": [-1, 3, 0.125], "
-            "\"components\": 1, \"type\": \"float32\", \"endian\": \"little\"}\n");
+            "\"components\": 1, \"type\": \"float32\", \"endian\": \"little\", "
+            "\"bytes\": 1260}\n");
+}
+
+// The sidecar's name may hold only an older sidecar: any other file there is refused before
+// anything is written, and kept.
+TEST_F(ScalarVolumeStreamTest, RawRefusesToReplaceAJsonThatIsNotItsSidecar) {
+  const ScalarVolume volume = makeVolume();
+  writeBytes("lic.json", "{\"lic\": {\"length\": 5}}");
+  const Result<ScalarVolumeStream> refused =
+      ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().kind, ErrorKind::InvalidInput);
+  EXPECT_NE(refused.error().message.find("lic.json: exists and is not the JSON sidecar"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(test::readWhole(path("lic.json")), "{\"lic\": {\"length\": 5}}");
+  EXPECT_EQ(listFolder(), (std::vector<std::string>{"lic.json"}));
+  // An older sidecar is replaced.
+  writeBytes("lic.json", "{\"dims\": [1, 1, 1], \"components\": 1, \"bytes\": 4}\n");
+  Result<ScalarVolumeStream> stream =
+      ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
+  ASSERT_TRUE(stream.ok()) << stream.error().message;
+  ASSERT_TRUE(stream->write(Dims(0), volume.dims, volume.values.data()).ok());
+  ASSERT_TRUE(stream->finish().ok());
+  EXPECT_NE(test::readWhole(path("lic.json")).find("\"bytes\": 1260"), std::string::npos);
 }
 
 TEST_F(ScalarVolumeStreamTest, BadPathsAndBlocksAreErrorsNamingTheFile) {

@@ -42,6 +42,20 @@ using test::readWhole;
 
 // --- Round trips --------------------------------------------------------------------------------
 
+// An output larger than the free space of its file system is refused before any work, with both
+// numbers (exit status 3); one that fits passes.
+TEST_F(NrrdTest, FreeSpaceIsCheckedAgainstTheOutputsSize) {
+  EXPECT_TRUE(checkFreeSpace(path("small.nrrd"), 1).ok());
+  const Result<void> huge = checkFreeSpace(path("huge.nrrd"), std::uint64_t{1} << 62);
+  ASSERT_FALSE(huge.ok());
+  EXPECT_EQ(huge.error().kind, ErrorKind::ResourceLimit);
+  EXPECT_NE(huge.error().message.find("huge.nrrd: the output takes 4611686018427387904 bytes"),
+            std::string::npos)
+      << huge.error().message;
+  EXPECT_NE(huge.error().message.find("bytes free"), std::string::npos);
+  EXPECT_FALSE(fs::exists(path("huge.nrrd")));
+}
+
 TEST_F(NrrdTest, VectorFieldRoundTripKeepsValuesAndGeometry) {
   // Spacings like 0.1 and 1/3 have no short decimal form: the header must still round-trip them.
   const VectorField field = makeField({5, 4, 3}, {{0.1, 1.0 / 3.0, 2.0}, {-1.5, 2.25, 1e-3}});

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 #include <png.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -119,6 +121,34 @@ TEST_F(PngTest, LibpngLimitsAreErrorsNotCrashes) {
   EXPECT_EQ(result.error().kind, ErrorKind::Runtime);
   EXPECT_NE(result.error().message.find("wide.png"), std::string::npos) << result.error().message;
   EXPECT_TRUE(listFolder().empty());
+}
+
+// isCompletePng decodes the whole picture: a file cut short, zeroed in the middle or forged from a
+// signature and an IEND chunk is not whole; a FIFO is an error at once, not a wait for a writer.
+TEST_F(PngTest, CompleteMeansEveryRowDecodes) {
+  RgbaImage image;
+  image.width = 16;
+  image.height = 16;
+  for (unsigned i = 0; i < 16 * 16 * 4; ++i)
+    image.pixels.push_back(static_cast<std::uint8_t>(i * i * 31 + i / 7));
+  ASSERT_TRUE(writePng(path("whole.png"), image).ok());
+  const std::string whole = test::readWhole(path("whole.png"));
+  EXPECT_TRUE(isCompletePng(path("whole.png")).value());
+  EXPECT_FALSE(isCompletePng(path("missing.png")).value());
+  writeBytes("forged.png",
+             std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
+  EXPECT_FALSE(isCompletePng(path("forged.png")).value());
+  std::string zeroed = whole;
+  std::fill(zeroed.begin() + 60, zeroed.end() - 20, '\0');
+  writeBytes("zeroed.png", zeroed);
+  EXPECT_FALSE(isCompletePng(path("zeroed.png")).value());
+  writeBytes("cut.png", whole.substr(0, whole.size() - 20));
+  EXPECT_FALSE(isCompletePng(path("cut.png")).value());
+  ASSERT_EQ(::mkfifo(path("fifo.png").c_str(), 0600), 0);
+  const Result<bool> fifo = isCompletePng(path("fifo.png"));
+  ASSERT_FALSE(fifo);
+  EXPECT_NE(fifo.error().message.find("not a regular file"), std::string::npos);
+  EXPECT_FALSE(isPngFile(path("fifo.png")));
 }
 
 }  // namespace

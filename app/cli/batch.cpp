@@ -256,15 +256,20 @@ std::string framePath(const std::string& pattern, int frame) {
          unescapePercent(std::string_view(pattern).substr(c->end));
 }
 
-FrameSkips findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet) {
+Result<FrameSkips> findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet) {
   FrameSkips skips;
   skips.whole.assign(static_cast<std::size_t>(plan.rendered()), false);
   const bool animated = plan.animation != Animation::None;
-  for (int frame = plan.first; skipExisting && frame < plan.end; ++frame)
-    if (isCompletePng(animated ? framePath(plan.output, frame) : plan.output)) {
+  for (int frame = plan.first; skipExisting && frame < plan.end; ++frame) {
+    const std::string path = animated ? framePath(plan.output, frame) : plan.output;
+    LIC3D_TRY_ASSIGN(const bool whole, isCompletePng(path));
+    if (whole) {
+      // Kept as it is: an input of the run from now on, which no other output may replace.
+      noteInput(path);
       skips.whole[static_cast<std::size_t>(frame - plan.first)] = true;
       ++skips.count;
     }
+  }
   if (skips.count > 0 && !quiet)
     std::fprintf(stderr,
                  "lic3d: --skip-existing: %d of %d frame(s) already whole, left as they are\n",

@@ -74,7 +74,8 @@ struct FrameSkips {
     return whole[static_cast<std::size_t>(frame - plan.first)];
   }
 };
-FrameSkips findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet);
+// InvalidInput naming a frame's path that is not a regular file (a FIFO would hang the run).
+Result<FrameSkips> findWholeFrames(const FramePlan& plan, bool skipExisting, bool quiet);
 
 // ffmpeg from PATH; InvalidInput saying so when there is none.
 Result<std::filesystem::path> findFfmpeg();

@@ -273,8 +273,17 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   Result<SessionInputs> inputs = readComputeInputs(global, options, stream, scan);
   if (!inputs) return fail(inputs.error());
   if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
+  if (lowerCaseExtension(options.output) == ".raw")
+    if (auto r = checkRawSidecarReplaceable(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
   if (auto r = checkSliceIndex(*slice, inputs->field.dims); !r) return fail(r.error());
+  // A volume's size is known: float32 per voxel and a header (64 KiB is more than any takes).
+  if (!*slice)
+    if (auto r = checkFreeSpace(options.output,
+                                std::uint64_t{voxelCount(inputs->field.dims)} * sizeof(float) +
+                                    std::uint64_t{64} * 1024);
+        !r)
+      return fail(r.error());
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.readByBricks = stream.has_value();
   summary.outputs = {options.output};

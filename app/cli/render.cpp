@@ -177,7 +177,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   const auto pathOf = [&](int frame) {
     return animated ? framePath(plan.output, frame) : plan.output;
   };
-  const FrameSkips skips = findWholeFrames(plan, batch.skipExisting, global.quiet);
+  LIC3D_TRY_ASSIGN(const FrameSkips skips, findWholeFrames(plan, batch.skipExisting, global.quiet));
   // Every frame whole already (a requeued task that had finished): no LIC is made.
   const bool makeNothing = skips.count == plan.rendered() && batch.rgbaVolume.empty();
   const double firstTime = frameSession(session, plan, plan.first).time;

@@ -48,7 +48,7 @@ Result<void> renderPlaneFrames(const GlobalOptions& global, const Session& sessi
   gpuMs.clear();
   const bool animated = plan.animation != Animation::None;
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
-  const FrameSkips skips = findWholeFrames(plan, batch.skipExisting, global.quiet);
+  LIC3D_TRY_ASSIGN(const FrameSkips skips, findWholeFrames(plan, batch.skipExisting, global.quiet));
   for (int frame = plan.first; frame < plan.end; ++frame) {
     const std::string path = animated ? framePath(plan.output, frame) : plan.output;
     if (skips.has(plan, frame)) {

@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -214,6 +215,18 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
   return bytes;
 }
 
+Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes) {
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  struct statvfs info {};
+  if (::statvfs(folder.c_str(), &info) != 0) return {};
+  const std::uint64_t available =
+      static_cast<std::uint64_t>(info.f_bavail) * static_cast<std::uint64_t>(info.f_frsize);
+  if (bytes <= available) return {};
+  return resourceLimitError(path.string() + ": the output takes " + std::to_string(bytes) +
+                            " bytes, but its file system has " + std::to_string(available) +
+                            " bytes free: free space or write it elsewhere");
+}
+
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
   return writeFileAtomically(path, [bytes](std::ostream& out) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -413,16 +426,44 @@ Result<void> checkNotAnInput(const std::filesystem::path& path) {
                    "is an input of this run; writing it would destroy it: choose another output");
 }
 
-Result<FileReader> FileReader::open(const std::filesystem::path& path, bool data) {
-  // O_NONBLOCK keeps open() from waiting for a writer when the path is a FIFO; it does not
-  // change reads from regular files.
+Result<int> openRegularFile(const std::filesystem::path& path) {
+  // O_NONBLOCK keeps open() from waiting for a writer when the path is a FIFO; it is cleared
+  // again for the reads of a regular file.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) return fileError(path, "cannot open: " + systemError(errno));
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) {
+    const int error = errno;
+    ::close(fd);
+    return fileError(path, "cannot open: " + systemError(error));
+  }
+  // Pipes and devices have no size to check payloads against, and may never end.
+  if (!S_ISREG(info.st_mode)) {
+    ::close(fd);
+    return fileError(path, std::string("not a regular file (") +
+                               (S_ISFIFO(info.st_mode)  ? "a FIFO"
+                                : S_ISDIR(info.st_mode) ? "a folder"
+                                                        : "a device or socket") +
+                               "): give a file");
+  }
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  return fd;
+}
+
+void noteInput(const std::filesystem::path& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return;
+  InputFiles& inputs = inputFiles();
+  const std::scoped_lock lock(inputs.mutex);
+  inputs.files.emplace(info.st_dev, info.st_ino);
+}
+
+Result<FileReader> FileReader::open(const std::filesystem::path& path, bool data) {
+  LIC3D_TRY_ASSIGN(const int fd, openRegularFile(path));
   FileReader reader(path, fd, 0);
   struct stat info {};
   if (::fstat(fd, &info) != 0) return fileError(path, "cannot open: " + systemError(errno));
-  // Pipes and devices have no size to check payloads against.
-  if (!S_ISREG(info.st_mode)) return fileError(path, "not a regular file");
   if (data) {
     InputFiles& inputs = inputFiles();
     const std::scoped_lock lock(inputs.mutex);

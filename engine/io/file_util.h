@@ -40,10 +40,17 @@ Error readWholeError(const std::filesystem::path& path, const std::string& why);
 // a format.
 std::string lowerCaseExtension(const std::filesystem::path& path);
 
+// A file opened for reading (O_RDONLY, close-on-exec), refused unless it is a regular file: a
+// FIFO, a device or a folder is named as "not a regular file" (InvalidInput) without waiting for
+// a writer, since open() itself is non-blocking. Every reader of a file goes through here
+// (FileReader, readFile, the PNG readers), so no input can hang a run. The caller closes it.
+Result<int> openRegularFile(const std::filesystem::path& path);
+
 // The whole file, or an error naming it: missing, unreadable, not a regular file, or larger than
 // maxBytes (refused from its size before anything is read).
-// `data`: the file is an input of the run that no output may replace (checkNotAnInput); false
-// for documents a front end reads and may save again (sessions, colour-map presets).
+// `data`: the file is an input of the run that no output may replace (checkNotAnInput): every
+// file a run reads (fields, noise, scalars, sessions, colour-map presets). False for a file read
+// only to decide whether to replace it (a frame --skip-existing checks).
 Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t maxBytes,
                              bool data = true);
 
@@ -62,6 +69,15 @@ Result<void> checkNotAnInput(const std::filesystem::path& path);
 // turns it on for its runs. Off by default: a program that reads a file and then saves it again
 // (a test's round trip, a script) may.
 void guardInputsFromWrites(bool on);
+// Notes `path` (when it is a regular file) as an input of this run, as FileReader does, for a
+// file read by other means or kept as it is (a frame --skip-existing leaves).
+void noteInput(const std::filesystem::path& path);
+
+// Whether the file system that will hold `path` has `bytes` free for an unprivileged writer
+// (statvfs's f_bavail): ResourceLimit (exit status 3) naming the path with both numbers when it
+// has not, so a run stops before its work rather than at its last write. A folder that cannot
+// be asked passes (the write itself still reports a full disk).
+Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes);
 
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 // The same, for content streamed by `writer`; a writer that returns false fails the write.

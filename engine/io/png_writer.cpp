@@ -7,8 +7,8 @@
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <new>
 #include <string>
 
@@ -195,34 +195,48 @@ Result<void> writePngGray16(const std::filesystem::path& path, int width, int he
                         2 * static_cast<std::size_t>(width), text);
 }
 
-bool isCompletePng(const std::filesystem::path& path) {
-  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  // A zero-length IEND chunk: its length, its type and its CRC.
-  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
-                                             'N', 'D', 0xae, 0x42, 0x60, 0x82};
-  std::ifstream in(path, std::ios::binary);
-  unsigned char start[8];
-  unsigned char end[12];
-  if (!in.read(reinterpret_cast<char*>(start), sizeof start)) return false;
-  if (!in.seekg(-static_cast<std::streamoff>(sizeof end), std::ios::end)) return false;
-  if (!in.read(reinterpret_cast<char*>(end), sizeof end)) return false;
-  return std::memcmp(start, kSignature, sizeof start) == 0 &&
-         std::memcmp(end, kEnd, sizeof end) == 0;
-}
-
-bool isPngFile(const std::filesystem::path& path) {
-  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  std::ifstream in(path, std::ios::binary);
-  unsigned char start[8];
-  return in.read(reinterpret_cast<char*>(start), sizeof start) &&
-         std::memcmp(start, kSignature, sizeof start) == 0;
-}
-
 namespace {
 
-// libpng's text chunks of `file` into `found` (when one has `key`); false with state.error set
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+// libpng reads through a FileReader, which refused FIFOs and devices when it opened the file.
+void onRead(png_structp png, png_bytep data, png_size_t length) {
+  auto* reader = static_cast<FileReader*>(png_get_io_ptr(png));
+  if (reader->read(data, length) != length) png_error(png, "the file ends early");
+}
+
+// Decodes every row and the chunks after them (CRCs and the zlib stream checked): true when the
+// whole picture decodes. Plain C data only between setjmp and the end.
+bool decodes(FileReader& reader, EncodeState& state) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, onError, onWarning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  png_bytep volatile row = nullptr;
+  if (!info || setjmp(png_jmpbuf(png))) {
+    std::free(row);
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    return false;
+  }
+  png_set_read_fn(png, &reader, onRead);
+  png_set_sig_bytes(png, sizeof kPngSignature);  // the caller read and checked it
+  png_read_info(png, info);
+  const int passes = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  const png_uint_32 height = png_get_image_height(png, info);
+  row = static_cast<png_bytep>(std::malloc(png_get_rowbytes(png, info)));
+  if (!row) png_error(png, "out of memory");
+  for (int pass = 0; pass < passes; ++pass)
+    for (png_uint_32 y = 0; y < height; ++y) png_read_row(png, row, nullptr);
+  png_read_end(png, nullptr);
+  std::free(row);
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
+// libpng's text chunks of the file into `found` (when one has `key`); false with state.error set
 // when it is not a readable PNG. Plain C data only between setjmp and the end.
-bool readText(std::FILE* file, const char* key, EncodeState& state, std::string& found, bool& has) {
+bool readText(FileReader& reader, const char* key, EncodeState& state, std::string& found,
+              bool& has) {
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, onError, onWarning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -230,7 +244,8 @@ bool readText(std::FILE* file, const char* key, EncodeState& state, std::string&
     png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
     return false;
   }
-  png_init_io(png, file);
+  png_set_read_fn(png, &reader, onRead);
+  png_set_sig_bytes(png, sizeof kPngSignature);  // the caller read and checked it
   png_read_info(png, info);
   png_textp texts = nullptr;
   const int count = png_get_text(png, info, &texts, nullptr);
@@ -246,20 +261,37 @@ bool readText(std::FILE* file, const char* key, EncodeState& state, std::string&
 
 }  // namespace
 
+Result<bool> isCompletePng(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return false;
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path, false));
+  unsigned char start[8];
+  if (reader.read(start, sizeof start) != sizeof start ||
+      std::memcmp(start, kPngSignature, sizeof start) != 0)
+    return false;
+  EncodeState state;
+  return decodes(reader, state);
+}
+
+bool isPngFile(const std::filesystem::path& path) {
+  Result<FileReader> reader = FileReader::open(path, false);
+  unsigned char start[8];
+  return reader && reader->read(start, sizeof start) == sizeof start &&
+         std::memcmp(start, kPngSignature, sizeof start) == 0;
+}
+
 Result<std::optional<std::string>> readPngText(const std::filesystem::path& path,
                                                const std::string& key) {
-  if (!isPngFile(path)) {
-    if (!std::filesystem::exists(path)) return fileError(path, "no such file");
+  LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
+  unsigned char start[8];
+  if (reader.read(start, sizeof start) != sizeof start ||
+      std::memcmp(start, kPngSignature, sizeof start) != 0)
     return fileError(path, "not a PNG file");
-  }
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file) return fileError(path, std::string("cannot open: ") + std::strerror(errno));
   EncodeState state;
   std::string found;
   bool has = false;
-  const bool read = readText(file, key.c_str(), state, found, has);
-  std::fclose(file);
-  if (!read) return fileError(path, std::string("not a readable PNG: ") + state.error);
+  if (!readText(reader, key.c_str(), state, found, has))
+    return fileError(path, std::string("not a readable PNG: ") + state.error);
   if (!has) return std::optional<std::string>();
   return std::optional<std::string>(std::move(found));
 }

@@ -30,12 +30,14 @@ Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
 Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
                             const std::vector<std::uint16_t>& values, const PngText& text = {});
 
-// Whether `path` is a whole PNG file: the signature at its start and the IEND chunk at its end.
-// lic3d writes every file atomically, so one of its frames is whole or absent; this also tells a
-// file cut short by a copy or another program (`--skip-existing` redoes it).
-bool isCompletePng(const std::filesystem::path& path);
+// Whether `path` is a whole PNG file: every row decodes, every chunk's CRC and the zlib stream
+// check out, up to the IEND chunk. lic3d writes every file atomically, so one of its frames is
+// whole or absent; this also tells a file cut short, zeroed in the middle or forged (a signature
+// and an IEND chunk) by a copy or another program (`--skip-existing` redoes it). False when the
+// path does not exist; InvalidInput naming it when it is not a regular file (a FIFO would hang).
+Result<bool> isCompletePng(const std::filesystem::path& path);
 
-// Whether the file starts with the PNG signature.
+// Whether the file is a regular file that starts with the PNG signature.
 bool isPngFile(const std::filesystem::path& path);
 // The value of the text chunk `key` (tEXt, zTXt or iTXt before the image data, where lic3d writes
 // them), or nothing when the PNG has none; InvalidInput naming the file when it is not a PNG.

@@ -23,7 +23,7 @@ constexpr std::uint64_t kMaxSidecarBytes = 64 * 1024;
 // The sidecar is a flat object of short arrays; deeper nesting is refused while parsing.
 constexpr int kMaxSidecarDepth = 4;
 constexpr std::string_view kKnownKeys[] = {"dims",  "spacing", "origin", "components",
-                                           "order", "type",    "endian"};
+                                           "order", "type",    "endian", "bytes"};
 
 using Json = nlohmann::json;
 
@@ -47,7 +47,7 @@ class SidecarReader {
     for (const auto& [key, value] : json.items()) {
       if (std::find(std::begin(kKnownKeys), std::end(kKnownKeys), key) == std::end(kKnownKeys))
         return fail("unknown key " + quoteForMessage(key) +
-                    " (known: dims, spacing, origin, components, order, type, endian)");
+                    " (known: dims, spacing, origin, components, order, type, endian, bytes)");
     }
     RawLayout sidecar;
     if (!json.contains("dims")) return fail("missing \"dims\": [nx, ny, nz]");
@@ -78,6 +78,15 @@ class SidecarReader {
     sidecar.valueBytes = type == "float64" ? 8 : 4;
     LIC3D_TRY_ASSIGN(const std::string endian, word(json, "endian", "little", {"little", "big"}));
     sidecar.order = endian == "big" ? std::endian::big : std::endian::little;
+    if (json.contains("bytes")) {
+      const Json& bytes = json["bytes"];
+      const std::uint64_t needed = voxelCount(sidecar.dims) * 3 * sidecar.valueBytes;
+      if (!bytes.is_number_unsigned() || bytes.get<std::uint64_t>() != needed)
+        return fail("bytes: expected " + std::to_string(needed) + " for its grid, found " +
+                    shown(bytes));
+      // The data file's size is checked against the grid by every reader: a file replaced
+      // without its sidecar (an interrupted write of the pair) differs.
+    }
     return sidecar;
   }
 
@@ -133,6 +142,10 @@ Result<RawLayout> readSidecar(const std::filesystem::path& rawPath,
 }
 
 }  // namespace
+
+bool isRawSidecarKey(std::string_view key) {
+  return std::find(std::begin(kKnownKeys), std::end(kKnownKeys), key) != std::end(kKnownKeys);
+}
 
 Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPath) {
   std::filesystem::path byStem = rawPath;

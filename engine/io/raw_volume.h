@@ -9,7 +9,9 @@
 //    "components": 3,               the only value allowed
 //    "order": "interleaved",        xyzxyz... per voxel, or "planar": every x, then every y, then z
 //    "type": "float32",             or "float64"
-//    "endian": "little"}            or "big"
+//    "endian": "little",            or "big"
+//    "bytes": N}                    optional: the data file's size, which must match (a data
+//                                   file replaced without its sidecar is told by it)
 //
 // Voxels are stored x fastest, then y, then z. Unknown keys are errors, so a misspelt key is not
 // silently ignored. Inputs are untrusted: the sidecar is at most 64 KiB, the grid is limited
@@ -21,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/volume.h"
@@ -31,6 +34,9 @@ namespace lic3d {
 // The sidecar of `rawPath`: "<stem>.json" or "<name>.json" beside it; an error when neither or
 // both exist.
 Result<std::filesystem::path> findRawSidecar(const std::filesystem::path& rawPath);
+
+// Whether `key` is one of the sidecar's keys above.
+bool isRawSidecarKey(std::string_view key);
 
 // What a raw file's sidecar describes, checked.
 struct RawLayout {

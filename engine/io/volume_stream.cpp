@@ -12,6 +12,7 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "io/file_util.h"
 #include "io/nrrd_header.h"
 #include "io/number_type.h"
+#include "io/raw_volume.h"
 
 namespace lic3d {
 namespace {
@@ -39,12 +41,14 @@ std::string jsonList(const glm::dvec3& v) {
   return text;
 }
 
-// What raw_volume.h describes, for one float32 component per voxel.
+// What raw_volume.h describes, for one float32 component per voxel, with the data file's size
+// ("bytes"): a sidecar left beside data of another size is told by it.
 std::string rawSidecar(Dims dims, const GridGeometry& geometry) {
   return "{\"dims\": [" + std::to_string(dims.x) + ", " + std::to_string(dims.y) + ", " +
          std::to_string(dims.z) + "], \"spacing\": " + jsonList(geometry.spacing) +
          ", \"origin\": " + jsonList(geometry.origin) +
-         ", \"components\": 1, \"type\": \"float32\", \"endian\": \"little\"}\n";
+         ", \"components\": 1, \"type\": \"float32\", \"endian\": \"little\", \"bytes\": " +
+         std::to_string(std::uint64_t{voxelCount(dims)} * sizeof(float)) + "}\n";
 }
 
 // All of `bytes` at `offset`; errno's text when it cannot.
@@ -96,6 +100,7 @@ Result<ScalarVolumeStream> ScalarVolumeStream::create(const std::filesystem::pat
                        static_cast<std::uint64_t>(dims.z), kMaxStreamedVoxels);
   if (!problem.empty()) return cannotWrite(ErrorKind::InvalidInput, path, problem);
   const bool raw = extension == ".raw";
+  if (raw) LIC3D_TRY(checkRawSidecarReplaceable(path));
   const std::string header = raw ? std::string() : nrrd::scalarHeader(dims, geometry, name);
 
   LIC3D_TRY_ASSIGN(TemporaryOutput output, TemporaryOutput::create(path));
@@ -171,14 +176,46 @@ Result<void> ScalarVolumeStream::finish() {
                            std::to_string(total) + " (" +
                            (written < total ? "a block is missing" : "blocks overlap") + ")");
   state.finished = true;
-  // The sidecar first: a new sidecar beside an old data file fails the reader's size check,
-  // where an old sidecar beside new data could describe it wrongly.
-  if (state.raw) {
-    std::filesystem::path sidecar = path;
-    sidecar.replace_extension(".json");
-    LIC3D_TRY(writeFileAtomically(sidecar, rawSidecar(state.dims, state.geometry)));
-  }
-  return state.output.commit();
+  if (!state.raw) return state.output.commit();
+  // The pair commits as one: both complete on disk under temporary names before either is
+  // renamed, then the data, then the sidecar, two renames apart. A run cut short before the
+  // renames leaves the old pair; between them, new data beside the old sidecar, whose "bytes"
+  // tells a change of grid (a reader that checks it refuses the pair).
+  const std::filesystem::path sidecarPath = rawSidecarPath(path);
+  LIC3D_TRY_ASSIGN(TemporaryOutput sidecar, TemporaryOutput::create(sidecarPath));
+  const std::string text = rawSidecar(state.dims, state.geometry);
+  if (const std::string failure = writeAllAt(sidecar.fd(), text.data(), text.size(), 0);
+      !failure.empty())
+    return cannotWrite(ErrorKind::Runtime, sidecarPath, failure);
+  LIC3D_TRY(state.output.commit());
+  return sidecar.commit();
+}
+
+std::filesystem::path rawSidecarPath(const std::filesystem::path& rawPath) {
+  std::filesystem::path sidecar = rawPath;
+  sidecar.replace_extension(".json");
+  return sidecar;
+}
+
+Result<void> checkRawSidecarReplaceable(const std::filesystem::path& rawPath) {
+  const std::filesystem::path sidecar = rawSidecarPath(rawPath);
+  LIC3D_TRY(checkNotAnInput(sidecar));
+  std::error_code error;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(sidecar, error))) return {};
+  const auto refuse = [&](const std::string& why) {
+    return fileError(sidecar, why + ", and writing " + rawPath.string() +
+                                  " would replace it with its sidecar: move it or choose "
+                                  "another output name");
+  };
+  Result<std::string> text = readFile(sidecar, 64 * 1024, false);
+  if (!text) return refuse("cannot be read as a sidecar (" + text.error().message + ")");
+  nlohmann::json json = nlohmann::json::parse(*text, nullptr, false);
+  bool own = json.is_object() && json.contains("dims");
+  if (own)
+    for (const auto& item : json.items())
+      if (!isRawSidecarKey(item.key())) own = false;
+  if (!own) return refuse("exists and is not the JSON sidecar of a raw volume");
+  return {};
 }
 
 }  // namespace lic3d

@@ -23,6 +23,14 @@
 
 namespace lic3d {
 
+// A raw volume's sidecar: `<stem>.json` beside it.
+std::filesystem::path rawSidecarPath(const std::filesystem::path& rawPath);
+// Whether writing the raw volume `rawPath` may replace what its sidecar's name holds: nothing, or
+// a raw-volume sidecar (a JSON object of the sidecar's keys only, as lic3d writes). Any other
+// file there (a session, a preset, a user's notes) is refused, InvalidInput naming it, and so is
+// an input of the run (checkNotAnInput).
+Result<void> checkRawSidecarReplaceable(const std::filesystem::path& rawPath);
+
 class ScalarVolumeStream {
  public:
   // The temporary file made and sized. InvalidInput (naming the file) for another extension, an
@@ -45,9 +53,10 @@ class ScalarVolumeStream {
   // overlap; threads may write disjoint blocks at once.
   Result<void> write(Dims offset, Dims dims, const float* values);
 
-  // Flushes the file to disk and renames it into place (the sidecar first), or hands both to the
-  // open OutputGroup. An error, leaving no file under the name, unless the blocks written cover
-  // every voxel exactly once (by count).
+  // Flushes the file to disk and renames it into place, or hands it to the open OutputGroup. A
+  // .raw's sidecar is complete on disk before the data is renamed and renamed right after it. An
+  // error, leaving no file under the name, unless the blocks written cover every voxel exactly once
+  // (by count).
   Result<void> finish();
 
  private:
