@@ -301,13 +301,14 @@ class Lic3dModule(unittest.TestCase):
     def test_numpy_scalars_are_numbers(self):
         vectors = self.vectors[:, :, :12]
         plain = lic3d.compute(vectors, noise=self.noise[:, :, :12], spacing=2, length=5)
-        for spacing in (np.float32(2), np.int64(2), np.float64(2), (2, np.float32(2), np.int8(2)),
-                        np.array([2.0, 2.0, 2.0]), np.array(2)):
-            for length in (5, np.int64(5), np.float32(5), 5.0):
-                with self.subTest(spacing=spacing, length=length):
-                    made = lic3d.compute(vectors, noise=self.noise[:, :, :12], spacing=spacing,
-                                         length=length)
-                    self.assertEqual(made.tobytes(), plain.tobytes())
+        given = [dict(spacing=s) for s in (np.float32(2), np.int64(2), np.array(2),
+                                           (2, np.float32(2), np.int8(2)), np.array([2.0] * 3))]
+        given += [dict(spacing=2, length=n) for n in (np.int64(5), np.float32(5), 5.0)]
+        for params in given:
+            with self.subTest(params=params):
+                made = lic3d.compute(vectors, noise=self.noise[:, :, :12],
+                                     **{"length": 5, **params})
+                self.assertEqual(made.tobytes(), plain.tobytes())
         cases = [
             (dict(spacing="abc"), TypeError, "spacing: expected 3 numbers .* got a str"),
             (dict(spacing=None), TypeError, "spacing: expected 3 numbers .* got a NoneType"),
