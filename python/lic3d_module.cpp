@@ -592,8 +592,9 @@ PYBIND11_MODULE(lic3d, module) {
              "(nz, ny, nx) of uint8, uint16 or float32 on the LIC grid, or a noise file; "
              "default seeded white noise. session: a dict (lic3d.session()) or a session "
              "file (JSON or a PNG lic3d wrote) the parameters then override. "
-             "device='' picks as `lic3d --device` does; cpu=True uses the CPU reference. "
-             "The GIL is released while the LIC is made.");
+             "device='' picks as `lic3d --device` does, devices='all' spreads the LIC over "
+             "several as `lic3d compute --devices` does; cpu=True uses the CPU reference. "
+             "The GIL is released while the LIC is made; Ctrl-C interrupts the call.");
   module.def("render", &render, py::arg("vectors") = py::none(), py::kw_only(),
              py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
              py::arg("session") = py::none(),
