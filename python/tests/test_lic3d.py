@@ -317,8 +317,11 @@ class Lic3dModule(unittest.TestCase):
             (dict(spacing=float("nan")), ValueError, "spacing: expected .* finite"),
             (dict(spacing=(1, 2)), ValueError, r"spacing: expected 3 numbers \(x, y, z\) or one"),
             (dict(spacing=True), TypeError, "spacing: .* got a bool"),
-            (dict(length="abc"), ValueError, "--length"),
-            (dict(length=10**400), ValueError, "--length"),
+            (dict(length="abc"), ValueError,
+             r"--length: expected a whole number in \[0, 4096\], got 'abc'"),
+            (dict(length=10**400), ValueError, "--length: expected a whole number .* got '1000"),
+            (dict(length=5.5), ValueError, "--length: expected a whole number .* got '5.5'"),
+            (dict(step=np.float32("nan")), ValueError, "--step"),
         ]
         for params, error, message in cases:
             with self.subTest(params=str(params)[:40]), self.assertRaisesRegex(error, message):
