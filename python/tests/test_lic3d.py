@@ -394,6 +394,8 @@ class Lic3dModule(unittest.TestCase):
         whole = time.monotonic() - start
         self.assertLess(elapsed, 0.8, f"interrupted after {elapsed:.2f} s of {whole:.2f} s")
         self.assertGreater(whole, 2 * elapsed)
+        # The module works on after an interrupted call.
+        self.assertEqual(lic3d.compute(self.vectors, noise=self.noise).shape, (14, 12, 16))
 
 
 if __name__ == "__main__":
