@@ -9,15 +9,23 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <memory>
+#include <mutex>
+#include <new>
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/parameter_ranges.h"
 #include "core/text.h"
+#include "gpu/device_choice.h"
 #include "gpu/vulkan_context.h"
 #include "jobs/bricks.h"
 #include "lic/lic_reference.h"
@@ -64,17 +72,70 @@ const std::set<std::string>& notParameters() {
   return flags;
 }
 
-// A value as the command line takes it: True/False as on/off, a sequence as its items with commas.
-std::string valueText(const py::handle& value) {
+// The type of `value` for messages: "list", "numpy.ndarray".
+std::string typeName(const py::handle& value) {
+  const py::handle type = py::type::handle_of(value);
+  const std::string module = py::str(type.attr("__module__")).cast<std::string>();
+  const std::string name = py::str(type.attr("__qualname__")).cast<std::string>();
+  return module == "builtins" ? name : module + "." + name;
+}
+
+// A number: Python's or numpy's (a numpy scalar, a 0-d array), not a bool.
+bool isNumber(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return false;
+  if (py::isinstance<py::array>(value)) return py::reinterpret_borrow<py::array>(value).ndim() == 0;
+  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::str>(value) &&
+         !PySequence_Check(value.ptr());
+}
+
+// One value as the command line takes it: True/False as on/off, a string or number as its text.
+// Nothing else: `keyword` names it when refused.
+std::string scalarText(const py::handle& value, const std::string& keyword, const char* expected) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::isinstance<py::sequence>(value) || py::isinstance<py::array>(value)) {
-    std::string text;
-    for (const py::handle item : py::iter(value))
-      text += (text.empty() ? "" : ",") + valueText(item);
-    return text;
+  if (isNumber(value)) {
+    // A whole number as one, so that 5.0 or numpy.float32(5) is a length as 5 is.
+    if (!PyLong_Check(value.ptr()) && !PyObject_HasAttrString(value.ptr(), "__index__")) {
+      const double number = PyFloat_AsDouble(value.ptr());
+      if (number == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+      if (std::isfinite(number) && std::trunc(number) == number && std::abs(number) < 0x1p53)
+        return std::to_string(static_cast<long long>(number));
+    }
+    return py::str(value).cast<std::string>();
   }
-  return py::str(value).cast<std::string>();
+  throw py::type_error(keyword + ": expected " + expected + ", got a " + typeName(value));
+}
+
+// A keyword's value as the command line takes it: a number, a string or True/False, or a flat
+// sequence of them joined with commas. A value lic3d takes is never nested, so a nested or
+// self-containing list is refused here instead of being followed.
+std::string valueText(const py::handle& value, const std::string& keyword) {
+  constexpr const char* kExpected =
+      "a number, a string, True/False or a flat sequence of numbers or strings";
+  const bool sequence = !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value) &&
+                        !isNumber(value) &&
+                        (py::isinstance<py::sequence>(value) || py::isinstance<py::array>(value));
+  if (!sequence) return scalarText(value, keyword, kExpected);
+  std::string text;
+  for (const py::handle item : py::iter(value)) {
+    const bool nested = !py::isinstance<py::str>(item) && !isNumber(item) &&
+                        (py::isinstance<py::sequence>(item) || py::isinstance<py::array>(item));
+    if (nested)
+      throw py::type_error(keyword + ": expected " + kExpected + ", got a " + typeName(value) +
+                           " holding a " + typeName(item));
+    text += (text.empty() ? "" : ",") + scalarText(item, keyword, kExpected);
+  }
+  return text;
+}
+
+// A file's path (a str or os.PathLike) as the flag `keyword` takes it.
+std::string pathText(const py::object& value, const std::string& keyword, const char* expected) {
+  if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__"))
+    throw py::type_error(keyword + ": expected " + expected + ", got a " + typeName(value));
+  const py::object path = py::module_::import("os").attr("fspath")(value);
+  if (!py::isinstance<py::str>(path))
+    throw py::type_error(keyword + ": expected " + expected + ", got a bytes path");
+  return path.cast<std::string>();
 }
 
 // A parsed request: the command line of `compute` or `render`, filled from keyword arguments.
@@ -86,6 +147,30 @@ struct Request {
   Session& session() const { return options->inputs.session; }
   const cli::GlobalOptions& global() const { return line->global; }
 };
+
+// CLI11's "Could not convert: --length = abc" with what the flag takes: "--length: expected a
+// whole number in [0, 4096], got 'abc'".
+Error withExpectedValue(Error error, const CLI::App& sub, const CLI::App& app) {
+  constexpr std::string_view kPrefix = "Could not convert: ";
+  const std::string& message = error.message;
+  const std::size_t equals = message.find(" = ");
+  if (!message.starts_with(kPrefix) || equals == std::string::npos) return error;
+  const std::string flag = message.substr(kPrefix.size(), equals - kPrefix.size());
+  const CLI::Option* option = sub.get_option_no_throw(flag);
+  if (!option) option = app.get_option_no_throw(flag);
+  if (!option) return error;
+  const std::string type = option->get_type_name();
+  const std::size_t colon = type.find(':');
+  const std::string base = type.substr(0, colon);
+  const std::string range = colon == std::string::npos ? "" : " " + type.substr(colon + 1);
+  const std::string kind = base == "INT"     ? "a whole number"
+                           : base == "UINT"  ? "a whole number from 0"
+                           : base == "FLOAT" ? "a number"
+                                             : base;
+  error.message = flag + ": expected " + kind + (range.starts_with(" in ") ? range : "") +
+                  ", got '" + cutMessage(message.substr(equals + 3), 60) + "'";
+  return error;
+}
 
 Request parseRequest(const std::string& command, const py::object& session,
                      const py::object& noiseFile, const py::kwargs& params) {
@@ -103,9 +188,13 @@ Request parseRequest(const std::string& command, const py::object& session,
     request.session() = take(sessionFromJson(text, "session"));
     request.options->inputs.sessionFile = "session";  // no default look over it
   } else if (!session.is_none()) {
-    args.push_back("--session=" + py::str(session).cast<std::string>());  // a file: JSON or PNG
+    // A file: JSON or PNG.
+    args.push_back("--session=" +
+                   pathText(session, "session", "a dict, or a session file's path (JSON or PNG)"));
   }
-  if (!noiseFile.is_none()) args.push_back("--noise=" + py::str(noiseFile).cast<std::string>());
+  if (!noiseFile.is_none())
+    args.push_back("--noise=" +
+                   pathText(noiseFile, "noise", "an array (nz, ny, nx) or a noise file's path"));
   for (const auto& [key, value] : params) {
     std::string name = key.cast<std::string>();
     for (char& c : name) c = c == '_' ? '-' : c;
@@ -126,25 +215,64 @@ Request parseRequest(const std::string& command, const py::object& session,
       if (value.cast<bool>()) args.push_back(flag);
       continue;
     }
-    args.push_back(flag + "=" + valueText(value));
+    args.push_back(flag + "=" + valueText(value, key.cast<std::string>()));
   }
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
-  take(cli::parseArguments(*line.app, static_cast<int>(argv.size()), argv.data(),
-                           {&request.options->inputs}));
+  Result<void> parsed = cli::parseArguments(*line.app, static_cast<int>(argv.size()), argv.data(),
+                                            {&request.options->inputs});
+  if (!parsed) raise(withExpectedValue(parsed.error(), sub, *line.app));
   take(cli::finishCommand(line));
   return request;
 }
 
+// A finite number (Python's or numpy's), else TypeError or ValueError naming `what`.
+double numberOf(const py::handle& value, const char* what) {
+  const std::string expected = std::string(what) + ": expected 3 numbers (x, y, z) or one";
+  if (!isNumber(value)) throw py::type_error(expected + ", got a " + typeName(value));
+  const double number = PyFloat_AsDouble(value.ptr());
+  if (number == -1.0 && PyErr_Occurred()) {
+    const py::error_already_set error;  // an int beyond a double: OverflowError
+    throw py::value_error(expected + ", got a number beyond a double");
+  }
+  if (!std::isfinite(number))
+    throw py::value_error(expected + " that are finite, got " + formatDouble(number));
+  return number;
+}
+
 std::array<double, 3> triple(const py::object& value, const char* what) {
-  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
-    const double v = value.cast<double>();
+  if (isNumber(value)) {
+    const double v = numberOf(value, what);
     return {v, v, v};
   }
-  const auto items = py::cast<std::vector<double>>(value);
-  if (items.size() != 3)
-    throw py::value_error(std::string(what) + ": expected 3 numbers (x, y, z) or one");
+  const bool sequence = !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value) &&
+                        (py::isinstance<py::sequence>(value) || py::isinstance<py::array>(value));
+  if (!sequence)
+    throw py::type_error(std::string(what) + ": expected 3 numbers (x, y, z) or one, got a " +
+                         typeName(value));
+  std::vector<double> items;
+  for (const py::handle item : py::iter(value)) {
+    if (items.size() == 3) break;
+    items.push_back(numberOf(item, what));
+  }
+  if (items.size() != 3 || py::len(value) != 3)
+    throw py::value_error(std::string(what) + ": expected 3 numbers (x, y, z) or one, got " +
+                          std::to_string(py::len(value)));
   return {items[0], items[1], items[2]};
+}
+
+// `value` as a C-contiguous array of T. numpy's own MemoryError (a huge broadcast array made
+// whole) stays a MemoryError; anything else that is no array of numbers is a ValueError.
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> arrayOfNumbers(const py::object& value,
+                                                                         const char* what) {
+  try {
+    return py::array_t<T, py::array::c_style | py::array::forcecast>(value);
+  } catch (py::error_already_set& error) {
+    if (error.matches(PyExc_MemoryError)) throw;
+    throw py::value_error(std::string(what) + ": expected an array of numbers (" +
+                          cutMessage(error.what(), 200) + ")");
+  }
 }
 
 std::string shapeText(const py::array& array) {
@@ -166,9 +294,7 @@ Dims gridOf(const py::array& array, const char* what) {
 
 // (nz, ny, nx, 3) numbers, x fastest as VTK and NRRD store them, as the engine's field.
 VectorField fieldOf(const py::array& vectors, const py::object& spacing, const py::object& origin) {
-  const auto floats =
-      py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(vectors);
-  if (!floats) throw py::value_error("vectors: expected an array of numbers");
+  const auto floats = arrayOfNumbers<float>(vectors, "vectors");
   if (floats.ndim() != 4 || floats.shape(3) != 3)
     throw py::value_error("vectors: expected the shape (nz, ny, nx, 3), got " + shapeText(floats));
   VectorField field;
@@ -198,7 +324,9 @@ NoiseVolume noiseOf(const py::array& noise) {
   if (noise.ndim() != 3)
     throw py::value_error("noise: expected the shape (nz, ny, nx), got " + shapeText(noise));
   volume.dims = gridOf(noise, "noise");
-  const auto contiguous = py::array::ensure(noise, py::array::c_style);
+  // numpy's copy raises its own MemoryError where the array cannot be made contiguous.
+  const auto contiguous = py::reinterpret_borrow<py::array>(
+      py::module_::import("numpy").attr("ascontiguousarray")(noise));
   const auto* bytes = static_cast<const std::uint8_t*>(contiguous.data());
   volume.bytes.assign(bytes, bytes + contiguous.nbytes());
   return volume;
@@ -209,6 +337,10 @@ SessionInputs inputsOf(Request& request, const py::object& vectors, const py::ob
                        const py::object& origin, const py::object& noise) {
   Session& session = request.session();
   if (session.twoD) throw py::value_error("the session is a 2D one (mode 2d)");
+  if (vectors.is_none() && py::isinstance<py::array>(noise))
+    throw py::value_error(
+        "noise: an array of noise goes with vectors on its grid; with field=... give the noise "
+        "as a file (noise='n.nrrd') or choose it with seed, seed_noise or seed_fraction");
   if (vectors.is_none()) {
     // An analytic field is made on the device where the command line makes it there, so that
     // both give the same numbers.
@@ -240,6 +372,42 @@ Result<Context> openDevice(const cli::GlobalOptions& global) {
   return Context::create({.validation = global.validation, .device = global.device});
 }
 
+// devices=: the contexts of the devices named, as `lic3d compute --devices` opens them.
+Result<std::vector<Context>> openDevices(const cli::GlobalOptions& global,
+                                         const std::string& devices) {
+  std::vector<Context> contexts;
+  if (devices.empty()) {
+    LIC3D_TRY_ASSIGN(Context context, openDevice(global));
+    contexts.push_back(std::move(context));
+    return contexts;
+  }
+  LIC3D_TRY_ASSIGN(const std::vector<DeviceInfo> listed, listDevices());
+  Result<std::vector<int>> chosen = chooseDevices(listed, devices);
+  if (!chosen) return inputError("--" + chosen.error().message);
+  for (const int index : *chosen) {
+    cli::GlobalOptions one = global;
+    one.device = std::to_string(index);
+    LIC3D_TRY_ASSIGN(Context context, openDevice(one));
+    contexts.push_back(std::move(context));
+  }
+  return contexts;
+}
+
+// What the command line refuses of devices=, before any work.
+void checkDevices(const Request& request, bool render) {
+  const std::string& devices = request.options->devices;
+  if (devices.empty()) return;
+  if (request.options->cpu)
+    throw py::value_error("--devices " + devices + ": --cpu computes on the CPU, not on devices");
+  if (!request.global().device.empty())
+    throw py::value_error("--device " + request.global().device + " --devices " + devices +
+                          ": give one device (--device) or several (--devices), not both");
+  if (render)
+    throw py::value_error("--devices " + devices +
+                          ": lic3d.render draws on one device (device=...); lic3d.compute "
+                          "spreads a LIC volume over several");
+}
+
 // The LIC volume, on the device the options choose or (cpu) the CPU reference. No Python here:
 // it runs with the GIL released.
 Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
@@ -250,11 +418,15 @@ Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
     }
     return computeLicReference(inputs.field, inputs.noise, session.lic, 0, {});
   }
-  LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
-  // In one piece when it fits the device (or memory_budget), else in bricks, as lic3d compute.
+  LIC3D_TRY_ASSIGN(const std::vector<Context> contexts,
+                   openDevices(request.global(), request.options->devices));
+  std::vector<const Context*> devices;
+  for (const Context& context : contexts) devices.push_back(&context);
+  // In one piece when it fits the device (or memory_budget), else in bricks spread over the
+  // devices, as lic3d compute.
   Result<LicVolumeRun> run =
-      computeLicVolume(context, session, inputs, request.options->memoryBudget);
-  LIC3D_TRY(checkValidation(context));
+      computeLicVolume(devices, session, inputs, {.deviceCap = request.options->memoryBudget});
+  for (const Context& context : contexts) LIC3D_TRY(checkValidation(context));
   if (!run) return run.error();
   return std::move(run->volume);
 }
@@ -302,6 +474,66 @@ py::array_t<T> arrayOf(std::vector<T>&& values, std::vector<py::ssize_t> shape) 
   return py::array_t<T>(std::move(shape), owned->data(), release);
 }
 
+// Work given up on by Ctrl-C still runs to its end on its thread (the engine cannot be stopped
+// half way through a submission); the interpreter waits for it at exit, so that no Vulkan call is
+// left running while the process tears down the driver.
+std::mutex abandonedMutex;
+std::condition_variable abandonedDone;
+int workRunning = 0;
+
+void waitForWork() {
+  const py::gil_scoped_release unlocked;
+  std::unique_lock lock(abandonedMutex);
+  abandonedDone.wait(lock, [] { return workRunning == 0; });
+}
+
+// What `work` made on a thread of its own, waited for with the GIL released, with Python's
+// signal handlers run every 50 ms in between: Ctrl-C raises KeyboardInterrupt at once. `work`
+// owns what it uses, since it may outlive this call.
+template <class Made, class Work>
+Made runInterruptibly(Work work) {
+  struct Shared {
+    std::mutex mutex;
+    std::condition_variable done;
+    std::optional<Made> made;
+  };
+  auto shared = std::make_shared<Shared>();
+  {
+    const std::lock_guard lock(abandonedMutex);
+    ++workRunning;
+  }
+  std::thread([shared, work = std::move(work)]() mutable {
+    Made made = Error{};
+    try {
+      made = work();
+    } catch (const std::bad_alloc&) {
+      made = Error{ErrorKind::ResourceLimit, "not enough host memory"};
+    } catch (const std::exception& e) {
+      made = Error{ErrorKind::Runtime, e.what()};
+    }
+    {
+      const std::lock_guard lock(shared->mutex);
+      shared->made = std::move(made);
+    }
+    shared->done.notify_all();
+    {
+      const std::lock_guard lock(abandonedMutex);
+      --workRunning;
+    }
+    abandonedDone.notify_all();
+  }).detach();
+  for (;;) {
+    {
+      const py::gil_scoped_release unlocked;
+      std::unique_lock lock(shared->mutex);
+      if (shared->done.wait_for(lock, std::chrono::milliseconds(50),
+                                [&] { return shared->made.has_value(); }))
+        return std::move(*shared->made);
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+}
+
 // A request of `command` made with the GIL released by `work` (licVolume or picture), its result
 // taken (an error raised), and the inputs' non-finite vectors warned of.
 template <class Work>
@@ -309,15 +541,19 @@ auto runRequest(const char* command, const py::object& vectors, const py::object
                 const py::object& origin, const py::object& noise, const py::object& session,
                 const py::kwargs& params, Work work) {
   const bool noiseArray = py::isinstance<py::array>(noise);
-  Request request = parseRequest(command, session, noiseArray ? py::none() : noise, params);
-  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
-  decltype(work(request, inputs)) made = Error{};
-  {
-    const py::gil_scoped_release unlocked;
-    made = work(request, inputs);
-  }
-  auto result = take(std::move(made));
-  warnNonFinite(inputs);
+  struct State {
+    Request request;
+    SessionInputs inputs;
+  };
+  auto state = std::make_shared<State>();
+  state->request = parseRequest(command, session, noiseArray ? py::none() : noise, params);
+  checkDevices(state->request, std::string_view(command) == "render");
+  state->inputs = inputsOf(state->request, vectors, spacing, origin, noise);
+  setThreadLimit(state->request.global().threads);
+  using Made = decltype(work(state->request, state->inputs));
+  auto result =
+      take(runInterruptibly<Made>([state, work] { return work(state->request, state->inputs); }));
+  warnNonFinite(state->inputs);
   return result;
 }
 
@@ -368,6 +604,8 @@ PYBIND11_MODULE(lic3d, module) {
       "underscores: length=30, integrator='rk4', noise_filter='nearest', look='streamlines', "
       "size=(800, 600). A refused value raises ValueError with the message of the command line.";
   module.attr("__version__") = LIC3D_VERSION;
+  module.add_object("_wait_for_work", py::cpp_function(&waitForWork));
+  py::module_::import("atexit").attr("register")(module.attr("_wait_for_work"));
   module.def("compute", &compute, py::arg("vectors") = py::none(), py::kw_only(),
              py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
              py::arg("session") = py::none(),
@@ -379,8 +617,9 @@ PYBIND11_MODULE(lic3d, module) {
              "(nz, ny, nx) of uint8, uint16 or float32 on the LIC grid, or a noise file; "
              "default seeded white noise. session: a dict (lic3d.session()) or a session "
              "file (JSON or a PNG lic3d wrote) the parameters then override. "
-             "device='' picks as `lic3d --device` does; cpu=True uses the CPU reference. "
-             "The GIL is released while the LIC is made.");
+             "device='' picks as `lic3d --device` does, devices='all' spreads the LIC over "
+             "several as `lic3d compute --devices` does; cpu=True uses the CPU reference. "
+             "The GIL is released while the LIC is made; Ctrl-C interrupts the call.");
   module.def("render", &render, py::arg("vectors") = py::none(), py::kw_only(),
              py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
              py::arg("session") = py::none(),

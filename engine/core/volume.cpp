@@ -77,6 +77,34 @@ std::size_t bytesPerValue(NoiseType type) {
   return 1;
 }
 
+Result<void> finishFloatNoise(NoiseVolume& noise) {
+  if (noise.type != NoiseType::Float32) return {};
+  const std::size_t count = noise.bytes.size() / 4;
+  float low = 0.0f;
+  float high = 0.0f;
+  for (std::size_t i = 0; i < count; ++i) {
+    float value;
+    std::memcpy(&value, noise.bytes.data() + 4 * i, 4);
+    if (!std::isfinite(value))
+      return inputError("float noise at voxel " + voxelText(noise.dims, i) + " is NaN or infinite");
+    low = i == 0 ? value : std::min(low, value);
+    high = i == 0 ? value : std::max(high, value);
+  }
+  if (low >= 0.0f && high <= 1.0f) return {};
+  if (low == high)
+    return inputError("float noise is the constant " + formatDouble(low) +
+                      ", outside [0,1], and cannot be rescaled to [0,1]");
+  const double range = static_cast<double>(high) - static_cast<double>(low);
+  for (std::size_t i = 0; i < count; ++i) {
+    float value;
+    std::memcpy(&value, noise.bytes.data() + 4 * i, 4);
+    const double scaled = (static_cast<double>(value) - static_cast<double>(low)) / range;
+    value = static_cast<float>(std::clamp(scaled, 0.0, 1.0));
+    std::memcpy(noise.bytes.data() + 4 * i, &value, 4);
+  }
+  return {};
+}
+
 float NoiseVolume::value(std::size_t index) const {
   switch (type) {
     case NoiseType::UInt8: return static_cast<float>(bytes[index]) / 255.0f;

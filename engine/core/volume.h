@@ -87,6 +87,11 @@ struct NoiseVolume {
 
 std::size_t bytesPerValue(NoiseType type);
 
+// Float noise as the noise readers take it: every value finite (else InvalidInput naming the
+// voxel), and values outside [0,1] rescaled from their minimum and maximum onto [0,1] (a constant
+// outside [0,1] cannot be, and is refused). Integer noise is left as it is.
+Result<void> finishFloatNoise(NoiseVolume& noise);
+
 // A float scalar volume: the LIC result read back or computed on the CPU.
 struct ScalarVolume {
   Dims dims{0};

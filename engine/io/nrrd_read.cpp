@@ -371,32 +371,8 @@ Result<NoiseVolume> readNoiseNrrd(const std::filesystem::path& path) {
     std::memcpy(noise.bytes.data() + offset, data, bytes);
     offset += bytes;
   }));
-  if (noise.type != NoiseType::Float32) return noise;
-
-  const std::size_t count = static_cast<std::size_t>(layout.voxels);
-  float low = 0.0f;
-  float high = 0.0f;
-  for (std::size_t i = 0; i < count; ++i) {
-    float value;
-    std::memcpy(&value, noise.bytes.data() + 4 * i, 4);
-    if (!std::isfinite(value))
-      return fileError(path,
-                       "float noise at voxel " + voxelText(layout.dims, i) + " is NaN or infinite");
-    low = i == 0 ? value : std::min(low, value);
-    high = i == 0 ? value : std::max(high, value);
-  }
-  if (low >= 0.0f && high <= 1.0f) return noise;
-  if (low == high)
-    return fileError(path, "float noise is the constant " + formatDouble(low) +
-                               ", outside [0,1], and cannot be rescaled to [0,1]");
-  const double range = static_cast<double>(high) - static_cast<double>(low);
-  for (std::size_t i = 0; i < count; ++i) {
-    float value;
-    std::memcpy(&value, noise.bytes.data() + 4 * i, 4);
-    const double scaled = (static_cast<double>(value) - static_cast<double>(low)) / range;
-    value = static_cast<float>(std::clamp(scaled, 0.0, 1.0));
-    std::memcpy(noise.bytes.data() + 4 * i, &value, 4);
-  }
+  // Float values are checked and rescaled as every front end's float noise is.
+  if (auto r = finishFloatNoise(noise); !r) return fileError(path, r.error().message);
   return noise;
 }
 

@@ -244,6 +244,8 @@ Result<SessionInputs> sessionInputsOf(const Session& session, VectorField field,
     return inputError("noise: the noise grid " + gridText(noise->dims) +
                       " does not match the LIC grid " + gridText(inputs.field.dims));
   } else {
+    // Checked and rescaled as a noise file's values are.
+    if (auto r = finishFloatNoise(*noise); !r) return inputError("noise: " + r.error().message);
     inputs.noise = std::move(*noise);
   }
   return inputs;

@@ -10,6 +10,7 @@ import struct
 import subprocess
 import tempfile
 import threading
+import _thread
 import time
 import unittest
 import zlib
@@ -46,6 +47,14 @@ def write_noise_nrrd(path, noise):
         f.write((f"NRRD0004\ntype: uchar\ndimension: 3\nsizes: {nx} {ny} {nz}\n"
                  "encoding: raw\n\n").encode())
         f.write(noise.tobytes())
+
+
+def write_float_noise_nrrd(path, noise):
+    nz, ny, nx = noise.shape
+    with open(path, "wb") as f:
+        f.write((f"NRRD0004\ntype: float\ndimension: 3\nsizes: {nx} {ny} {nz}\n"
+                 "endian: little\nencoding: raw\n\n").encode())
+        f.write(np.ascontiguousarray(noise, "<f4").tobytes())
 
 
 def read_bytes(path):
@@ -266,6 +275,127 @@ class Lic3dModule(unittest.TestCase):
         self.assertEqual(set(devices[0]), {"index", "name", "type"})
         chosen = lic3d.compute(self.vectors, noise=self.noise, device=devices[0]["name"][:4])
         self.assertEqual(chosen.tobytes(), lic3d.compute(self.vectors, noise=self.noise).tobytes())
+
+    def test_nested_and_self_containing_values_are_refused(self):
+        # A value lic3d takes is a flat list at most: deeper ones are refused, not followed.
+        looped = []
+        looped.append(looped)
+        deep = []
+        for _ in range(100000):
+            deep = [deep]
+        for name, value in (("looped", looped), ("deep", deep), ("nested", [1, [2, 3]])):
+            with self.subTest(value=name):
+                with self.assertRaisesRegex(TypeError, "color_range: expected a number"):
+                    lic3d.session(color_range=value)
+                with self.assertRaisesRegex(TypeError, "color_range: expected a number"):
+                    lic3d.render(self.vectors, color_range=value)
+                with self.assertRaisesRegex(TypeError, "length: expected a number"):
+                    lic3d.compute(self.vectors, length=value)
+        with self.assertRaisesRegex(TypeError, "length: expected a number.*dict"):
+            lic3d.compute(self.vectors, length={"a": 1})
+        with self.assertRaisesRegex(TypeError, "noise: expected an array"):
+            lic3d.compute(self.vectors, noise=5)
+        with self.assertRaisesRegex(TypeError, "session: expected a dict"):
+            lic3d.session(session=looped)
+
+    def test_numpy_scalars_are_numbers(self):
+        vectors = self.vectors[:, :, :12]
+        plain = lic3d.compute(vectors, noise=self.noise[:, :, :12], spacing=2, length=5)
+        given = [dict(spacing=s) for s in (np.float32(2), np.int64(2), np.array(2),
+                                           (2, np.float32(2), np.int8(2)), np.array([2.0] * 3))]
+        given += [dict(spacing=2, length=n) for n in (np.int64(5), np.float32(5), 5.0)]
+        for params in given:
+            with self.subTest(params=params):
+                made = lic3d.compute(vectors, noise=self.noise[:, :, :12],
+                                     **{"length": 5, **params})
+                self.assertEqual(made.tobytes(), plain.tobytes())
+        cases = [
+            (dict(spacing="abc"), TypeError, "spacing: expected 3 numbers .* got a str"),
+            (dict(spacing=None), TypeError, "spacing: expected 3 numbers .* got a NoneType"),
+            (dict(origin=10**400), ValueError, "origin: expected 3 numbers .* beyond a double"),
+            (dict(spacing=(1, 10**400, 1)), ValueError, "spacing: .* beyond a double"),
+            (dict(spacing=float("nan")), ValueError, "spacing: expected .* finite"),
+            (dict(spacing=(1, 2)), ValueError, r"spacing: expected 3 numbers \(x, y, z\) or one"),
+            (dict(spacing=True), TypeError, "spacing: .* got a bool"),
+            (dict(length="abc"), ValueError,
+             r"--length: expected a whole number in \[0, 4096\], got 'abc'"),
+            (dict(length=10**400), ValueError, "--length: expected a whole number .* got '1000"),
+            (dict(length=5.5), ValueError, "--length: expected a whole number .* got '5.5'"),
+            (dict(step=np.float32("nan")), ValueError, "--step"),
+        ]
+        for params, error, message in cases:
+            with self.subTest(params=str(params)[:40]), self.assertRaisesRegex(error, message):
+                lic3d.compute(self.vectors, **params)
+
+    def test_float_noise_is_checked_as_a_noise_file_is(self):
+        # Values outside [0, 1] are rescaled as `lic3d compute --noise f.nrrd` rescales them.
+        noise = np.random.default_rng(3).uniform(-2, 5, (14, 12, 16)).astype(np.float32)
+        path = os.path.join(self.dir, "float_noise.nrrd")
+        write_float_noise_nrrd(path, noise)
+        out = os.path.join(self.dir, "lic.nrrd")
+        self.cli("compute", "--field", self.field, "--noise", path, "-L", "6", "-o", out)
+        made = lic3d.compute(self.vectors, spacing=self.spacing, origin=self.origin, noise=noise,
+                             length=6)
+        self.assertEqual(made.tobytes(), read_nrrd_bytes(out))
+        for bad, message in ((np.nan, r"voxel \(5,4,3\) is NaN or infinite"),
+                             (np.inf, "NaN or infinite"), (-np.inf, "NaN or infinite")):
+            broken = noise.copy()
+            broken[3, 4, 5] = bad
+            with self.subTest(bad=bad), self.assertRaisesRegex(ValueError, "noise: .*" + message):
+                lic3d.compute(self.vectors, noise=broken)
+        with self.assertRaisesRegex(ValueError, "noise: float noise is the constant 3"):
+            lic3d.compute(self.vectors, noise=np.full((14, 12, 16), 3, np.float32))
+        # An array of noise on an analytic field's grid would be ignored: it is refused.
+        with self.assertRaisesRegex(ValueError, "noise: an array of noise goes with vectors"):
+            lic3d.compute(grid=16, noise=np.zeros((16, 16, 16), np.uint8))
+
+    def test_numpy_memory_error_stays_a_memory_error(self):
+        # 3 PiB once made whole: numpy cannot, and says so with MemoryError.
+        huge = np.broadcast_to(np.float64(1), (2**24, 2**24, 1, 3))
+        with self.assertRaises(MemoryError):
+            lic3d.compute(huge)
+        with self.assertRaisesRegex(ValueError, "vectors: expected an array of numbers"):
+            lic3d.compute([["a"]])
+
+    def test_devices_as_the_command_line_takes_them(self):
+        with self.assertRaisesRegex(ValueError, "999"):
+            lic3d.compute(self.vectors, devices="999")
+        with self.assertRaisesRegex(ValueError, "--cpu computes on the CPU"):
+            lic3d.compute(self.vectors, devices="0", cpu=True)
+        with self.assertRaisesRegex(ValueError, "not both"):
+            lic3d.compute(self.vectors, devices="0", device="0")
+        with self.assertRaisesRegex(ValueError, "lic3d.render draws on one device"):
+            lic3d.render(self.vectors, devices="0")
+        one = lic3d.compute(self.vectors, noise=self.noise)
+        self.assertEqual(lic3d.compute(self.vectors, noise=self.noise, devices="all").tobytes(),
+                         one.tobytes())
+        # In bricks over the device list, as `lic3d compute --devices 0 --memory-budget` makes it.
+        out = os.path.join(self.dir, "lic.nrrd")
+        self.cli("compute", "--field", self.field, "--devices", "0", "--memory-budget", "60000",
+                 "-L", "3", "-o", out)
+        self.assertEqual(lic3d.compute(self.vectors, spacing=self.spacing, origin=self.origin,
+                                       devices="0", memory_budget=60000, length=3).tobytes(),
+                         read_nrrd_bytes(out))
+
+    def test_ctrl_c_interrupts_a_long_call(self):
+        # The work takes seconds on lavapipe; Ctrl-C (here interrupt_main, as SIGINT does) must
+        # raise KeyboardInterrupt within a few polls, not when the work ends.
+        vectors = swirl(96, 96, 96)
+        timer = threading.Timer(0.1, _thread.interrupt_main)
+        start = time.monotonic()
+        timer.start()
+        try:
+            with self.assertRaises(KeyboardInterrupt):
+                lic3d.compute(vectors, length=60)
+            elapsed = time.monotonic() - start
+        finally:
+            timer.cancel()
+            lic3d._wait_for_work()  # the abandoned work ends before the next test
+        whole = time.monotonic() - start
+        self.assertLess(elapsed, 0.8, f"interrupted after {elapsed:.2f} s of {whole:.2f} s")
+        self.assertGreater(whole, 2 * elapsed)
+        # The module works on after an interrupted call.
+        self.assertEqual(lic3d.compute(self.vectors, noise=self.noise).shape, (14, 12, 16))
 
 
 if __name__ == "__main__":
