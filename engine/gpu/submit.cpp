@@ -118,6 +118,17 @@ void beginClearedRendering(VkCommandBuffer cmd, VkImageView view, VkExtent2D ext
   vkCmdBeginRendering(cmd, &rendering);
 }
 
+void setViewportAndScissor(VkCommandBuffer cmd, VkRect2D area) {
+  const VkViewport viewport{static_cast<float>(area.offset.x),
+                            static_cast<float>(area.offset.y),
+                            static_cast<float>(area.extent.width),
+                            static_cast<float>(area.extent.height),
+                            0.0f,
+                            1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &area);
+}
+
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
                   VkImageLayout newLayout, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {

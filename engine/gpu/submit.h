@@ -36,6 +36,9 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout oldLayout,
 void beginClearedRendering(VkCommandBuffer cmd, VkImageView view, VkExtent2D extent,
                            glm::vec3 clear);
 
+// Viewport and scissor both `area` (depth 0 to 1): the dynamic state of every graphics pass.
+void setViewportAndScissor(VkCommandBuffer cmd, VkRect2D area);
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 

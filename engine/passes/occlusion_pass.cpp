@@ -21,17 +21,6 @@ VkRenderingAttachmentInfo attachment(VkImageView view, VkAttachmentLoadOp load) 
   return info;
 }
 
-void setViewport(VkCommandBuffer cmd, VkRect2D area) {
-  const VkViewport viewport{static_cast<float>(area.offset.x),
-                            static_cast<float>(area.offset.y),
-                            static_cast<float>(area.extent.width),
-                            static_cast<float>(area.extent.height),
-                            0.0f,
-                            1.0f};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &area);
-}
-
 constexpr VkPipelineStageFlags2 kAttachmentStage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
 constexpr VkAccessFlags2 kAttachmentAccess =
     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT;
@@ -118,7 +107,7 @@ Result<void> OcclusionPass::record(VkCommandBuffer cmd, int eye, VkExtent2D exte
     rendering.colorAttachmentCount = static_cast<std::uint32_t>(attachments.size());
     rendering.pColorAttachments = attachments.data();
     vkCmdBeginRendering(cmd, &rendering);
-    setViewport(cmd, area);
+    setViewportAndScissor(cmd, area);
     drawSlice(cmd, k, inFront.view());
     vkCmdEndRendering(cmd);
 
@@ -155,7 +144,7 @@ Result<void> OcclusionPass::composite(VkCommandBuffer cmd, int eye, VkFormat for
                                        .name = "occlusion composite"});
       }));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-  setViewport(cmd, viewport);
+  setViewportAndScissor(cmd, viewport);
   DescriptorWrites()
       .sampledImage(gpu::kOcclusionBindingImage, sampler_, images.image.view())
       .push(*context_, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_);

@@ -318,14 +318,7 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
-  const VkViewport vp{static_cast<float>(viewport.offset.x),
-                      static_cast<float>(viewport.offset.y),
-                      static_cast<float>(viewport.extent.width),
-                      static_cast<float>(viewport.extent.height),
-                      0.0f,
-                      1.0f};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &viewport);
+  setViewportAndScissor(cmd, viewport);
   writeUniforms(frame.uniforms, slot);
   // No occlusion buffer without occlusion: any 2D image fills the binding.
   pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);

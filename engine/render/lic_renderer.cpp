@@ -139,13 +139,19 @@ std::vector<LicRenderer::EyeDraw> LicRenderer::eyeDraws(VkRect2D area,
   return {};
 }
 
+Result<std::vector<LicRenderer::EyeDraw>> LicRenderer::shownDraws(VkRect2D area,
+                                                                  const ViewParams& given) {
+  LIC3D_TRY(validate(given));
+  // A signed scalar's diverging map and its opacity by size (core/view_params.h).
+  const ViewParams view = shownView(given, volumeFacts().transfer());
+  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
+  return eyeDraws(area, view);
+}
+
 Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const ViewParams& given,
                                       std::uint32_t slotBase) {
   if (!hasVolume()) return {};
-  LIC3D_TRY(validate(given));
-  const ViewParams view = shownView(given, volumeFacts().transfer());
-  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
-  const std::vector<EyeDraw> draws = eyeDraws(area, view);
+  LIC3D_TRY_ASSIGN(const std::vector<EyeDraw> draws, shownDraws(area, given));
   for (std::uint32_t i = 0; i < draws.size(); ++i)
     LIC3D_TRY(slicePass_.prepare(cmd, draws[i].viewport, job_.shownVolume(), textures_.field(),
                                  textures_.scalars().image, draws[i].frame, slotBase + i));
@@ -155,11 +161,7 @@ Result<void> LicRenderer::prepareDraw(VkCommandBuffer cmd, VkRect2D area, const 
 Result<void> LicRenderer::recordDraw(VkCommandBuffer cmd, VkFormat format, VkRect2D area,
                                      const ViewParams& given, std::uint32_t slotBase) {
   if (!hasVolume()) return {};
-  LIC3D_TRY(validate(given));
-  // A signed scalar's diverging map and its opacity by size (core/view_params.h).
-  const ViewParams view = shownView(given, volumeFacts().transfer());
-  LIC3D_TRY(slicePass_.setTransferFunction(view.transfer, view.colormap));
-  const std::vector<EyeDraw> draws = eyeDraws(area, view);
+  LIC3D_TRY_ASSIGN(const std::vector<EyeDraw> draws, shownDraws(area, given));
   for (std::uint32_t i = 0; i < draws.size(); ++i)
     LIC3D_TRY(slicePass_.record(cmd, format, draws[i].viewport, job_.shownVolume(),
                                 textures_.field(), textures_.scalars().image, draws[i].frame,

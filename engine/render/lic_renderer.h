@@ -188,6 +188,8 @@ class LicRenderer {
     VkRect2D viewport{};
   };
   std::vector<EyeDraw> eyeDraws(VkRect2D area, const ViewParams& view) const;
+  // eyeDraws of the view as drawn (validated, a signed scalar's map), its colour table uploaded.
+  Result<std::vector<EyeDraw>> shownDraws(VkRect2D area, const ViewParams& given);
 
   SlicePass slicePass_;
   OffscreenTarget target_;
