@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "core/session.h"
@@ -93,6 +97,70 @@ TEST(Session, EveryParameterSurvivesAJsonRoundTrip) {
   Result<Session> orthoBack = sessionFromJson(sessionToJson(ortho), "memory");
   ASSERT_TRUE(orthoBack) << orthoBack.error().message;
   EXPECT_EQ(*orthoBack, ortho);
+}
+
+// `points` colour and opacity points with the longest numbers sessionToJson writes: 17 digits and
+// an exponent for x and the opacities, 9 digits and an exponent for the (float) colours.
+TransferFunction longestNumbers(std::size_t points, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> tiny(1.0e-300, 9.9e-300);
+  std::uniform_real_distribution<float> tinyFloat(1.2e-38f, 9.9e-38f);
+  std::vector<double> xs(points);
+  for (double& x : xs) x = tiny(random);
+  std::sort(xs.begin(), xs.end());
+  TransferFunction tf;
+  tf.name = "longest";
+  for (const double x : xs) {
+    tf.colors.push_back({x, {tinyFloat(random), tinyFloat(random), tinyFloat(random)}});
+    tf.opacities.push_back({x, tiny(random)});
+  }
+  return tf;
+}
+
+// kMaxSessionBytes follows from what can be saved: it allows 100 bytes of session text for each
+// control point a preset file can hold, so sessionToJson must write no point longer than that,
+// and keep every number exact (a float's 0.2 as 0.2, not 0.20000000298023224).
+TEST(Session, EachControlPointTakesAtMostAHundredBytesAndStaysExact) {
+  const std::size_t points = 1000;
+  const TransferFunction longest = longestNumbers(points, 7);
+  Session colours, opacities;
+  colours.view.transfer.name = opacities.view.transfer.name = longest.name;
+  colours.view.transfer.colors = longest.colors;
+  opacities.view.transfer.opacities = longest.opacities;
+  Session none = colours;
+  none.view.transfer.colors.clear();
+  const std::size_t base = sessionToJson(none).size();
+  for (const Session* s : {&colours, &opacities}) {
+    const std::string text = sessionToJson(*s);
+    EXPECT_LE(text.size() - base, 100 * points) << text.substr(0, 2000);
+    Result<Session> back = sessionFromJson(text, "memory");
+    ASSERT_TRUE(back) << back.error().message;
+    EXPECT_TRUE(*back == *s) << "not exact";
+  }
+  // The same with ordinary values: the shortest digits of 0.2f read back as 0.2f.
+  Session ordinary;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i <= 100; ++i)
+    ordinary.view.transfer.colors.push_back(
+        {i / 100.0, {unit(random), unit(random), std::round(unit(random) * 10) / 10}});
+  ordinary.view.transfer.colors.push_back({1.0, {0.2f, 0.3f, 0.7f}});
+  const std::string text = sessionToJson(ordinary);
+  EXPECT_NE(text.find("0.2, 0.3, 0.7"), std::string::npos) << text;
+  Result<Session> back = sessionFromJson(text, "memory");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(*back == ordinary);
+}
+
+// A session of more than 1 MiB (what was once the limit) reads back: a preset of 20,000 points.
+TEST_F(SessionTest, ASessionWithALargeTransferFunctionReadsBack) {
+  Session original;
+  original.view.transfer = longestNumbers(20000, 5);
+  ASSERT_TRUE(writeSession(path("large.json"), original));
+  EXPECT_GT(std::filesystem::file_size(path("large.json")), std::size_t{1} << 20);
+  Result<Session> back = readSession(path("large.json"));
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(*back == original);
 }
 
 TEST(Session, MissingKeysKeepTheirDefaults) {

@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <random>
 
 namespace lic3d::test {
 
@@ -38,6 +40,56 @@ std::string deflateBytes(const std::string& data, int windowBits) {
   out.resize(zs.total_out);
   deflateEnd(&zs);
   return out;
+}
+
+std::string shortNumberPreset(int points) {
+  std::mt19937 random(11);
+  const auto digit = [&] { return "0." + std::to_string(random() % 10); };
+  std::string colours, opacities;
+  for (int i = 0; i < points; ++i) {
+    char x[32];
+    std::snprintf(x, sizeof x, "%.4g", i / static_cast<double>(points - 1));
+    const std::string comma = i + 1 < points ? "," : "";
+    colours += std::string(x) + "," + digit() + "," + digit() + "," + digit() + comma;
+    opacities += std::string(x) + "," + digit() + ",0.5,0" + comma;
+  }
+  return R"([{"Name":"script","RGBPoints":[)" + colours + R"(],"Points":[)" + opacities + "]}]";
+}
+
+std::string deflateZeros(std::uint64_t count) {
+  z_stream zs{};
+  EXPECT_EQ(deflateInit(&zs, Z_BEST_SPEED), Z_OK);
+  const std::string zeros(1 << 20, '\0');
+  std::string out, buffer(1 << 16, '\0');
+  int status = Z_OK;
+  while (status != Z_STREAM_END) {
+    if (zs.avail_in == 0 && count > 0) {
+      const std::uint64_t take = std::min<std::uint64_t>(count, zeros.size());
+      zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(zeros.data()));
+      zs.avail_in = static_cast<uInt>(take);
+      count -= take;
+    }
+    zs.next_out = reinterpret_cast<Bytef*>(buffer.data());
+    zs.avail_out = static_cast<uInt>(buffer.size());
+    status = deflate(&zs, count == 0 ? Z_FINISH : Z_NO_FLUSH);
+    EXPECT_TRUE(status == Z_OK || status == Z_STREAM_END || status == Z_BUF_ERROR) << status;
+    out.append(buffer.data(), buffer.size() - zs.avail_out);
+  }
+  deflateEnd(&zs);
+  return out;
+}
+
+std::string withPngChunk(const std::string& png, const std::string& type, const std::string& data) {
+  const auto bigEndian = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const std::string body = type + data;
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+  const std::size_t afterHeader = 8 + 4 + 4 + 13 + 4;  // signature, IHDR's length, type, data, CRC
+  return png.substr(0, afterHeader) + bigEndian(static_cast<std::uint32_t>(data.size())) + body +
+         bigEndian(crc) + png.substr(afterHeader);
 }
 
 double peakMemoryGrowthMiB(const std::function<void()>& body) {

@@ -58,6 +58,16 @@ void expectInputError(const Result<T>& result, const std::filesystem::path& file
 
 // `data` as one zlib stream (windowBits 15) or gzip stream (15 + 16), as VTK and teem write them.
 std::string deflateBytes(const std::string& data, int windowBits);
+// A ParaView colour-map preset of `points` colour and opacity points with short numbers
+// ("0.1234,0.3,0.5,0.9"), as a script writes one: about 36 bytes a point.
+std::string shortNumberPreset(int points);
+
+// A zlib stream of `count` zero bytes, deflated a MiB at a time: a bomb of any size in little
+// memory.
+std::string deflateZeros(std::uint64_t count);
+// The PNG file `png` with one more chunk, of `type` and `data`, after its header chunk (IHDR): a
+// text chunk as another program (or an older lic3d) writes it.
+std::string withPngChunk(const std::string& png, const std::string& type, const std::string& data);
 
 // Runs `body` in a forked child and returns by how much the child's peak resident set grew over
 // what it had when it started, in MiB: what one call costs in memory, apart from the test process.

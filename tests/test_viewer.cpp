@@ -186,6 +186,22 @@ TEST_F(ViewerTest, SessionRoundTripsThroughTheApp) {
   EXPECT_EQ(test::readRgbaPng(path("out.png")).width, 64);
 }
 
+// A large colour-map preset loaded in the app: the session it saves reads back in `lic3d render`
+// (a 290 KB preset once made 1.2 MB of session, beyond the 1 MiB the reader took).
+TEST_F(ViewerTest, ASessionWithALargePresetReadsBack) {
+  writeBytes("big.json", test::shortNumberPreset(8000));
+  const CommandRun r =
+      view("--field abc --grid 16 --tf big.json --frames 2 --save-session out.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const CommandRun render =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render -q --width 32 --height 32 --session out.json -o out.png");
+  ASSERT_EQ(render.status, 0) << render.output;
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(saved->view.transfer.colors.size(), 8000u);
+}
+
 // How much neighbouring pixels of the box differ (mean over both directions, red channel): LIC
 // made at the screen's pixels has the noise's grain; a smaller image stretched over the view is
 // smooth.

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "core/session.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -196,6 +198,25 @@ struct IsGlmVector : std::false_type {};
 template <glm::length_t N, class T, glm::qualifier Q>
 struct IsGlmVector<glm::vec<N, T, Q>> : std::true_type {};
 
+// The double nearest to the shortest decimal that reads back as `value`: JSON then holds 0.2 for
+// 0.2f, not the float's exact 0.20000000298023224. The Reader takes it as a double and narrows it
+// to `value` again: a double carries more than twice a float's digits, so the two roundings agree.
+double shortestDouble(float value) {
+  char text[32];
+  const char* end = std::to_chars(text, text + sizeof text, value).ptr;
+  double result = 0.0;
+  std::from_chars(text, end, result);
+  return result;
+}
+
+template <class T>
+auto jsonNumber(T value) {
+  if constexpr (std::is_same_v<T, float>)
+    return shortestDouble(value);
+  else
+    return value;
+}
+
 // Writes the keys visitSession names into a JSON object.
 class Writer {
  public:
@@ -208,19 +229,20 @@ class Writer {
       object_[key] = enumName(value);
     } else if constexpr (IsGlmVector<T>::value) {
       Json array = Json::array();
-      for (int i = 0; i < T::length(); ++i) array.push_back(value[i]);
+      for (int i = 0; i < T::length(); ++i) array.push_back(jsonNumber(value[i]));
       object_[key] = std::move(array);
     } else {
-      object_[key] = value;
+      object_[key] = jsonNumber(value);
     }
   }
   void pair(const char* key, float first, float second) {
-    object_[key] = Json::array({first, second});
+    object_[key] = Json::array({shortestDouble(first), shortestDouble(second)});
   }
   void transfer(const char* key, const TransferFunction& tf) {
     Json rgb = Json::array(), points = Json::array();
     for (const ColorPoint& p : tf.colors)
-      for (const double x : {p.x, double(p.rgb.r), double(p.rgb.g), double(p.rgb.b)})
+      for (const double x :
+           {p.x, shortestDouble(p.rgb.r), shortestDouble(p.rgb.g), shortestDouble(p.rgb.b)})
         rgb.push_back(x);
     for (const OpacityPoint& p : tf.opacities)
       for (const double x : {p.x, p.alpha, 0.5, 0.0}) points.push_back(x);
@@ -400,20 +422,68 @@ Result<void> validate(const Session& s) {
   LIC3D_TRY(validate(s.view));
   // A session travels as JSON text (session files, PNG metadata): text that is not UTF-8, such
   // as a file name in another encoding, could not be recorded, so it is refused before any work.
+  std::size_t bytes = 0;
   try {
-    (void)sessionToJson(s);
+    bytes = sessionToJson(s).size();
   } catch (const Json::exception& e) {
     return inputError(std::string("the session holds text that is not UTF-8 (") + e.what() +
                       "); lic3d records its parameters as JSON text: rename the file");
   }
+  if (bytes > kMaxSessionBytes)
+    return inputError(
+        "the session takes " + std::to_string(bytes) + " bytes as JSON text, beyond the " +
+        std::to_string(kMaxSessionBytes) + " bytes lic3d reads back (its transfer function has " +
+        std::to_string(s.view.transfer.colors.size()) + " colour and " +
+        std::to_string(s.view.transfer.opacities.size()) +
+        " opacity points; a preset file holds at most " + std::to_string(kMaxPresetPoints) + ")");
   return {};
 }
+
+namespace {
+
+bool isScalar(const Json& json) { return json.is_primitive(); }
+
+// Like Json::dump(2), but an array of scalars four to a line: dump(2) gave every number of a
+// transfer function a line of its own, and a 243 KB preset 1.1 MB of session (446 KB now).
+void appendJson(std::string& out, const Json& json, int depth) {
+  const std::string inner(2 * static_cast<std::size_t>(depth + 1), ' ');
+  const std::string outer(2 * static_cast<std::size_t>(depth), ' ');
+  const bool array = json.is_array();
+  if (!json.is_structured()) {
+    out += json.dump();
+  } else if (json.empty()) {
+    out += array ? "[]" : "{}";
+  } else if (array && std::all_of(json.begin(), json.end(), isScalar)) {
+    const bool oneLine = json.size() <= 4;
+    out += oneLine ? "[" : "[\n" + inner;
+    for (std::size_t i = 0; i < json.size(); ++i) {
+      if (i > 0) out += i % 4 == 0 ? ",\n" + inner : ", ";
+      out += json[i].dump();
+    }
+    out += oneLine ? "]" : "\n" + outer + "]";
+  } else {
+    out += array ? "[\n" : "{\n";
+    bool first = true;
+    for (const auto& item : json.items()) {
+      if (!first) out += ",\n";
+      first = false;
+      out += inner;
+      if (!array) out += Json(item.key()).dump() + ": ";
+      appendJson(out, item.value(), depth + 1);
+    }
+    out += "\n" + outer + (array ? "]" : "}");
+  }
+}
+
+}  // namespace
 
 std::string sessionToJson(const Session& session) {
   Json json = Json::object();
   Writer writer(json);
   visitSession(writer, session);
-  return json.dump(2) + "\n";
+  std::string text;
+  appendJson(text, json, 0);
+  return text + "\n";
 }
 
 Result<Session> sessionFromJson(const std::string& text, const std::string& source) {

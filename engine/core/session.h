@@ -73,10 +73,22 @@ struct Session {
 
 inline constexpr int kSessionVersion = 1;
 
+// The most bytes of session text lic3d reads (a session file, or the text chunk of a PNG), derived
+// from what it can save, so that every session it saves reads back: 1 MiB for everything but the
+// transfer function (paths, names and numbers take a few KiB), and 100 bytes for each control point
+// a preset file can hold (sessionToJson writes a point on a line of four numbers, each at most 23
+// characters, their separators and the indentation: 81 bytes at most). A preset's name shares its
+// file with the points and is written no longer than it was read.
+inline constexpr std::size_t kMaxSessionBytes = (std::size_t{1} << 20) + 100 * kMaxPresetPoints;
+
 // The ranges of core/parameter_ranges.h (validate(LicParams), validate(ViewParams) and the
-// session's own: grid, noise, time, plane); InvalidInput naming the parameter by its key.
+// session's own: grid, noise, time, plane); InvalidInput naming the parameter by its key. A
+// session whose text would exceed kMaxSessionBytes (a transfer function of more points than a
+// preset file holds) is refused too: it could be saved but not read back.
 Result<void> validate(const Session& session);
 
+// Two-space indentation, an array of numbers four to a line (a control point, a vector), floats
+// in the fewest digits that read back as the same float.
 std::string sessionToJson(const Session& session);
 // Missing keys keep their defaults; an unknown key, a wrong type or an unknown name is an
 // InvalidInput error naming `source` and the key.

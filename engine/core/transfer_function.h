@@ -6,6 +6,7 @@
 // opacity) range, the way ParaView rescales a preset to the data. Colour maps given by name are
 // the built-in ones (core/colormap.h); a transfer function's colours replace them.
 
+#include <cstddef>
 #include <glm/vec3.hpp>
 #include <string>
 #include <vector>
@@ -41,6 +42,11 @@ struct TransferFunction {
 // Control points sorted by x, x within [0, 1], colours and opacities within [0, 1], at least
 // one point in each non-empty list; InvalidInput naming `what` otherwise.
 Result<void> validate(const TransferFunction& tf, const std::string& what);
+
+// The most bytes of a preset file lic3d reads, and so the most control points a preset holds: each
+// takes four numbers and their commas, "0,0,0,0," at the least.
+inline constexpr std::size_t kMaxPresetBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxPresetPoints = kMaxPresetBytes / 8;
 
 // A ParaView colour-map preset: one object, or an array of them (the first is taken). Its x
 // values are rescaled to [0, 1] over the colour points' span (the opacity points' own span when

@@ -68,7 +68,7 @@ Result<Session> readSession(const std::filesystem::path& path) {
       return fileError(path, "this PNG holds no lic3d session (text chunk lic3d-session)");
     text = *carried;
   } else {
-    LIC3D_TRY_ASSIGN(text, readFile(path, 1 << 20));
+    LIC3D_TRY_ASSIGN(text, readFile(path, kMaxSessionBytes));
   }
   LIC3D_TRY_ASSIGN(Session session, sessionFromJson(text, path.string()));
   return sessionFromFolder(std::move(session), folderOf(path));
@@ -87,7 +87,7 @@ Result<void> writeSession(const std::filesystem::path& path, const Session& sess
 }
 
 Result<TransferFunction> readTransferFunction(const std::filesystem::path& path) {
-  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, 16 << 20));
+  LIC3D_TRY_ASSIGN(const std::string text, readFile(path, kMaxPresetBytes));
   return transferFunctionFromJson(text, path.string());
 }
 
