@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "cli_test_support.h"
+#include "core/session.h"
 #include "io/nrrd.h"
+#include "io/png_writer.h"
 #include "lic/analytic_fields.h"
 #include "test_support.h"
 
@@ -97,6 +99,13 @@ class AdversarialTest : public CliTest {
                "4294967296\nendian: little\nencoding: raw\n\n");
     const std::string whole = smallNrrd("");
     writeBytes("truncated.nrrd", whole.substr(0, whole.size() - 10));
+    // A PNG whose session chunk (zTXt) inflates to 1 MiB more than a session may hold.
+    ASSERT_TRUE(writePng(path("plain.png"), RgbaImage{1, 1, {0, 0, 0, 255}}));
+    writeBytes("session_bomb.png",
+               test::withPngChunk(test::readWhole(path("plain.png")), "zTXt",
+                                  std::string("lic3d-session\0\0", 15) +
+                                      test::deflateZeros(kMaxSessionBytes + (1 << 20))));
+    fs::remove(path("plain.png"));
     writeBytes("garbage.vti", randomBytes(4096, 2));
     writeBytes("nested.vti", "<?xml version=\"1.0\"?>" + std::string(100000, '<') + "a");
     writeBytes("empty.vtk", "");
@@ -142,6 +151,8 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
       {"rgba volume over the field", field + "base.nrrd --rgba-volume base.nrrd", 2, "base.nrrd"},
       // Class 3: compressed data that promises more than it holds.
       {"gzip bomb", field + "bomb.nrrd", 2, "gzip data holds only"},
+      {"PNG session bomb", "render --session session_bomb.png -o o.png", 2,
+       "session_bomb.png: no text chunk lic3d-session could be read"},
       // Class 5: NaN, infinite and huge flag values.
       {"azimuth nan", render + "--azimuth nan", 2, "--azimuth"},
       {"azimuth inf", render + "--azimuth inf", 2, "--azimuth"},

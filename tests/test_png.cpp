@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/rgba_image.h"
@@ -121,6 +123,65 @@ TEST_F(PngTest, LibpngLimitsAreErrorsNotCrashes) {
   EXPECT_EQ(result.error().kind, ErrorKind::Runtime);
   EXPECT_NE(result.error().message.find("wide.png"), std::string::npos) << result.error().message;
   EXPECT_TRUE(listFolder().empty());
+}
+
+RgbaImage smallImage() { return RgbaImage{2, 1, {1, 2, 3, 255, 4, 5, 6, 255}}; }
+
+// Long text (a session with a large transfer function) is compressed: zTXt when ASCII, compressed
+// iTXt when UTF-8; short text stays tEXt, and every kind reads back.
+TEST_F(PngTest, LongTextIsCompressed) {
+  std::string ascii;
+  for (int i = 0; ascii.size() < 200'000; ++i) ascii += std::to_string(i % 977) + ", 0.5,\n";
+  const std::string utf8 = "fl\xc3\xbc" + ascii;
+  ASSERT_TRUE(writePng(path("long.png"), smallImage(),
+                       {{"ascii", ascii}, {"utf8", utf8}, {"short", "lic3d"}})
+                  .ok());
+  const DecodedPng png = decodePng(path("long.png"));
+  ASSERT_TRUE(png.ok);
+  EXPECT_EQ(png.compression.at("ascii"), PNG_TEXT_COMPRESSION_zTXt);
+  EXPECT_EQ(png.compression.at("utf8"), PNG_ITXT_COMPRESSION_zTXt);
+  EXPECT_EQ(png.compression.at("short"), PNG_TEXT_COMPRESSION_NONE);
+  EXPECT_LT(fs::file_size(path("long.png")), ascii.size() / 4);
+  EXPECT_EQ(readPngText(path("long.png"), "ascii", 1 << 20).value(), ascii);
+  EXPECT_EQ(readPngText(path("long.png"), "utf8", 1 << 20).value(), utf8);
+  EXPECT_EQ(readPngText(path("long.png"), "short", 1 << 20).value(), "lic3d");
+}
+
+// Text chunks as older lic3d (and other programs) wrote them, uncompressed, still read.
+TEST_F(PngTest, UncompressedTextStillReads) {
+  ASSERT_TRUE(writePng(path("plain.png"), smallImage()).ok());
+  const std::string plain = test::readWhole(path("plain.png"));
+  const std::string text(5000, 'a');
+  writeBytes("tEXt.png", test::withPngChunk(plain, "tEXt", std::string("key\0", 4) + text));
+  writeBytes("iTXt.png", test::withPngChunk(plain, "iTXt", std::string("key\0\0\0\0\0", 8) + text));
+  for (const char* file : {"tEXt.png", "iTXt.png"}) {
+    const Result<std::optional<std::string>> read = readPngText(path(file), "key", 1 << 20);
+    ASSERT_TRUE(read) << file << ": " << read.error().message;
+    EXPECT_EQ(read->value_or(""), text) << file;
+  }
+}
+
+// Text beyond the reader's limit is refused, naming the file and the limit; a compressed chunk
+// that inflates without end (a zip bomb) costs no memory: it is counted, never held.
+TEST_F(PngTest, TextBeyondTheLimitIsRefusedWithoutInflatingIt) {
+  ASSERT_TRUE(writePng(path("plain.png"), smallImage()).ok());
+  const std::string plain = test::readWhole(path("plain.png"));
+  writeBytes("bomb.png", test::withPngChunk(plain, "zTXt",
+                                            std::string("key\0\0", 5) +
+                                                test::deflateZeros(std::uint64_t{512} << 20)));
+  writeBytes("long.png",
+             test::withPngChunk(plain, "tEXt", std::string("key\0", 4) + std::string(5000, 'a')));
+  for (const auto& [file, limit] :
+       {std::pair("bomb.png", std::size_t{64} << 20), std::pair("long.png", std::size_t{1000})}) {
+    const Result<std::optional<std::string>> read = readPngText(path(file), "key", limit);
+    ASSERT_FALSE(read) << file;
+    EXPECT_NE(read.error().message.find(file), std::string::npos) << read.error().message;
+    EXPECT_NE(read.error().message.find(std::to_string(limit)), std::string::npos)
+        << read.error().message;
+  }
+  const double growth = test::peakMemoryGrowthMiB(
+      [&] { (void)readPngText(path("bomb.png"), "key", std::size_t{64} << 20); });
+  EXPECT_LT(growth, 32.0) << "MiB for a bomb of 512 MiB";
 }
 
 // isCompletePng decodes the whole picture: a file cut short, zeroed in the middle or forged from a

@@ -24,12 +24,16 @@ namespace lic3d {
 
 namespace {
 constexpr int kPngCompressionLevel = 2;
+// Text from this length on is compressed (zTXt, or compressed iTXt): a session with a large
+// transfer function shrinks several times, and short values stay plain tEXt.
+constexpr std::size_t kCompressedTextBytes = 1024;
 }  // namespace
 namespace {
 
 struct EncodeState {
   std::string* output = nullptr;
   char error[200] = {};
+  char warning[200] = {};  // the first about a text chunk, which tells why libpng left it out
 };
 
 void onError(png_structp png, png_const_charp message) {
@@ -38,7 +42,15 @@ void onError(png_structp png, png_const_charp message) {
   png_longjmp(png, 1);
 }
 
-void onWarning(png_structp, png_const_charp) {}
+void onWarning(png_structp png, png_const_charp message) {
+  auto* state = static_cast<EncodeState*>(png_get_error_ptr(png));
+  // libpng names the chunk first ("zTXt: ...").
+  const bool text =
+      message && (std::strncmp(message, "tEXt", 4) == 0 || std::strncmp(message, "zTXt", 4) == 0 ||
+                  std::strncmp(message, "iTXt", 4) == 0);
+  if (text && state->warning[0] == '\0')
+    std::strncpy(state->warning, message, sizeof state->warning - 1);
+}
 
 void onWrite(png_structp png, png_bytep data, png_size_t length) {
   auto* state = static_cast<EncodeState*>(png_get_io_ptr(png));
@@ -136,9 +148,11 @@ Result<std::vector<png_text>> makeTexts(const std::filesystem::path& path, const
                         quoteForMessage(key) + " holds a NUL byte or is not UTF-8");
     const bool ascii = std::all_of(value.begin(), value.end(),
                                    [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+    const bool compress = value.size() >= kCompressedTextBytes;
     png_text entry{};
-    // tEXt is Latin-1, so anything beyond ASCII goes into an uncompressed iTXt chunk (UTF-8).
-    entry.compression = ascii ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
+    // tEXt and zTXt are Latin-1, so anything beyond ASCII goes into an iTXt chunk (UTF-8).
+    entry.compression = ascii ? (compress ? PNG_TEXT_COMPRESSION_zTXt : PNG_TEXT_COMPRESSION_NONE)
+                              : (compress ? PNG_ITXT_COMPRESSION_zTXt : PNG_ITXT_COMPRESSION_NONE);
     entry.key = const_cast<png_charp>(key.c_str());
     entry.text = const_cast<png_charp>(value.c_str());
     entry.text_length = value.size();
@@ -234,9 +248,11 @@ bool decodes(FileReader& reader, EncodeState& state) {
 }
 
 // libpng's text chunks of the file into `found` (when one has `key`); false with state.error set
-// when it is not a readable PNG. Plain C data only between setjmp and the end.
-bool readText(FileReader& reader, const char* key, EncodeState& state, std::string& found,
-              bool& has) {
+// when it is not a readable PNG. A text chunk that holds (or inflates to) more than maxBytes is
+// left out with state.warning set: libpng counts a compressed chunk's bytes before it allocates
+// them, so a zip bomb costs no memory. Plain C data only between setjmp and the end.
+bool readText(FileReader& reader, const char* key, std::size_t maxBytes, EncodeState& state,
+              std::string& found, bool& has) {
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, onError, onWarning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -246,6 +262,8 @@ bool readText(FileReader& reader, const char* key, EncodeState& state, std::stri
   }
   png_set_read_fn(png, &reader, onRead);
   png_set_sig_bytes(png, sizeof kPngSignature);  // the caller read and checked it
+  // The keyword and a terminating NUL come on top of the text.
+  png_set_chunk_malloc_max(png, maxBytes + 81);
   png_read_info(png, info);
   png_textp texts = nullptr;
   const int count = png_get_text(png, info, &texts, nullptr);
@@ -281,7 +299,7 @@ bool isPngFile(const std::filesystem::path& path) {
 }
 
 Result<std::optional<std::string>> readPngText(const std::filesystem::path& path,
-                                               const std::string& key) {
+                                               const std::string& key, std::size_t maxBytes) {
   LIC3D_TRY_ASSIGN(FileReader reader, FileReader::open(path));
   unsigned char start[8];
   if (reader.read(start, sizeof start) != sizeof start ||
@@ -290,8 +308,15 @@ Result<std::optional<std::string>> readPngText(const std::filesystem::path& path
   EncodeState state;
   std::string found;
   bool has = false;
-  if (!readText(reader, key.c_str(), state, found, has))
+  if (!readText(reader, key.c_str(), maxBytes, state, found, has))
     return fileError(path, std::string("not a readable PNG: ") + state.error);
+  if (!has && state.warning[0] != '\0')
+    return fileError(path, "no text chunk " + key + " could be read: a text chunk is damaged, " +
+                               "or holds or inflates to more than the limit of " +
+                               std::to_string(maxBytes) + " bytes (" + state.warning + ")");
+  if (has && found.size() > maxBytes)
+    return fileError(path, "the text chunk " + key + " holds " + std::to_string(found.size()) +
+                               " bytes, beyond the limit of " + std::to_string(maxBytes));
   if (!has) return std::optional<std::string>();
   return std::optional<std::string>(std::move(found));
 }

@@ -16,8 +16,9 @@
 namespace lic3d {
 
 // Key/value pairs stored in the PNG as text chunks (the parameters that made the picture): tEXt
-// for ASCII values, iTXt (UTF-8) for others. Keys are PNG keywords: 1 to 79 printable ASCII
-// characters, no leading, trailing or double spaces; values hold no NUL byte.
+// for ASCII values, iTXt (UTF-8) for others, compressed (zTXt, compressed iTXt) from 1 KiB on. Keys
+// are PNG keywords: 1 to 79 printable ASCII characters, no leading, trailing or double spaces;
+// values hold no NUL byte.
 using PngText = std::vector<std::pair<std::string, std::string>>;
 
 // 8-bit RGBA, encoded by libpng in memory and written through writeFileAtomically, so a failure
@@ -39,9 +40,11 @@ Result<bool> isCompletePng(const std::filesystem::path& path);
 
 // Whether the file is a regular file that starts with the PNG signature.
 bool isPngFile(const std::filesystem::path& path);
-// The value of the text chunk `key` (tEXt, zTXt or iTXt before the image data, where lic3d writes
-// them), or nothing when the PNG has none; InvalidInput naming the file when it is not a PNG.
+// The value of the text chunk `key` (tEXt, zTXt or iTXt, compressed or not, before the image data,
+// where lic3d writes them), or nothing when the PNG has none; InvalidInput naming the file when it
+// is not a PNG, or when a text chunk holds or inflates to more than maxBytes (it is never inflated
+// further: a zip bomb costs no memory).
 Result<std::optional<std::string>> readPngText(const std::filesystem::path& path,
-                                               const std::string& key);
+                                               const std::string& key, std::size_t maxBytes);
 
 }  // namespace lic3d

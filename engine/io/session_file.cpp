@@ -63,7 +63,8 @@ Session sessionFromFolder(Session session, const std::filesystem::path& folder) 
 Result<Session> readSession(const std::filesystem::path& path) {
   std::string text;
   if (isPngFile(path)) {
-    LIC3D_TRY_ASSIGN(const std::optional<std::string> carried, readPngText(path, kPngSessionKey));
+    LIC3D_TRY_ASSIGN(const std::optional<std::string> carried,
+                     readPngText(path, kPngSessionKey, kMaxSessionBytes));
     if (!carried)
       return fileError(path, "this PNG holds no lic3d session (text chunk lic3d-session)");
     text = *carried;
