@@ -261,18 +261,6 @@ TEST_F(CliTest, EveryPngCarriesTheSessionThatMadeIt) {
               test::readRgbaPng(path("picture.png")).rgba);
 }
 
-// The session in a PNG is compressed: a 230 KB preset once made a 1.2 MB picture of 32x32 pixels
-// (and a 13 MB one 64 MB); the session still reads back whole.
-TEST_F(CliTest, APngWithALargePresetStaysSmallAndReadsBack) {
-  writeBytes("big.json", test::shortNumberPreset(6400));
-  const std::string flags = "render -q --grid 8 --length 4 --width 32 --height 32 ";
-  ASSERT_EQ(run(flags + "--tf big.json -o big.png").status, 0);
-  EXPECT_LT(fs::file_size(path("big.png")), fs::file_size(path("big.json")));
-  const CommandRun again = run("render -q --session big.png -o again.png");
-  ASSERT_EQ(again.status, 0) << again.output;
-  EXPECT_TRUE(test::readRgbaPng(path("again.png")).rgba == test::readRgbaPng(path("big.png")).rgba);
-}
-
 TEST_F(CliTest, RgbaVolumeHoldsTheColourAndOpacityOfEachVoxel) {
   // --cpu: the LIC volume is the reference itself; --window 0,1: grey = the LIC value.
   const std::string flags =
