@@ -255,6 +255,18 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   return writeBatchOutputs(global, options, batch, plan, inputs, renderer, scalars, outputs);
 }
 
+// The free space for the pictures and, with --rgba-volume, the RGBA volume of `grid` (4 bytes a
+// voxel), summed where they share a file system.
+Result<void> checkRenderSpace(const BatchOptions& batch, const FramePlan& plan,
+                              const Session& session, Dims grid) {
+  const int width =
+      session.view.stereo == StereoMode::SideBySide ? 2 * session.view.width : session.view.width;
+  LIC3D_TRY_ASSIGN(std::vector<OutputBytes> outputs,
+                   pictureOutputBytes(batch, plan, session, width, session.view.height));
+  if (!batch.rgbaVolume.empty()) outputs.push_back({batch.rgbaVolume, volumeFileBytes(grid, 4)});
+  return checkFreeSpace(outputs);
+}
+
 // The line saying what was written, on stderr.
 void printRenderDone(const Session& session, const FramePlan& plan, const RunSummary& summary,
                      const std::string& field, const std::string& devices, const GivenLic* given) {
@@ -283,6 +295,12 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
   if (auto r = checkViewScalarNames(session, nullptr); !r) return reportError(r.error());
+  // The outputs' free space, before the devices; an RGBA volume's grid is known here only for an
+  // analytic field (a file's, once it is read).
+  const bool analytic = parseEnum<AnalyticField>(session.field.field).has_value();
+  if (batch.rgbaVolume.empty() || analytic)
+    if (auto r = checkRenderSpace(batch, *plan, session, session.field.grid); !r)
+      return reportError(r.error());
   if (options.cpu && !options.devices.empty())
     return reportError(
         inputError("--devices " + options.devices + ": --cpu computes on the CPU, not on devices"));
@@ -302,7 +320,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
         {.frame = true, .timeSeries = series && !options.cpu, .deviceCap = options.memoryBudget});
   };
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
-  if (parseEnum<AnalyticField>(session.field.field) && !reducible)
+  if (analytic && !reducible)
     if (auto r = fitsWhole(session.field.grid, session.timeSteps > 0); !r)
       return finish(*contexts, reportError(r.error()));
   // The field is made on the device unless the host needs it: for the CPU LIC, colour or opacity
@@ -314,6 +332,9 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     return finish(*contexts, reportError(r.error()));
   if (auto r = checkOutputsAreNotInputs(batch, *plan); !r)
     return finish(*contexts, reportError(r.error()));
+  if (!batch.rgbaVolume.empty() && !analytic)
+    if (auto r = checkRenderSpace(batch, *plan, session, inputs->field.dims); !r)
+      return finish(*contexts, reportError(r.error()));
   reportFieldFile(global, session.field, *inputs);
   const Result<void> whole = fitsWhole(inputs->field.dims, inputs->series.has_value());
   if (!whole && !reducible) return finish(*contexts, reportError(whole.error()));
