@@ -77,27 +77,33 @@ std::string ordinal(int n) {
 }
 
 // The LIC of `inputs` made in bricks over `contexts`: whole when the first device can draw it
-// (`drawable`), else every factor-th voxel of it for the smallest factor it can draw
-// (jobs/reduced_volume.h), with the field on that grid.
+// (`drawable`) and the host can gather it, else every factor-th voxel of it for the smallest
+// factor both can (jobs/reduced_volume.h), with the field on that grid. Decided before the LIC.
 Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOptions& options,
                                   const std::vector<Context>& contexts, SessionInputs& inputs,
                                   bool drawable) {
   const Session& session = options.inputs.session;
   const Dims dims = inputs.field.dims;
+  // The draw and the copy the bricks are gathered into, on the device and the host.
+  const auto fits = [&](Dims grid) {
+    return checkRequestMemory(
+        contexts.front(), session, grid,
+        {.licOnHost = true, .frame = true, .deviceCap = options.memoryBudget});
+  };
   ReducedLic made;
-  if (!drawable) {
-    const std::optional<int> factor = chooseReduction(dims, 64, [&](Dims reduced) {
-      return checkRequestMemory(contexts.front(), session, reduced,
-                                {.frame = true, .deviceCap = options.memoryBudget})
-          .ok();
-    });
-    if (!factor)
+  if (!drawable || !fits(dims)) {
+    const std::optional<int> factor =
+        chooseReduction(dims, 64, [&](Dims reduced) { return fits(reduced).ok(); });
+    if (!factor) {
+      const Result<void> coarsest = fits(reducedDims(dims, 64));
       return resourceLimitError(
           "the LIC of " + session.field.field + " (" + gridText(dims) +
           ") cannot be drawn even as every 64th voxel on " + contexts.front().deviceInfo().name +
           (options.memoryBudget > 0
                ? " within --memory-budget " + std::to_string(options.memoryBudget) + " bytes"
-               : ""));
+               : "") +
+          (coarsest ? "" : ": " + coarsest.error().message));
+    }
     made.factor = *factor;
   }
   ReducedVolume reduced(dims, inputs.field.geometry, made.factor);
@@ -115,7 +121,7 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
     LIC3D_TRY(reduced.take(Brick{Dims(0), dims, Dims(0), dims}, run->volume));
   made.bricks = run->bricks;
   made.shares = std::move(run->devices);
-  made.volume = reduced.volume();
+  made.volume = reduced.takeVolume();
   if (made.factor == 1) return made;
   made.note = "LIC " + gridText(dims) + " made in " + std::to_string(made.bricks) +
               " bricks, drawn as every " + ordinal(made.factor) +
