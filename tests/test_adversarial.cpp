@@ -278,5 +278,56 @@ TEST_F(AdversarialTest, EveryCaseEndsWithItsStatusAndChangesNothing) {
   EXPECT_EQ(handled, static_cast<int>(cases.size()));
 }
 
+// Class 19: outputs larger than the free space of their file system (a 1 MiB tmpfs mounted in a
+// user namespace) are refused before any work: status 3 with both numbers, no LIC progress (the
+// progress lines are on without -q), nothing left on the small file system. Outputs that share
+// it are summed.
+TEST_F(AdversarialTest, OutputsLargerThanTheirFileSystemAreRefusedBeforeTheLic) {
+  fs::create_directories(path("small"));
+  const std::string mount = "mount -t tmpfs -o size=1m tmpfs small";
+  const CommandRun probe = shell("unshare -rm sh -c '" + mount + "' 2>&1");
+  if (probe.status != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs in a user namespace: " << probe.output;
+  // lic3d on the small file system, then what is left on it (nothing, after a refusal).
+  const std::string onSmall = "unshare -rm sh -c '" + mount +
+                              " && \"$0\" \"$@\"; s=$?; echo \"left:[$(ls -A small)]\"; exit $s'";
+  struct SpaceCase {
+    std::string name;
+    std::string args;
+    std::string mentions;
+  };
+  const std::vector<SpaceCase> cases = {
+      {"volume", "compute --grid 128 -o small/v.nrrd",
+       "small/v.nrrd: the output takes 8454144 bytes, but its file system has 1048576 bytes free"},
+      {"raw volume and sidecar", "compute --grid 128 -o small/v.raw", "small/v.raw: the output"},
+      {"slice PNG", "compute --grid 768,768,4 --slice z -o small/s.png",
+       "small/s.png: the output takes at most"},
+      {"picture", "render --grid 16 --width 2048 --height 2048 -o small/p.png",
+       "small/p.png: the output takes at most"},
+      // Each frame fits, the twelve do not.
+      {"frames summed",
+       "render --grid 16 --width 480 --height 480 --turntable 12 -o small/f_%d.png",
+       "small/f_0.png and 11 other output(s) on its file system: they take at most"},
+      {"picture and RGBA volume",
+       "render --grid 62 --width 480 --height 480 -o small/p.png --rgba-volume small/v.vti",
+       "small/p.png and 1 other output(s) on its file system"},
+      {"2D picture", "render2d --field tornado --grid 1000 -o small/p.png",
+       "small/p.png: the output takes at most"},
+  };
+  for (const SpaceCase& c : cases) {
+    const CommandRun r = run(c.args, onSmall);
+    EXPECT_EQ(r.status, 3) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.mentions), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("bytes free"), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_EQ(r.output.find("lic3d: LIC"), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("left:[]"), std::string::npos) << c.name << ": " << r.output;
+  }
+  // What fits is written.
+  const CommandRun fits =
+      run("render -q --grid 16 --width 64 --height 64 -o small/ok.png", onSmall);
+  EXPECT_EQ(fits.status, 0) << fits.output;
+  EXPECT_NE(fits.output.find("left:[ok.png]"), std::string::npos) << fits.output;
+}
+
 }  // namespace
 }  // namespace lic3d

@@ -35,6 +35,35 @@ TEST(MemoryBudget, EstimateCountsEveryResidentVolume) {
   EXPECT_EQ(estimateMemory(r).deviceBytes, e.deviceBytes + 500'000u * 8);
 }
 
+// A LIC made in bricks and drawn (render over several devices, or a reduced copy) is gathered on
+// the host and uploaded again: the host and staging memory of that copy are part of the request,
+// so that the reduction factor is chosen for the host as well as the device, before the LIC.
+TEST(MemoryBudget, ALicGatheredOnTheHostCountsItsCopyAndItsUpload) {
+  MemoryRequest r;
+  r.dims = Dims{100, 100, 100};
+  r.frameWidth = 64;
+  r.frameHeight = 64;
+  const MemoryEstimate drawn = estimateMemory(r);
+  r.licOnHost = true;
+  const MemoryEstimate gathered = estimateMemory(r);
+  EXPECT_EQ(gathered.hostBytes, drawn.hostBytes + 1'000'000u * 5);        // float32 and drawn
+  EXPECT_EQ(gathered.stagingBytes, drawn.stagingBytes + 1'000'000u * 4);  // RG16 upload
+  EXPECT_EQ(gathered.deviceBytes, drawn.deviceBytes);
+
+  // A host that holds the draw but not the copy refuses it, with both numbers.
+  MemoryBudget budget;
+  budget.deviceBytes = 1024 * kMiB;
+  budget.hostBytes = drawn.hostBytes + drawn.stagingBytes + 1'000'000u;
+  EXPECT_TRUE(checkMemoryBudget({.dims = r.dims, .frameWidth = 64, .frameHeight = 64}, budget,
+                                "the LIC of tornado")
+                  .ok());
+  const Result<void> refused = checkMemoryBudget(r, budget, "the LIC of tornado");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().kind, ErrorKind::ResourceLimit);
+  EXPECT_NE(refused.error().message.find("of host memory"), std::string::npos)
+      << refused.error().message;
+}
+
 TEST(MemoryBudget, TooLargeIsAResourceLimitNamingTheRequestAndTheLargestGridThatFits) {
   MemoryBudget budget;
   budget.deviceBytes = 100 * kMiB;

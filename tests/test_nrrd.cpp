@@ -56,6 +56,21 @@ TEST_F(NrrdTest, FreeSpaceIsCheckedAgainstTheOutputsSize) {
   EXPECT_FALSE(fs::exists(path("huge.nrrd")));
 }
 
+// Outputs on one file system are summed: two that fit one by one may not fit together.
+TEST_F(NrrdTest, FreeSpaceOfOutputsSharingAFileSystemIsSummed) {
+  const std::uint64_t half = std::uint64_t{1} << 62;
+  ASSERT_FALSE(checkFreeSpace(path("a.png"), half).ok());  // more than any disk holds
+  const Result<void> both = checkFreeSpace({{path("a.png"), half}, {path("b.png"), half}});
+  ASSERT_FALSE(both.ok());
+  EXPECT_EQ(both.error().kind, ErrorKind::ResourceLimit);
+  EXPECT_NE(both.error().message.find(
+                "a.png and 1 other output(s) on its file system: they take 9223372036854775808 "
+                "bytes"),
+            std::string::npos)
+      << both.error().message;
+  EXPECT_TRUE(checkFreeSpace({{path("a.png"), 1}, {path("b.png"), 1}}).ok());
+}
+
 TEST_F(NrrdTest, VectorFieldRoundTripKeepsValuesAndGeometry) {
   // Spacings like 0.1 and 1/3 have no short decimal form: the header must still round-trip them.
   const VectorField field = makeField({5, 4, 3}, {{0.1, 1.0 / 3.0, 2.0}, {-1.5, 2.25, 1e-3}});

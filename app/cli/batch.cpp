@@ -226,6 +226,28 @@ Result<void> checkOutputsAreNotInputs(const BatchOptions& options, const FramePl
   return {};
 }
 
+Result<std::vector<OutputBytes>> pictureOutputBytes(const BatchOptions& options,
+                                                    const FramePlan& plan, const Session& session,
+                                                    int width, int height) {
+  LIC3D_TRY_ASSIGN(const PngText text, pngText(session, plan.output));
+  const std::uint64_t perFrame = pngSizeBound(width, height, 4, text) + 1024;
+  std::vector<OutputBytes> outputs;
+  if (plan.animation == Animation::None) {
+    outputs.push_back({plan.output, perFrame, true});
+    return outputs;
+  }
+  for (int frame = plan.first; frame < plan.end; ++frame) {
+    const std::string path = framePath(plan.output, frame);
+    if (!options.skipExisting || !isPngFile(path)) outputs.push_back({path, perFrame, true});
+  }
+  return outputs;
+}
+
+std::uint64_t volumeFileBytes(Dims grid, int bytesPerVoxel) {
+  return std::uint64_t{voxelCount(grid)} * static_cast<std::uint64_t>(bytesPerVoxel) +
+         std::uint64_t{64} * 1024;
+}
+
 // Frame `frame` of an animation whose bias cycles every `count` frames.
 int cycledBias(int length, int frame, int count) {
   return biasInCycle(length, static_cast<double>(((frame % count) + count) % count) / count);

@@ -12,6 +12,7 @@
 
 #include "core/rgba_image.h"
 #include "core/volume.h"
+#include "io/file_util.h"
 #include "io/png_writer.h"
 #include "io/volume_io.h"
 #include "jobs/bricks.h"
@@ -55,6 +56,18 @@ Result<void> checkRenderOutputs(const BatchOptions& options, const FramePlan& pl
 // Once the inputs are read and before any work: no output of the run (the picture or every
 // frame, the RGBA volume, the video) is one of them (checkNotAnInput, io/file_util.h).
 Result<void> checkOutputsAreNotInputs(const BatchOptions& options, const FramePlan& plan);
+
+// The most bytes each picture of `plan` takes, for checkFreeSpace before any work: pngSizeBound of
+// a width x height RGBA picture with the session's text, and 1 KiB for what differs per frame (its
+// angle, bias or time, a reduced copy's note). With --skip-existing, a frame that is a PNG file
+// already is not counted (it is most likely kept). The video is not counted: its size is the
+// encoder's, and the frames are kept when it fails.
+Result<std::vector<OutputBytes>> pictureOutputBytes(const BatchOptions& options,
+                                                    const FramePlan& plan, const Session& session,
+                                                    int width, int height);
+// A volume file of `grid` (.nrrd, .vti, .raw and its sidecar), `bytesPerVoxel` a voxel: the data
+// as it is written (raw, uncompressed) and 64 KiB for the header or sidecar.
+std::uint64_t volumeFileBytes(Dims grid, int bytesPerVoxel);
 
 // The parameters of frame `frame`: a turntable turns the azimuth by 360/N per frame from the
 // given one; a bias cycle runs the bias from -L up to L and back down, so that frame N would be

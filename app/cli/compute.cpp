@@ -165,6 +165,19 @@ Result<void> checkSliceIndex(const std::optional<LicSlice>& slice, Dims dims) {
   return {};
 }
 
+// The bytes compute's output takes: a volume's are known (float32 a voxel and its header or
+// sidecar); a slice PNG's are bounded (pngSizeBound, 2 bytes a pixel, with the session's text and
+// 1 KiB for the slice it records).
+OutputBytes outputBytes(const ComputeOptions& options, const std::optional<LicSlice>& slice,
+                        Dims dims) {
+  if (!slice) return {options.output, volumeFileBytes(dims, sizeof(float))};
+  const int across = slice->axis == 0 ? 1 : 0;
+  const int up = slice->axis == 2 ? 1 : 2;
+  const Result<PngText> text = pngText(options.inputs.session, options.output);
+  return {options.output, pngSizeBound(dims[across], dims[up], 2, text ? *text : PngText{}) + 1024,
+          true};
+}
+
 // compute --cpu: the CPU reference at the session's time, then the output.
 int computeOnHost(const GlobalOptions& global, const ComputeOptions& options,
                   const std::optional<LicSlice>& slice, SessionInputs& inputs, RunSummary& summary,
@@ -270,6 +283,15 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   std::optional<FieldStream> stream;
   std::optional<StreamScan> scan;
   if (!options.cpu) stream = openFieldStream(options, contexts);
+  // The output's free space as soon as its grid is known: an analytic field's, or a file's read
+  // brick by brick (from its header, before the scan); any other file's once it is read.
+  const std::optional<Dims> knownGrid = parseEnum<AnalyticField>(session.field.field)
+                                            ? std::optional<Dims>(session.field.grid)
+                                        : stream ? std::optional<Dims>(stream->dims())
+                                                 : std::nullopt;
+  if (knownGrid)
+    if (auto r = checkFreeSpace({outputBytes(options, *slice, *knownGrid)}); !r)
+      return fail(r.error());
   Result<SessionInputs> inputs = readComputeInputs(global, options, stream, scan);
   if (!inputs) return fail(inputs.error());
   if (auto r = checkNotAnInput(options.output); !r) return fail(r.error());
@@ -277,12 +299,8 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
     if (auto r = checkRawSidecarReplaceable(options.output); !r) return fail(r.error());
   reportFieldFile(global, session.field, *inputs);
   if (auto r = checkSliceIndex(*slice, inputs->field.dims); !r) return fail(r.error());
-  // A volume's size is known: float32 per voxel and a header (64 KiB is more than any takes).
-  if (!*slice)
-    if (auto r = checkFreeSpace(options.output,
-                                std::uint64_t{voxelCount(inputs->field.dims)} * sizeof(float) +
-                                    std::uint64_t{64} * 1024);
-        !r)
+  if (!knownGrid)
+    if (auto r = checkFreeSpace({outputBytes(options, *slice, inputs->field.dims)}); !r)
       return fail(r.error());
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.readByBricks = stream.has_value();

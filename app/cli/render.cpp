@@ -77,27 +77,33 @@ std::string ordinal(int n) {
 }
 
 // The LIC of `inputs` made in bricks over `contexts`: whole when the first device can draw it
-// (`drawable`), else every factor-th voxel of it for the smallest factor it can draw
-// (jobs/reduced_volume.h), with the field on that grid.
+// (`drawable`) and the host can gather it, else every factor-th voxel of it for the smallest
+// factor both can (jobs/reduced_volume.h), with the field on that grid. Decided before the LIC.
 Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOptions& options,
                                   const std::vector<Context>& contexts, SessionInputs& inputs,
                                   bool drawable) {
   const Session& session = options.inputs.session;
   const Dims dims = inputs.field.dims;
+  // The draw and the copy the bricks are gathered into, on the device and the host.
+  const auto fits = [&](Dims grid) {
+    return checkRequestMemory(
+        contexts.front(), session, grid,
+        {.licOnHost = true, .frame = true, .deviceCap = options.memoryBudget});
+  };
   ReducedLic made;
-  if (!drawable) {
-    const std::optional<int> factor = chooseReduction(dims, 64, [&](Dims reduced) {
-      return checkRequestMemory(contexts.front(), session, reduced,
-                                {.frame = true, .deviceCap = options.memoryBudget})
-          .ok();
-    });
-    if (!factor)
+  if (!drawable || !fits(dims)) {
+    const std::optional<int> factor =
+        chooseReduction(dims, 64, [&](Dims reduced) { return fits(reduced).ok(); });
+    if (!factor) {
+      const Result<void> coarsest = fits(reducedDims(dims, 64));
       return resourceLimitError(
           "the LIC of " + session.field.field + " (" + gridText(dims) +
           ") cannot be drawn even as every 64th voxel on " + contexts.front().deviceInfo().name +
           (options.memoryBudget > 0
                ? " within --memory-budget " + std::to_string(options.memoryBudget) + " bytes"
-               : ""));
+               : "") +
+          (coarsest ? "" : ": " + coarsest.error().message));
+    }
     made.factor = *factor;
   }
   ReducedVolume reduced(dims, inputs.field.geometry, made.factor);
@@ -115,7 +121,7 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
     LIC3D_TRY(reduced.take(Brick{Dims(0), dims, Dims(0), dims}, run->volume));
   made.bricks = run->bricks;
   made.shares = std::move(run->devices);
-  made.volume = reduced.volume();
+  made.volume = reduced.takeVolume();
   if (made.factor == 1) return made;
   made.note = "LIC " + gridText(dims) + " made in " + std::to_string(made.bricks) +
               " bricks, drawn as every " + ordinal(made.factor) +
@@ -255,6 +261,18 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   return writeBatchOutputs(global, options, batch, plan, inputs, renderer, scalars, outputs);
 }
 
+// The free space for the pictures and, with --rgba-volume, the RGBA volume of `grid` (4 bytes a
+// voxel), summed where they share a file system.
+Result<void> checkRenderSpace(const BatchOptions& batch, const FramePlan& plan,
+                              const Session& session, Dims grid) {
+  const int width =
+      session.view.stereo == StereoMode::SideBySide ? 2 * session.view.width : session.view.width;
+  LIC3D_TRY_ASSIGN(std::vector<OutputBytes> outputs,
+                   pictureOutputBytes(batch, plan, session, width, session.view.height));
+  if (!batch.rgbaVolume.empty()) outputs.push_back({batch.rgbaVolume, volumeFileBytes(grid, 4)});
+  return checkFreeSpace(outputs);
+}
+
 // The line saying what was written, on stderr.
 void printRenderDone(const Session& session, const FramePlan& plan, const RunSummary& summary,
                      const std::string& field, const std::string& devices, const GivenLic* given) {
@@ -283,6 +301,12 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
   if (!plan) return reportError(plan.error());
   if (auto r = checkRenderOutputs(batch, *plan, session); !r) return reportError(r.error());
   if (auto r = checkViewScalarNames(session, nullptr); !r) return reportError(r.error());
+  // The outputs' free space, before the devices; an RGBA volume's grid is known here only for an
+  // analytic field (a file's, once it is read).
+  const bool analytic = parseEnum<AnalyticField>(session.field.field).has_value();
+  if (batch.rgbaVolume.empty() || analytic)
+    if (auto r = checkRenderSpace(batch, *plan, session, session.field.grid); !r)
+      return reportError(r.error());
   if (options.cpu && !options.devices.empty())
     return reportError(
         inputError("--devices " + options.devices + ": --cpu computes on the CPU, not on devices"));
@@ -302,7 +326,7 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
         {.frame = true, .timeSeries = series && !options.cpu, .deviceCap = options.memoryBudget});
   };
   // An analytic field's grid is known before it is made: refuse what cannot fit first.
-  if (parseEnum<AnalyticField>(session.field.field) && !reducible)
+  if (analytic && !reducible)
     if (auto r = fitsWhole(session.field.grid, session.timeSteps > 0); !r)
       return finish(*contexts, reportError(r.error()));
   // The field is made on the device unless the host needs it: for the CPU LIC, colour or opacity
@@ -314,6 +338,9 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     return finish(*contexts, reportError(r.error()));
   if (auto r = checkOutputsAreNotInputs(batch, *plan); !r)
     return finish(*contexts, reportError(r.error()));
+  if (!batch.rgbaVolume.empty() && !analytic)
+    if (auto r = checkRenderSpace(batch, *plan, session, inputs->field.dims); !r)
+      return finish(*contexts, reportError(r.error()));
   reportFieldFile(global, session.field, *inputs);
   const Result<void> whole = fitsWhole(inputs->field.dims, inputs->series.has_value());
   if (!whole && !reducible) return finish(*contexts, reportError(whole.error()));

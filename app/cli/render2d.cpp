@@ -118,6 +118,13 @@ int runRender2D(const GlobalOptions& global, const ComputeOptions& options,
   PlanePicture picture;
   if (auto r = picture.setInputs(session, options.inputs.grid.given()); !r)
     return reportError(r.error());
+  {
+    const Dims image = picture.imageDims();
+    Result<std::vector<OutputBytes>> outputs =
+        pictureOutputBytes(batch, *plan, session, image.x, image.y);
+    if (auto r = outputs ? checkFreeSpace(*outputs) : Result<void>(outputs.error()); !r)
+      return reportError(r.error());
+  }
   if (!options.cpu) {
     Result<Context> opened = openContext(global);
     if (!opened) return reportError(opened.error());

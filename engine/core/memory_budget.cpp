@@ -136,6 +136,10 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
     add("LIC volume readback", voxels * 4, staging);
     add("LIC volume as float32 (host)", voxels * 4, host);
   }
+  if (r.licOnHost) {
+    add("LIC volume gathered from bricks (host, float32 and drawn)", voxels * 5, host);
+    add("LIC volume upload staging", voxels * 4, staging);
+  }
   if (r.frameWidth > 0 && r.frameHeight > 0) {
     const std::uint64_t pixels =
         static_cast<std::uint64_t>(r.frameWidth) * static_cast<std::uint64_t>(r.frameHeight);

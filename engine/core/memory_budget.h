@@ -21,6 +21,9 @@ struct MemoryRequest {
   bool scalars = false;         // colour or opacity by a scalar other than speed (ScalarTexture)
   bool doubleBuffered = false;  // two LIC volumes (the desktop app recomputes into the second)
   bool volumeReadback = false;  // the LIC volume is read back to the host (`lic3d compute`)
+  // A LIC volume made in bricks, gathered on the host and uploaded to be drawn (render over
+  // several devices, or a reduced copy: jobs/reduced_volume.h).
+  bool licOnHost = false;
   // An unsteady field (docs/TIME.md): two resident time steps and the noise as R32F, from which
   // the GPU writes the field texture; steps are uploaded one at a time instead of the texture.
   bool timeSeries = false;

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <mutex>
 #include <ostream>
 #include <set>
@@ -216,15 +217,52 @@ Result<std::string> readFile(const std::filesystem::path& path, std::uint64_t ma
 }
 
 Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes) {
-  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-  struct statvfs info {};
-  if (::statvfs(folder.c_str(), &info) != 0) return {};
-  const std::uint64_t available =
-      static_cast<std::uint64_t>(info.f_bavail) * static_cast<std::uint64_t>(info.f_frsize);
-  if (bytes <= available) return {};
-  return resourceLimitError(path.string() + ": the output takes " + std::to_string(bytes) +
-                            " bytes, but its file system has " + std::to_string(available) +
-                            " bytes free: free space or write it elsewhere");
+  return checkFreeSpace(std::vector<OutputBytes>{{path, bytes}});
+}
+
+Result<void> checkFreeSpace(const std::vector<OutputBytes>& outputs) {
+  struct FileSystem {
+    const OutputBytes* first = nullptr;
+    std::size_t others = 0;
+    std::uint64_t bytes = 0;
+    std::uint64_t available = 0;
+    bool atMost = false;
+  };
+  // By device number, in the order the outputs come, so the message names the first.
+  std::vector<std::pair<dev_t, FileSystem>> fileSystems;
+  for (const OutputBytes& output : outputs) {
+    const std::filesystem::path folder =
+        output.path.parent_path().empty() ? "." : output.path.parent_path();
+    struct stat place {};
+    struct statvfs info {};
+    if (::stat(folder.c_str(), &place) != 0 || ::statvfs(folder.c_str(), &info) != 0) continue;
+    auto found = std::find_if(fileSystems.begin(), fileSystems.end(),
+                              [&](const auto& entry) { return entry.first == place.st_dev; });
+    if (found == fileSystems.end()) {
+      const std::uint64_t available =
+          static_cast<std::uint64_t>(info.f_bavail) * static_cast<std::uint64_t>(info.f_frsize);
+      fileSystems.push_back({place.st_dev, FileSystem{&output, 0, 0, available}});
+      found = fileSystems.end() - 1;
+    } else {
+      ++found->second.others;
+    }
+    found->second.atMost = found->second.atMost || output.atMost;
+    const std::uint64_t room = std::numeric_limits<std::uint64_t>::max() - found->second.bytes;
+    found->second.bytes += std::min(output.bytes, room);
+  }
+  for (const auto& [device, system] : fileSystems) {
+    if (system.bytes <= system.available) continue;
+    const std::string what =
+        (system.others == 0 ? std::string(": the output takes ")
+                            : " and " + std::to_string(system.others) +
+                                  " other output(s) on its file system: they take ") +
+        (system.atMost ? "at most " : "");
+    return resourceLimitError(system.first->path.string() + what + std::to_string(system.bytes) +
+                              " bytes, but its file system has " +
+                              std::to_string(system.available) +
+                              " bytes free: free space or write elsewhere");
+  }
+  return {};
 }
 
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {

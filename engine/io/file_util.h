@@ -78,6 +78,15 @@ void noteInput(const std::filesystem::path& path);
 // has not, so a run stops before its work rather than at its last write. A folder that cannot
 // be asked passes (the write itself still reports a full disk).
 Result<void> checkFreeSpace(const std::filesystem::path& path, std::uint64_t bytes);
+// The bytes one output of a run will take, or at most will (a PNG: compression decides).
+struct OutputBytes {
+  std::filesystem::path path;
+  std::uint64_t bytes = 0;
+  bool atMost = false;
+};
+// The same for all the outputs of a run at once: those whose folders share a file system are
+// summed, and the message names the first of them, how many more share it, and both numbers.
+Result<void> checkFreeSpace(const std::vector<OutputBytes>& outputs);
 
 Result<void> writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 // The same, for content streamed by `writer`; a writer that returns false fails the write.

@@ -188,6 +188,23 @@ Result<void> checkSize(const std::filesystem::path& path, int width, int height,
 
 }  // namespace
 
+std::uint64_t pngSizeBound(int width, int height, int bytesPerPixel, const PngText& text) {
+  // A filter byte before each row.
+  const std::uint64_t filtered = static_cast<std::uint64_t>(std::max(height, 0)) *
+                                 (1 + static_cast<std::uint64_t>(std::max(width, 0)) *
+                                          static_cast<std::uint64_t>(bytesPerPixel));
+  // zlib's deflateBound for the default window and memory level, with its header and checksum.
+  const std::uint64_t deflated =
+      filtered + (filtered >> 12) + (filtered >> 14) + (filtered >> 25) + 13 + 6;
+  // libpng cuts the stream into IDAT chunks of its 8 KiB buffer, 12 bytes of frame each.
+  const std::uint64_t idat = deflated + 12 * (deflated / 8192 + 1);
+  // tEXt: key, NUL, value; iTXt adds 4 bytes (flags, method, empty language and translation).
+  std::uint64_t texts = 0;
+  for (const auto& [key, value] : text) texts += 12 + key.size() + 5 + value.size();
+  // Signature, IHDR, IEND.
+  return 8 + 25 + 12 + idat + texts;
+}
+
 Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
                       const PngText& text) {
   LIC3D_TRY(checkSize(path, image.width, image.height, image.pixels.size(), 4));

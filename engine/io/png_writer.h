@@ -31,6 +31,12 @@ Result<void> writePng(const std::filesystem::path& path, const RgbaImage& image,
 Result<void> writePngGray16(const std::filesystem::path& path, int width, int height,
                             const std::vector<std::uint16_t>& values, const PngText& text = {});
 
+// The most bytes writePng (4 bytes a pixel) or writePngGray16 (2) can write for an image of this
+// size and text, whatever its pixels: zlib's deflateBound of the filtered rows (stored blocks,
+// when the pixels do not compress), the chunks around them and the text as it is. LIC pictures
+// take 12 to 92% of it (docs/RELIABILITY.md); the bound is what a free-space check can rely on.
+std::uint64_t pngSizeBound(int width, int height, int bytesPerPixel, const PngText& text = {});
+
 // Whether `path` is a whole PNG file: every row decodes, every chunk's CRC and the zlib stream
 // check out, up to the IEND chunk. lic3d writes every file atomically, so one of its frames is
 // whole or absent; this also tells a file cut short, zeroed in the middle or forged (a signature

@@ -5,6 +5,7 @@
 // than an average: the streaks are about a voxel wide, and an average of a few would grey them.
 
 #include <cstdint>
+#include <utility>
 
 #include "core/error.h"
 #include "core/volume.h"
@@ -33,6 +34,8 @@ class ReducedVolume {
 
   int factor() const { return factor_; }
   const ScalarVolume& volume() const { return volume_; }
+  // The volume moved out once every brick is in, so that the host never holds two copies.
+  ScalarVolume takeVolume() { return std::move(volume_); }
 
  private:
   int factor_;

@@ -53,6 +53,7 @@ Result<void> checkRequestMemory(const Context& context, const Session& session, 
   request.scalars = session.view.colorBy != "speed" || session.view.opacityBy != "speed";
   request.doubleBuffered = shape.doubleBuffered;
   request.volumeReadback = shape.volumeReadback;
+  request.licOnHost = shape.licOnHost;
   request.timeSeries = shape.timeSeries;
   if (shape.frame) {
     const bool sideBySide = session.view.stereo == StereoMode::SideBySide;

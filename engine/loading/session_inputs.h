@@ -43,6 +43,7 @@ Result<void> checkHostMemory(Dims dims);
 struct RequestShape {
   bool doubleBuffered = false;  // the app's second LIC volume
   bool volumeReadback = false;  // `compute` reads the volume back
+  bool licOnHost = false;       // the LIC is gathered from bricks on the host to be drawn
   bool frame = false;           // a frame of the session's size (or frameWidth x frameHeight)
   int frameWidth = 0;
   int frameHeight = 0;
