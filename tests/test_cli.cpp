@@ -546,6 +546,21 @@ TEST_F(CliTest, RenderSessionReproducesTheImageOfTheSameFlags) {
   EXPECT_FALSE(fs::exists(path("bad.png")));
 }
 
+// Tests leave nothing outside the build folder: each test's folder and the temporary folder of
+// the lic3d it starts (TMPDIR) lie in it, not in /tmp.
+TEST_F(CliTest, ScratchLiesInTheBuildFolder) {
+  const fs::path build = fs::weakly_canonical(fs::path(LIC3D_EXECUTABLE).parent_path());
+  const auto inBuild = [&](const fs::path& path) {
+    const fs::path relative = fs::weakly_canonical(path).lexically_relative(build);
+    return !relative.empty() && *relative.begin() != "..";
+  };
+  EXPECT_TRUE(inBuild(folder())) << folder() << " is outside " << build;
+  EXPECT_TRUE(inBuild(fs::temp_directory_path())) << fs::temp_directory_path();
+  const CommandRun child = shell("printf %s \"$TMPDIR\"");
+  ASSERT_EQ(child.status, 0);
+  EXPECT_TRUE(inBuild(child.output)) << "TMPDIR of a child: '" << child.output << "'";
+}
+
 // Progress names the device: "on the GPU" was printed for llvmpipe, a CPU (hardening, class 15).
 TEST_F(CliTest, ProgressNamesTheDevice) {
   const CommandRun r = run("compute --grid 8 -o v.nrrd", "", test::Streams::StderrOnly);

@@ -89,6 +89,48 @@ TEST_F(CliTest, AFieldFileLargerThanTheBudgetIsReadAndWrittenByBricks) {
   EXPECT_TRUE(has(test::readWhole(path("bricked.json")), "\"components\": 1"));
 }
 
+// Whether `parts` appear in `text` in this order, each on a line of its own after the one before.
+::testing::AssertionResult inOrder(const std::string& text, const std::vector<std::string>& parts) {
+  std::size_t at = 0;
+  for (const std::string& part : parts) {
+    const std::size_t found = text.find(part, at);
+    if (found == std::string::npos)
+      return ::testing::AssertionFailure()
+             << "'" << part << "' not found after offset " << at << " of:\n"
+             << text;
+    at = text.find('\n', found);
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// A bricked run names its stages as they start, from the plan on: the first line comes before
+// the first brick's field and LIC, and the reduced copy and its picture say so too (a 700^3
+// render on lavapipe printed nothing for its first minutes, and nothing after "done").
+TEST_F(CliTest, ABrickedRunShowsProgressFromItsFirstStage) {
+  const CommandRun r =
+      run("render --field tornado --grid 96 --width 64 --height 64 --memory-budget 16MB -o r.png",
+          "", test::Streams::StderrOnly);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string first = r.output.substr(0, r.output.find('\n'));
+  EXPECT_EQ(first.rfind("lic3d: LIC 96x96x96 on llvmpipe", 0), 0u) << r.output;
+  EXPECT_TRUE(has(first, " 0%: 8 bricks of 48x48x48 and")) << r.output;
+  EXPECT_TRUE(
+      inOrder(r.output,
+              {"0%: brick 1 of 8: field and noise on the device", "0%: brick 1 of 8: LIC",
+               "brick 2 of 8: field and noise", "brick 8 of 8: LIC",
+               "lic3d: LIC 96x96x96 on llvmpipe", "lic3d: the field on 48x48x48, every 2nd voxel",
+               "0%: the LIC volume to the device", "0%: the picture", "done in", "lic3d: wrote"}));
+  EXPECT_TRUE(has(r.output, "lic3d: drawing 48x48x48 on llvmpipe")) << r.output;
+  // compute in bricks, its field read brick by brick: the same stages.
+  writeRawField(path("abc.raw"), makeAnalyticField(AnalyticField::Abc, {36, 30, 24}));
+  const CommandRun c = run("compute --field abc.raw --length 10 --memory-budget 300kB -o c.nrrd",
+                           "", test::Streams::StderrOnly);
+  ASSERT_EQ(c.status, 0) << c.output;
+  EXPECT_TRUE(inOrder(c.output, {"lic3d: reading abc.raw", "bricks of", "0%: brick 1 of ", ": LIC",
+                                 "done in", "lic3d: wrote"}));
+  EXPECT_TRUE(has(c.output, ": field and noise upload")) << c.output;
+}
+
 TEST_F(CliTest, ALicTooLargeToDrawIsDrawnFromAReducedCopy) {
   const std::string field = "render --field tornado --grid 96 --width 256 --height 256 ";
   const CommandRun full = run(field + "-o full.png");

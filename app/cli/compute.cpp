@@ -220,6 +220,7 @@ int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
     how.sink = [&](const Brick& brick, const ScalarVolume& lic) {
       return streamed->take(brick, lic);
     };
+  how.stage = [&](const std::string& stage) { progress.stage(stage); };
   Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
                                               [&](double f) { progress.update(f); });
   if (run) {

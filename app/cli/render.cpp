@@ -110,6 +110,7 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
   Progress progress("LIC " + gridText(dims) + " on " + devicesText(contexts), global.quiet);
   LicVolumeOptions how{.deviceCap = options.memoryBudget};
   how.sink = [&](const Brick& brick, const ScalarVolume& lic) { return reduced.take(brick, lic); };
+  how.stage = [&](const std::string& stage) { progress.stage(stage); };
   Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
                                               [&](double f) { progress.update(f); });
   if (!run) {
@@ -123,6 +124,10 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
   made.shares = std::move(run->devices);
   made.volume = reduced.takeVolume();
   if (made.factor == 1) return made;
+  Progress reducing(
+      "the field on " + gridText(made.volume.dims) + ", every " + ordinal(made.factor) + " voxel",
+      global.quiet);
+  reducing.stage(inputs.device ? "made on the device" : "reduced on the host");
   made.note = "LIC " + gridText(dims) + " made in " + std::to_string(made.bricks) +
               " bricks, drawn as every " + ordinal(made.factor) +
               " voxel: " + gridText(made.volume.dims);
@@ -190,7 +195,13 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   if (!makeNothing) LIC3D_TRY(moveToTime(inputs, session, firstTime, renderer, true, options.cpu));
   // Bias and time animations recompute the volume every frame: the frame lines report that
   // progress.
+  // A LIC made before the frames (in bricks) is large: its upload and its picture take long and
+  // say so.
+  std::optional<Progress> drawing;
   if (!makeNothing && given) {
+    drawing.emplace("drawing " + gridText(given->volume.dims) + " on " + renderer.deviceName(),
+                    global.quiet);
+    drawing->stage("the LIC volume to the device");
     LIC3D_TRY(renderer.setLicVolume(given->volume, session.lic));
   } else if (!makeNothing && plan.animation != Animation::Bias &&
              plan.animation != Animation::Time) {
@@ -202,6 +213,8 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   const bool derivedPerFrame =
       inputs.sampled && (scalars.color || scalars.opacity) && plan.animation == Animation::Time;
 
+  if (drawing && animated) drawing->finish();  // the frame lines follow
+  if (drawing && !animated) drawing->stage("the picture");
   FrameProgress progress(plan.rendered(), global.quiet || !animated);
   // PNG encoding and writing run on worker threads while the GPU makes the next frames; at most
   // `inFlight` frames wait, which bounds the host memory they hold.
@@ -252,6 +265,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
   }
   LIC3D_TRY(waitAll());
   progress.finish();
+  if (drawing) drawing->finish();
   if (inputs.series && !options.cpu && !global.quiet)
     std::fprintf(stderr,
                  "lic3d: time series: %d step(s) read for %zu blend(s), %.2f ms per blend on the "

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/stage_times.h"
@@ -19,14 +20,26 @@ Progress::~Progress() { finish(); }
 void Progress::update(double fraction) {
   if (quiet_ || finished_) return;
   const int percent = static_cast<int>(fraction * 100.0);
+  current_ = std::clamp(percent, 0, 99);
   // A terminal gets every percent in place; a log gets one line per quarter.
   const int step = terminal_ ? 1 : 25;
   if (percent / step == lastReported_ / step || percent >= 100) return;
   lastReported_ = percent;
   if (terminal_)
-    std::fprintf(stderr, "\rlic3d: %s %3d%%", what_.c_str(), percent);
+    std::fprintf(stderr, "\rlic3d: %s %3d%%%s%s\033[K", what_.c_str(), percent,
+                 stage_.empty() ? "" : ": ", stage_.c_str());
   else
     std::fprintf(stderr, "lic3d: %s %d%%\n", what_.c_str(), percent);
+}
+
+void Progress::stage(const std::string& stage) {
+  if (quiet_ || finished_) return;
+  stage_ = stage;
+  if (terminal_)
+    std::fprintf(stderr, "\rlic3d: %s %3d%%: %s\033[K", what_.c_str(), current_, stage.c_str());
+  else
+    std::fprintf(stderr, "lic3d: %s %d%%: %s\n", what_.c_str(), current_, stage.c_str());
+  std::fflush(stderr);
 }
 
 void Progress::cancel() {
@@ -38,8 +51,8 @@ void Progress::cancel() {
 void Progress::finish() {
   if (quiet_ || finished_) return;
   finished_ = true;
-  std::fprintf(stderr, "%slic3d: %s done in %.2f s\n", terminal_ ? "\r" : "", what_.c_str(),
-               secondsSince(start_));
+  std::fprintf(stderr, "%slic3d: %s done in %.2f s%s\n", terminal_ ? "\r" : "", what_.c_str(),
+               secondsSince(start_), terminal_ ? "\033[K" : "");
 }
 
 FrameProgress::FrameProgress(int total, bool quiet)

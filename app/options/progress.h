@@ -13,6 +13,9 @@ class Progress {
   Progress(std::string what, bool quiet);
   ~Progress();
   void update(double fraction);
+  // Names what the work does now, at once: "lic3d: <what> <percent>%: <stage>" (a line in a log;
+  // on a terminal the live line).
+  void stage(const std::string& stage);
   void finish();
   // Ends without the "done" line (the work failed; the error says why).
   void cancel();
@@ -23,6 +26,8 @@ class Progress {
   bool terminal_;
   bool finished_ = false;
   int lastReported_ = -1;
+  int current_ = 0;    // the last fraction given, reported or not
+  std::string stage_;  // shown after the percentage on a terminal
   std::chrono::steady_clock::time_point start_;
 };
 

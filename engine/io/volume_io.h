@@ -118,7 +118,8 @@ class InflateStream {
 Result<void> inflateExactly(const std::filesystem::path& path, std::string_view what,
                             std::string_view compressed, std::span<char> output);
 
-// ResourceLimit error naming `path` when `bytes` exceed the memory the host has available.
+// ResourceLimit error naming `path` when `bytes` exceed the memory the host has available
+// (requests under 1 MiB are not checked).
 Result<void> checkHostCanHold(const std::filesystem::path& path, std::uint64_t bytes);
 
 // Storage for items decoded from a file, taken as decoded data arrives. Compressed data proves

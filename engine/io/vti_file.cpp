@@ -61,23 +61,33 @@ void useAppended(VtiFile& file, std::string_view bytes, const AppendedSplit& spl
   file.xml += "</AppendedData></VTKFile>";
 }
 
-// A large file whose XML, up to AppendedData's '_', lies in its first kHeadBytes: only that head
-// is read (into file.bytes), the appended data stays in the file. False when the file is not such
-// a file; it is then read whole.
-bool openHead(VtiFile& file, bool stream) {
+// What openHead read of a file: the head of a large file whose XML, up to AppendedData's '_', lies
+// in its first kHeadBytes (the appended data stays in the file); the whole of a file no larger
+// than that, through the same descriptor (a .pvti of 50,000 small pieces opened each twice); or
+// nothing, and the file is then read whole.
+enum class HeadRead { Nothing, Head, Whole };
+
+HeadRead openHead(VtiFile& file, bool stream) {
   Result<FileReader> reader = FileReader::open(file.path);
-  if (!reader || reader->size() <= kHeadBytes || (!stream && reader->size() > kMaxFileBytes))
-    return false;
+  if (!reader || (!stream && reader->size() > kMaxFileBytes)) return HeadRead::Nothing;
+  if (reader->size() <= kHeadBytes) {
+    std::string whole(static_cast<std::size_t>(reader->size()), '\0');
+    char extra = 0;  // a file that grew since it was opened is read again, with its limit
+    if (reader->read(whole.data(), whole.size()) != whole.size() || reader->read(&extra, 1) != 0)
+      return HeadRead::Nothing;
+    file.bytes = std::move(whole);
+    return HeadRead::Whole;
+  }
   std::string head(kHeadBytes, '\0');
-  if (reader->read(head.data(), head.size()) != head.size()) return false;
+  if (reader->read(head.data(), head.size()) != head.size()) return HeadRead::Nothing;
   const Result<std::optional<AppendedSplit>> split = findAppended(file, head);
-  if (!split || !*split) return false;
+  if (!split || !*split) return HeadRead::Nothing;
   file.bytes = std::move(head);
   useAppended(file, file.bytes, **split);
   file.appendedInFile = true;
   file.appendedAt = (*split)->data;
   file.appendedSize = reader->size() - file.appendedAt;
-  return true;
+  return HeadRead::Head;
 }
 
 Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, const char* name,
@@ -122,15 +132,16 @@ std::string listNames(const std::vector<ArrayRef>& arrays, std::uint64_t compone
 // The file's bytes (or, for a large file, its head: openHead) read and its XML parsed.
 Result<void> readXml(VtiFile& file, bool stream) {
   const std::filesystem::path& path = file.path;
-  const bool head = openHead(file, stream);
-  if (!head && stream) {
+  const HeadRead read = openHead(file, stream);
+  const bool head = read == HeadRead::Head;
+  if (read == HeadRead::Nothing && stream) {
     LIC3D_TRY_ASSIGN(const FileReader reader, FileReader::open(path));
     if (reader.size() > kHeadBytes)
       return readWholeError(path,
                             "its data is not all appended raw after an XML header of at "
                             "most 64 KiB (inline ascii or base64 arrays)");
   }
-  if (!head) {
+  if (read == HeadRead::Nothing) {
     LIC3D_TRY_ASSIGN(file.bytes, readFile(path, kMaxFileBytes));
   }
   const std::size_t first = file.bytes.find_first_not_of(" \t\r\n");

@@ -254,9 +254,54 @@ int scanLayers(Dims dims) {
   return static_cast<int>(std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / layer, 1, 64));
 }
 
-// A LIC dispatch (timed with GPU timestamps when asked), read back.
+// The progress of a bricked run from any worker, one call at a time: the bricks done and the part
+// of each worker's brick under way; and the stages by name.
+class BrickReport {
+ public:
+  BrickReport(std::size_t bricks, std::size_t workers, const ProgressCallback& progress,
+              const std::function<void(const std::string&)>& stage)
+      : bricks_(bricks), partial_(workers, 0.0), progress_(progress), stage_(stage) {}
+
+  void stage(const std::string& text) {
+    const std::lock_guard lock(mutex_);
+    if (stage_) stage_(text);
+  }
+  void brickStage(std::size_t brick, const std::string& text) {
+    stage("brick " + std::to_string(brick + 1) + " of " + std::to_string(bricks_) + ": " + text);
+  }
+  // The worker's brick is `fraction` done (0 again once its LIC is read back).
+  void partial(int worker, double fraction) {
+    const std::lock_guard lock(mutex_);
+    partial_[static_cast<std::size_t>(worker)] = fraction;
+    if (fraction > 0.0) report();
+  }
+  void brickDone() {
+    const std::lock_guard lock(mutex_);
+    ++done_;
+    report();
+  }
+
+ private:
+  void report() {
+    if (!progress_) return;
+    double under = 0.0;
+    for (const double part : partial_) under += part;
+    progress_(std::min(1.0, (static_cast<double>(done_) + under) / static_cast<double>(bricks_)));
+  }
+
+  std::mutex mutex_;
+  std::size_t bricks_;
+  std::size_t done_ = 0;
+  std::vector<double> partial_;
+  const ProgressCallback& progress_;
+  const std::function<void(const std::string&)>& stage_;
+};
+
+// A LIC dispatch (timed with GPU timestamps when asked), read back; `progress` follows the
+// dispatch (untimed only).
 Result<ScalarVolume> licOnDevice(const Context& context, LicRenderer& renderer,
-                                 const LicParams& params, bool timed, DeviceShare& share) {
+                                 const LicParams& params, bool timed, DeviceShare& share,
+                                 const ProgressCallback& progress = {}) {
   if (timed) {
     GpuTimer timer;
     if (context.supportsTimestamps()) {
@@ -267,7 +312,7 @@ Result<ScalarVolume> licOnDevice(const Context& context, LicRenderer& renderer,
         timeLicDispatch(context, renderer.licJob(), renderer.fieldTextures(), timer, params));
     share.licMilliseconds += milliseconds;
   } else {
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(params));
+    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(params, progress));
   }
   return renderer.readLicVolume();
 }
@@ -458,6 +503,11 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
   if (options.stream && inputs.field.dims != options.stream->dims())
     return inputError("the streamed field's grid is not the inputs' grid");
   LIC3D_TRY(checkBrickedHostMemory(session, dims, bricks, host));
+  // Each brick takes long on a large grid (minutes on a CPU driver): its stages are named as they
+  // start and its LIC reports its slabs, so that progress shows from the start.
+  BrickReport report(bricks.size(), devices.size(), progress, options.stage);
+  report.stage(std::to_string(bricks.size()) + " bricks of " + gridText(core) + " and " +
+               std::to_string(ghost) + " ghost layers");
   std::vector<LicRenderer> renderers;
   for (const Context* device : devices) {
     LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(*device, {session.precision}));
@@ -472,6 +522,10 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     const Clock::time_point start = Clock::now();
     LicRenderer& renderer = renderers[static_cast<std::size_t>(worker)];
     DeviceShare& share = run.devices[static_cast<std::size_t>(worker)];
+    const std::size_t index = static_cast<std::size_t>(&brick - bricks.data());
+    // About a sixth of a brick's time goes to its field and noise, the rest to its LIC.
+    constexpr double kInputsPart = 0.15;
+    report.brickStage(index, in ? "field and noise upload" : "field and noise on the device");
     if (in) {
       LIC3D_TRY(renderer.setInputs(in->field, in->noise));
     } else {
@@ -481,8 +535,14 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
       analytic.brickDims = brick.dims;
       LIC3D_TRY(renderer.setAnalyticInputs(analytic));
     }
-    LIC3D_TRY_ASSIGN(ScalarVolume lic, licOnDevice(*devices[static_cast<std::size_t>(worker)],
-                                                   renderer, session.lic, options.timeLic, share));
+    report.brickStage(index, "LIC");
+    report.partial(worker, kInputsPart);
+    LIC3D_TRY_ASSIGN(ScalarVolume lic,
+                     licOnDevice(*devices[static_cast<std::size_t>(worker)], renderer, session.lic,
+                                 options.timeLic, share, [&](double f) {
+                                   report.partial(worker, kInputsPart + (1.0 - kInputsPart) * f);
+                                 }));
+    report.partial(worker, 0.0);  // counted as done once taken
     share.peakDeviceBytes = std::max(share.peakDeviceBytes,
                                      devices[static_cast<std::size_t>(worker)]->allocatedBytes());
     share.bricks += 1;
@@ -497,7 +557,8 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     copyOwnVoxels(brick, lic, run.volume);
     return {};
   };
-  LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs, progress));
+  LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs,
+                      [&](double) { report.brickDone(); }));
   run.bricks = static_cast<int>(bricks.size());
   run.brickCore = core;
   return run;

@@ -119,6 +119,10 @@ struct LicVolumeOptions {
   // and geometry: streamedInputs), never whole.
   const FieldStream* stream = nullptr;
   const StreamScan* scan = nullptr;  // the stream's scan, where made already (else made here)
+  // What a bricked run does, named as it starts, from any worker but one call at a time: the plan
+  // ("8 bricks of 350x350x350 and 8 ghost layers"), then each brick's inputs and LIC ("brick 2 of
+  // 8: LIC"). The progress meanwhile counts the part of each brick under way.
+  std::function<void(const std::string& stage)> stage;
 };
 
 Result<StreamScan> scanFieldStream(const FieldStream& stream,

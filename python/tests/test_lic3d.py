@@ -125,6 +125,15 @@ class Lic3dModule(unittest.TestCase):
     def tearDown(self):
         self.folder.cleanup()
 
+    def test_scratch_lies_in_the_test_folder_named_by_tmpdir(self):
+        # ctest names a folder inside the build folder; tempfile falls back to /tmp silently
+        # when TMPDIR is unset or cannot be written.
+        self.assertIn("TMPDIR", os.environ)
+        self.assertEqual(os.path.realpath(tempfile.gettempdir()),
+                         os.path.realpath(os.environ["TMPDIR"]))
+        self.assertTrue(os.path.realpath(self.dir).startswith(
+            os.path.realpath(os.environ["TMPDIR"]) + os.sep))
+
     def cli(self, *args):
         done = subprocess.run([LIC3D, "--quiet", *args], capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr)

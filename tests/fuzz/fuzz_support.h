@@ -19,16 +19,22 @@
 
 namespace lic3d::fuzz {
 
-// Made once per process (in /dev/shm when there is one, so writes stay in memory) and removed at
-// exit.
+// Made once per process in the temporary folder (TMPDIR: the fuzz test points it into its WORK
+// folder, which its next run empties, so a fuzzer that ends without its exit handlers, on a crash
+// or a timeout, leaves nothing outside the build folder) and removed at a normal exit. The exit
+// handler holds its own copy of the path: the static's destructor, registered after it, runs
+// before it (the handler read a destroyed path and removed nothing).
 inline const std::filesystem::path& scratchFolder() {
   static const std::filesystem::path folder = [] {
-    const char* base = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
-    std::string pattern = std::string(base) + "/lic3d-fuzz-XXXXXX";
+    std::error_code error;
+    const std::filesystem::path base = std::filesystem::temp_directory_path(error);
+    std::string pattern = (error ? std::filesystem::path("/tmp") : base) / "lic3d-fuzz-XXXXXX";
     if (!::mkdtemp(pattern.data())) std::abort();
+    static std::string removed;  // a plain copy for the handler, alive as long as it runs
+    removed = pattern;
     std::atexit([] {
       std::error_code ignored;
-      std::filesystem::remove_all(scratchFolder(), ignored);
+      std::filesystem::remove_all(removed, ignored);
     });
     return std::filesystem::path(pattern);
   }();

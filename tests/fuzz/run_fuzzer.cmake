@@ -5,7 +5,11 @@
 # (emptied first), never into the committed corpus. Every target runs even after one fails; the
 # test fails on any finding, naming each reproducer and how to replay it. What the targets print
 # (the command line's help and messages) is discarded; libFuzzer's own reports stay.
+# Each target's scratch files (the inputs it writes for the readers, tests/fuzz/fuzz_support.h)
+# go to WORK/<target>/scratch through TMPDIR, and the test fails if a target leaves a scratch
+# folder in /dev/shm or /tmp, or (when it ends normally) in its own scratch folder.
 #   FUZZERS: a list of target names; FUZZER_DIR: the folder with fuzz_<target> in it.
+#   RUNS (optional): run each target for this many inputs instead of the time box.
 foreach(variable FUZZERS FUZZER_DIR SEEDS WORK SECONDS)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "run_fuzzer.cmake needs -D${variable}=...")
@@ -22,6 +26,18 @@ if(share LESS 1)
 endif()
 # libFuzzer stops itself after its share; the process limit is for a fuzzer that does not.
 math(EXPR limit "${share} + 120")
+if(DEFINED RUNS)
+  set(budget -runs=${RUNS})
+else()
+  set(budget -max_total_time=${share})
+endif()
+
+# Scratch folders outside the build folder, as they are before the targets run.
+function(scratch_outside result)
+  file(GLOB found LIST_DIRECTORIES true /dev/shm/lic3d-fuzz-* /tmp/lic3d-fuzz-*)
+  set(${result} "${found}" PARENT_SCOPE)
+endfunction()
+scratch_outside(outside_before)
 
 set(failed "")
 foreach(target ${FUZZERS})
@@ -31,14 +47,25 @@ foreach(target ${FUZZERS})
   endif()
   set(work ${WORK}/${target})
   file(REMOVE_RECURSE ${work})
-  file(MAKE_DIRECTORY ${work}/corpus ${work}/artifacts)
-  message(STATUS "fuzz_${target}: ${share} s")
+  file(MAKE_DIRECTORY ${work}/corpus ${work}/artifacts ${work}/scratch)
+  set(ENV{TMPDIR} ${work}/scratch)
+  if(DEFINED RUNS)
+    message(STATUS "fuzz_${target}: ${RUNS} runs")
+  else()
+    message(STATUS "fuzz_${target}: ${share} s")
+  endif()
   execute_process(
-    COMMAND ${fuzzer} -max_total_time=${share} -rss_limit_mb=1024 -timeout=5 -max_len=4096
+    COMMAND ${fuzzer} ${budget} -rss_limit_mb=1024 -timeout=5 -max_len=4096
             -close_fd_mask=3 -print_final_stats=1 -artifact_prefix=${work}/artifacts/
             ${work}/corpus ${SEEDS}/${target}
     TIMEOUT ${limit}
     RESULT_VARIABLE status)
+  # A target that ends normally removes its scratch folder.
+  file(GLOB left LIST_DIRECTORIES true ${work}/scratch/*)
+  if(status EQUAL 0 AND left)
+    list(APPEND failed ${target})
+    message(NOTICE "${fuzzer} ended normally and left its scratch folder: ${left}")
+  endif()
   if(NOT status EQUAL 0)
     list(APPEND failed ${target})
     file(GLOB findings ${work}/artifacts/*)
@@ -55,7 +82,15 @@ foreach(target ${FUZZERS})
     message(NOTICE "${report}\nReplay one: ${fuzzer} ${first}")
   endif()
 endforeach()
+scratch_outside(outside_after)
+if(outside_before)
+  list(REMOVE_ITEM outside_after ${outside_before})
+endif()
+if(outside_after)
+  string(REPLACE ";" "\n  " left "${outside_after}")
+  message(FATAL_ERROR "the fuzzers left scratch folders outside the build folder:\n  ${left}")
+endif()
 if(failed)
   message(FATAL_ERROR "the fuzzers of ${failed} found an input that crashes, leaks, hangs or runs "
-                      "out of memory (reproducers above), or failed to run")
+                      "out of memory (reproducers above), or failed to run or to remove its scratch")
 endif()
