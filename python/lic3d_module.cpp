@@ -148,30 +148,6 @@ struct Request {
   const cli::GlobalOptions& global() const { return line->global; }
 };
 
-// CLI11's "Could not convert: --length = abc" with what the flag takes: "--length: expected a
-// whole number in [0, 4096], got 'abc'".
-Error withExpectedValue(Error error, const CLI::App& sub, const CLI::App& app) {
-  constexpr std::string_view kPrefix = "Could not convert: ";
-  const std::string& message = error.message;
-  const std::size_t equals = message.find(" = ");
-  if (!message.starts_with(kPrefix) || equals == std::string::npos) return error;
-  const std::string flag = message.substr(kPrefix.size(), equals - kPrefix.size());
-  const CLI::Option* option = sub.get_option_no_throw(flag);
-  if (!option) option = app.get_option_no_throw(flag);
-  if (!option) return error;
-  const std::string type = option->get_type_name();
-  const std::size_t colon = type.find(':');
-  const std::string base = type.substr(0, colon);
-  const std::string range = colon == std::string::npos ? "" : " " + type.substr(colon + 1);
-  const std::string kind = base == "INT"     ? "a whole number"
-                           : base == "UINT"  ? "a whole number from 0"
-                           : base == "FLOAT" ? "a number"
-                                             : base;
-  error.message = flag + ": expected " + kind + (range.starts_with(" in ") ? range : "") +
-                  ", got '" + cutMessage(message.substr(equals + 3), 60) + "'";
-  return error;
-}
-
 Request parseRequest(const std::string& command, const py::object& session,
                      const py::object& noiseFile, const py::kwargs& params) {
   Request request;
@@ -221,7 +197,7 @@ Request parseRequest(const std::string& command, const py::object& session,
   for (std::string& arg : args) argv.push_back(arg.data());
   Result<void> parsed = cli::parseArguments(*line.app, static_cast<int>(argv.size()), argv.data(),
                                             {&request.options->inputs});
-  if (!parsed) raise(withExpectedValue(parsed.error(), sub, *line.app));
+  if (!parsed) raise(parsed.error());
   take(cli::finishCommand(line));
   return request;
 }

@@ -319,7 +319,7 @@ class Lic3dModule(unittest.TestCase):
             (dict(spacing=True), TypeError, "spacing: .* got a bool"),
             (dict(length="abc"), ValueError,
              r"--length: expected a whole number in \[0, 4096\], got 'abc'"),
-            (dict(length=10**400), ValueError, "--length: expected a whole number .* got '1000"),
+            (dict(length=10**400), ValueError, r"--length: must be in \[0, 4096\], got '1000"),
             (dict(length=5.5), ValueError, "--length: expected a whole number .* got '5.5'"),
             (dict(step=np.float32("nan")), ValueError, "--step"),
         ]
