@@ -18,6 +18,7 @@
 #include <new>
 #include <optional>
 #include <set>
+#include <stop_token>
 #include <string>
 #include <thread>
 #include <vector>
@@ -148,30 +149,6 @@ struct Request {
   const cli::GlobalOptions& global() const { return line->global; }
 };
 
-// CLI11's "Could not convert: --length = abc" with what the flag takes: "--length: expected a
-// whole number in [0, 4096], got 'abc'".
-Error withExpectedValue(Error error, const CLI::App& sub, const CLI::App& app) {
-  constexpr std::string_view kPrefix = "Could not convert: ";
-  const std::string& message = error.message;
-  const std::size_t equals = message.find(" = ");
-  if (!message.starts_with(kPrefix) || equals == std::string::npos) return error;
-  const std::string flag = message.substr(kPrefix.size(), equals - kPrefix.size());
-  const CLI::Option* option = sub.get_option_no_throw(flag);
-  if (!option) option = app.get_option_no_throw(flag);
-  if (!option) return error;
-  const std::string type = option->get_type_name();
-  const std::size_t colon = type.find(':');
-  const std::string base = type.substr(0, colon);
-  const std::string range = colon == std::string::npos ? "" : " " + type.substr(colon + 1);
-  const std::string kind = base == "INT"     ? "a whole number"
-                           : base == "UINT"  ? "a whole number from 0"
-                           : base == "FLOAT" ? "a number"
-                                             : base;
-  error.message = flag + ": expected " + kind + (range.starts_with(" in ") ? range : "") +
-                  ", got '" + cutMessage(message.substr(equals + 3), 60) + "'";
-  return error;
-}
-
 Request parseRequest(const std::string& command, const py::object& session,
                      const py::object& noiseFile, const py::kwargs& params) {
   Request request;
@@ -221,7 +198,7 @@ Request parseRequest(const std::string& command, const py::object& session,
   for (std::string& arg : args) argv.push_back(arg.data());
   Result<void> parsed = cli::parseArguments(*line.app, static_cast<int>(argv.size()), argv.data(),
                                             {&request.options->inputs});
-  if (!parsed) raise(withExpectedValue(parsed.error(), sub, *line.app));
+  if (!parsed) raise(parsed.error());
   take(cli::finishCommand(line));
   return request;
 }
@@ -410,13 +387,14 @@ void checkDevices(const Request& request, bool render) {
 
 // The LIC volume, on the device the options choose or (cpu) the CPU reference. No Python here:
 // it runs with the GIL released.
-Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
+Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs,
+                               const ProgressCallback& progress) {
   const Session& session = request.session();
   if (request.options->cpu) {
     if (inputs.series) {
       LIC3D_TRY_ASSIGN(inputs.field, hostFieldAt(inputs, session, session.time));
     }
-    return computeLicReference(inputs.field, inputs.noise, session.lic, 0, {});
+    return computeLicReference(inputs.field, inputs.noise, session.lic, 0, progress);
   }
   LIC3D_TRY_ASSIGN(const std::vector<Context> contexts,
                    openDevices(request.global(), request.options->devices));
@@ -424,15 +402,16 @@ Result<ScalarVolume> licVolume(const Request& request, SessionInputs& inputs) {
   for (const Context& context : contexts) devices.push_back(&context);
   // In one piece when it fits the device (or memory_budget), else in bricks spread over the
   // devices, as lic3d compute.
-  Result<LicVolumeRun> run =
-      computeLicVolume(devices, session, inputs, {.deviceCap = request.options->memoryBudget});
+  Result<LicVolumeRun> run = computeLicVolume(
+      devices, session, inputs, {.deviceCap = request.options->memoryBudget}, progress);
   for (const Context& context : contexts) LIC3D_TRY(checkValidation(context));
   if (!run) return run.error();
   return std::move(run->volume);
 }
 
 // The picture of the session's view, as `lic3d render` makes it.
-Result<RgbaImage> picture(const Request& request, SessionInputs& inputs) {
+Result<RgbaImage> picture(const Request& request, SessionInputs& inputs,
+                          const ProgressCallback& progress) {
   const Session& session = request.session();
   LIC3D_TRY(checkViewScalarNames(session, &inputs));
   LIC3D_TRY_ASSIGN(Context context, openDevice(request.global()));
@@ -445,10 +424,10 @@ Result<RgbaImage> picture(const Request& request, SessionInputs& inputs) {
     LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true, request.options->cpu));
     if (request.options->cpu) {
       LIC3D_TRY_ASSIGN(const ScalarVolume volume,
-                       computeLicReference(inputs.field, inputs.noise, session.lic, 0, {}));
+                       computeLicReference(inputs.field, inputs.noise, session.lic, 0, progress));
       LIC3D_TRY(renderer.setLicVolume(volume, session.lic));
     } else {
-      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic));
+      LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
     }
     LIC3D_TRY_ASSIGN(const ViewScalars scalars, loadViewScalars(session, inputs));
     LIC3D_TRY(setViewScalars(renderer, scalars));
@@ -474,64 +453,88 @@ py::array_t<T> arrayOf(std::vector<T>&& values, std::vector<py::ssize_t> shape) 
   return py::array_t<T>(std::move(shape), owned->data(), release);
 }
 
-// Work given up on by Ctrl-C still runs to its end on its thread (the engine cannot be stopped
-// half way through a submission); the interpreter waits for it at exit, so that no Vulkan call is
-// left running while the process tears down the driver.
-std::mutex abandonedMutex;
-std::condition_variable abandonedDone;
-int workRunning = 0;
-
-void waitForWork() {
-  const py::gil_scoped_release unlocked;
-  std::unique_lock lock(abandonedMutex);
-  abandonedDone.wait(lock, [] { return workRunning == 0; });
-}
-
-// What `work` made on a thread of its own, waited for with the GIL released, with Python's
-// signal handlers run every 50 ms in between: Ctrl-C raises KeyboardInterrupt at once. `work`
-// owns what it uses, since it may outlive this call.
+// What `work` made on a thread of its own, waited for with the GIL released. Its progress goes
+// to `report` (a callable or None); after each report, and every 50 ms in between, Python's
+// signal handlers run. On Ctrl-C (KeyboardInterrupt), or an exception from `report`, the work is
+// asked to stop, which it does at the end of its unit of work in flight (a slab of the GPU pass,
+// a row of the CPU reference, a brick), and the exception is raised once it has: no work is left
+// running, and the module can be used at once.
 template <class Made, class Work>
-Made runInterruptibly(Work work) {
-  struct Shared {
-    std::mutex mutex;
-    std::condition_variable done;
-    std::optional<Made> made;
+Made runInterruptibly(Work work, const py::object& report) {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::optional<Made> made;
+  std::uint64_t reports = 0;  // progress reports made
+  std::uint64_t checked = 0;  // those after which the signal handlers ran
+  std::stop_source stop;
+  std::optional<py::error_already_set> reportFailed;  // touched with the GIL held
+  const auto onProgress = [&](double fraction) {
+    if (report.is_none()) return;
+    {
+      const py::gil_scoped_acquire locked;
+      try {
+        if (!reportFailed) report(fraction);
+      } catch (py::error_already_set& e) {
+        reportFailed = std::move(e);
+        stop.request_stop();
+      }
+    }
+    // The work goes on once a Ctrl-C made meanwhile (by `report` too) has been seen, so that it
+    // stops here.
+    std::unique_lock lock(mutex);
+    const std::uint64_t number = ++reports;
+    changed.notify_all();
+    changed.wait(lock, [&] { return checked >= number || stop.stop_requested(); });
   };
-  auto shared = std::make_shared<Shared>();
-  {
-    const std::lock_guard lock(abandonedMutex);
-    ++workRunning;
-  }
-  std::thread([shared, work = std::move(work)]() mutable {
-    Made made = Error{};
+  std::thread thread([&] {
+    Made result = Error{};
     try {
-      made = work();
+      result = work(ProgressCallback(onProgress, stop.get_token()));
     } catch (const std::bad_alloc&) {
-      made = Error{ErrorKind::ResourceLimit, "not enough host memory"};
+      result = Error{ErrorKind::ResourceLimit, "not enough host memory"};
     } catch (const std::exception& e) {
-      made = Error{ErrorKind::Runtime, e.what()};
+      result = Error{ErrorKind::Runtime, e.what()};
     }
     {
-      const std::lock_guard lock(shared->mutex);
-      shared->made = std::move(made);
+      const std::lock_guard lock(mutex);
+      made = std::move(result);
     }
-    shared->done.notify_all();
+    changed.notify_all();
+  });
+  const auto join = [&] {
+    const py::gil_scoped_release unlocked;
+    thread.join();
+  };
+  try {
+    for (;;) {
+      std::uint64_t seen = 0;
+      {
+        const py::gil_scoped_release unlocked;
+        std::unique_lock lock(mutex);
+        changed.wait_for(lock, std::chrono::milliseconds(50),
+                         [&] { return made.has_value() || reports > checked; });
+        if (made) break;
+        seen = reports;
+      }
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      {
+        const std::lock_guard lock(mutex);
+        checked = seen;
+      }
+      changed.notify_all();
+    }
+  } catch (...) {
     {
-      const std::lock_guard lock(abandonedMutex);
-      --workRunning;
+      const std::lock_guard lock(mutex);
+      stop.request_stop();
     }
-    abandonedDone.notify_all();
-  }).detach();
-  for (;;) {
-    {
-      const py::gil_scoped_release unlocked;
-      std::unique_lock lock(shared->mutex);
-      if (shared->done.wait_for(lock, std::chrono::milliseconds(50),
-                                [&] { return shared->made.has_value(); }))
-        return std::move(*shared->made);
-    }
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    changed.notify_all();
+    join();
+    throw;
   }
+  join();
+  if (reportFailed) throw *reportFailed;
+  return std::move(*made);
 }
 
 // A request of `command` made with the GIL released by `work` (licVolume or picture), its result
@@ -539,29 +542,25 @@ Made runInterruptibly(Work work) {
 template <class Work>
 auto runRequest(const char* command, const py::object& vectors, const py::object& spacing,
                 const py::object& origin, const py::object& noise, const py::object& session,
-                const py::kwargs& params, Work work) {
+                const py::object& progress, const py::kwargs& params, Work work) {
   const bool noiseArray = py::isinstance<py::array>(noise);
-  struct State {
-    Request request;
-    SessionInputs inputs;
-  };
-  auto state = std::make_shared<State>();
-  state->request = parseRequest(command, session, noiseArray ? py::none() : noise, params);
-  checkDevices(state->request, std::string_view(command) == "render");
-  state->inputs = inputsOf(state->request, vectors, spacing, origin, noise);
-  setThreadLimit(state->request.global().threads);
-  using Made = decltype(work(state->request, state->inputs));
-  auto result =
-      take(runInterruptibly<Made>([state, work] { return work(state->request, state->inputs); }));
-  warnNonFinite(state->inputs);
+  Request request = parseRequest(command, session, noiseArray ? py::none() : noise, params);
+  checkDevices(request, std::string_view(command) == "render");
+  SessionInputs inputs = inputsOf(request, vectors, spacing, origin, noise);
+  setThreadLimit(request.global().threads);
+  using Made = decltype(work(request, inputs, ProgressCallback()));
+  auto result = take(runInterruptibly<Made>(
+      [&](const ProgressCallback& report) { return work(request, inputs, report); }, progress));
+  warnNonFinite(inputs);
   return result;
 }
 
 py::array_t<float> compute(const py::object& vectors, const py::object& spacing,
                            const py::object& origin, const py::object& noise,
-                           const py::object& session, const py::kwargs& params) {
+                           const py::object& session, const py::object& progress,
+                           const py::kwargs& params) {
   ScalarVolume result =
-      runRequest("compute", vectors, spacing, origin, noise, session, params, licVolume);
+      runRequest("compute", vectors, spacing, origin, noise, session, progress, params, licVolume);
   markHiddenVoxels(result);
   const Dims d = result.dims;
   return arrayOf(std::move(result.values), {d.z, d.y, d.x});
@@ -569,9 +568,10 @@ py::array_t<float> compute(const py::object& vectors, const py::object& spacing,
 
 py::array_t<std::uint8_t> render(const py::object& vectors, const py::object& spacing,
                                  const py::object& origin, const py::object& noise,
-                                 const py::object& session, const py::kwargs& params) {
+                                 const py::object& session, const py::object& progress,
+                                 const py::kwargs& params) {
   RgbaImage result =
-      runRequest("render", vectors, spacing, origin, noise, session, params, picture);
+      runRequest("render", vectors, spacing, origin, noise, session, progress, params, picture);
   return arrayOf(std::move(result.pixels), {result.height, result.width, 4});
 }
 
@@ -604,13 +604,11 @@ PYBIND11_MODULE(lic3d, module) {
       "underscores: length=30, integrator='rk4', noise_filter='nearest', look='streamlines', "
       "size=(800, 600). A refused value raises ValueError with the message of the command line.";
   module.attr("__version__") = LIC3D_VERSION;
-  module.add_object("_wait_for_work", py::cpp_function(&waitForWork));
-  py::module_::import("atexit").attr("register")(module.attr("_wait_for_work"));
   module.def("compute", &compute, py::arg("vectors") = py::none(), py::kw_only(),
              py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
-             py::arg("session") = py::none(),
+             py::arg("session") = py::none(), py::arg("progress") = py::none(),
              "compute(vectors=None, *, spacing=1.0, origin=0.0, noise=None, "
-             "session=None, **params) -> numpy.ndarray\n\n"
+             "session=None, progress=None, **params) -> numpy.ndarray\n\n"
              "The LIC volume of `vectors` (numbers shaped (nz, ny, nx, 3), x fastest) as "
              "float32 shaped (nz, ny, nx), as `lic3d compute` writes it. Without vectors, "
              "the field of field=... (an analytic field or a file). noise: an array "
@@ -619,12 +617,14 @@ PYBIND11_MODULE(lic3d, module) {
              "file (JSON or a PNG lic3d wrote) the parameters then override. "
              "device='' picks as `lic3d --device` does, devices='all' spreads the LIC over "
              "several as `lic3d compute --devices` does; cpu=True uses the CPU reference. "
-             "The GIL is released while the LIC is made; Ctrl-C interrupts the call.");
+             "progress: a callable that gets the finished fraction of the LIC now and then "
+             "(from another thread). The GIL is released while the LIC is made; Ctrl-C, or an "
+             "exception from progress, stops the work at its next slab or brick and is raised.");
   module.def("render", &render, py::arg("vectors") = py::none(), py::kw_only(),
              py::arg("spacing") = 1.0, py::arg("origin") = 0.0, py::arg("noise") = py::none(),
-             py::arg("session") = py::none(),
+             py::arg("session") = py::none(), py::arg("progress") = py::none(),
              "render(vectors=None, *, spacing=1.0, origin=0.0, noise=None, "
-             "session=None, **params) -> numpy.ndarray\n\n"
+             "session=None, progress=None, **params) -> numpy.ndarray\n\n"
              "The picture `lic3d render` makes, as uint8 RGBA shaped (height, width, 4), "
              "rows top to bottom. Arguments as for compute, plus the view parameters "
              "(look, size, azimuth, elevation, colormap, ...).");

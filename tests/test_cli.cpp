@@ -19,6 +19,7 @@
 
 #include "cli_test_support.h"
 #include "core/colormap.h"
+#include "core/parameter_ranges.h"
 #include "core/session.h"
 #include "io/nrrd.h"
 #include "io/vti.h"
@@ -444,6 +445,60 @@ TEST_F(CliTest, BadArgumentsExitWithStatusTwoAndLeaveNothing) {
     EXPECT_EQ(r.status, 2) << "lic3d " << args << "\n" << r.output;
     EXPECT_NE(r.output.find("error"), std::string::npos) << "lic3d " << args << "\n" << r.output;
     EXPECT_EQ(listFolder().size(), 0u) << "lic3d " << args << " left files behind";
+  }
+}
+
+TEST_F(CliTest, RefusedValuesNameTheFlagTheValueAndTheRange) {
+  // Every kind of numeric flag: a parameter's (its range from core/parameter_ranges.h), whole or
+  // not, and a front end's own setting, on each subcommand's parser.
+  struct Flag {
+    std::string before;  // what comes before the flag
+    std::string flag;
+    std::string range;
+    bool whole;
+    std::string after = "";
+  };
+  const std::vector<Flag> flags = {
+      {"", "--threads", "[0, 4096]", true, " devices"},
+      {"render", "--length", ranges::kLength.text(), true},
+      {"compute", "--length", ranges::kLength.text(), true},
+      {"render", "--width", ranges::kImageWidth.text(), true},
+      {"compute", "--time-steps", ranges::kTimeSteps.text(), true},
+      {"render", "--step", ranges::kStep.text(), false},
+      {"render", "--fov", ranges::kFov.text(), false},
+      {"render", "--turntable", "[1, 1e+06]", true},
+      {"render2d", "--animate-time", "[1, 1e+06]", true},
+      {"render", "--fps", "[0.1, 1000]", false},
+      {"bench", "--repeats", "[5, 1000]", true},
+      {"bench", "--budget", "[1, 86400]", false},
+      {"render", "--grid", ranges::kGrid.text(), true},
+  };
+  const std::vector<std::string> values = {"abc", "-1", "1e999",
+                                           "nan", "",   "99999999999999999999999999"};
+  for (const Flag& f : flags) {
+    for (const std::string& value : values) {
+      const std::string args = f.before + " " + f.flag + " '" + value + "'" + f.after;
+      const CommandRun r = run(args);
+      EXPECT_EQ(r.status, 2) << "lic3d " << args << "\n" << r.output;
+      for (const std::string& part : {f.flag + ": ", "got '" + value + "'", f.range})
+        EXPECT_NE(r.output.find(part), std::string::npos)
+            << "lic3d " << args << " does not say " << part << ":\n"
+            << r.output;
+      for (const char* internal :
+           {"Could not convert", "not in range", "FAILED", "Value ", "INT", "FLOAT", "TEXT"})
+        EXPECT_EQ(r.output.find(internal), std::string::npos)
+            << "lic3d " << args << " speaks CLI11:\n"
+            << r.output;
+    }
+    if (f.whole) {
+      // A fraction inside the range.
+      const CommandRun r = run(f.before + " " + f.flag + " 7.5" + f.after);
+      for (const std::string& part :
+           {f.flag + ": ", "a whole number in " + f.range, std::string("got '7.5'")})
+        EXPECT_NE(r.output.find(part), std::string::npos)
+            << f.flag << " 7.5 does not say " << part << ":\n"
+            << r.output;
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <glm/gtc/packing.hpp>
+#include <stop_token>
 #include <tuple>
 
 #include "gpu/submit.h"
@@ -344,6 +345,35 @@ TEST_F(GpuTest, ProgressSplitsTheWorkAndReachesOne) {
   ASSERT_TRUE(renderer->updateLic(params).ok());
   const ScalarVolume whole = *renderer->readLicVolume();
   EXPECT_EQ(compareVolumes(slabbed, whole).max, 0.0);
+}
+
+TEST_F(GpuTest, AStopRequestEndsTheJobAfterTheSlabInFlightAndItResumes) {
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {16, 16, 40});
+  Result<LicRenderer> renderer = LicRenderer::create(context());
+  ASSERT_TRUE(renderer.ok());
+  ASSERT_TRUE(renderer->setInputs(field, makeWhiteNoise(field.dims, 1)).ok());
+  LicParams params;
+  std::stop_source stop;
+  std::vector<double> reports;
+  const Result<bool> stopped = renderer->updateLic(params, ProgressCallback(
+                                                               [&](double f) {
+                                                                 reports.push_back(f);
+                                                                 stop.request_stop();
+                                                               },
+                                                               stop.get_token()));
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_EQ(stopped.error().kind, ErrorKind::Cancelled);
+  ASSERT_EQ(reports.size(), 1u) << "no slab after the stop";
+  EXPECT_LT(reports[0], 1.0);
+  EXPECT_TRUE(renderer->licStatus().pending);
+  // The job goes on where it stopped, to the volume of one whole run.
+  ASSERT_TRUE(renderer->updateLic(params).ok());
+  const ScalarVolume resumed = *renderer->readLicVolume();
+  params.length += 1;
+  ASSERT_TRUE(renderer->updateLic(params).ok());
+  params.length -= 1;
+  ASSERT_TRUE(renderer->updateLic(params).ok());
+  EXPECT_EQ(compareVolumes(resumed, *renderer->readLicVolume()).max, 0.0);
 }
 
 TEST_F(GpuTest, MismatchedNoiseGridIsAnInputError) {

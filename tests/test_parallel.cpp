@@ -7,6 +7,7 @@
 #include <atomic>
 #include <mutex>
 #include <set>
+#include <stop_token>
 #include <thread>
 
 #include "core/parallel.h"
@@ -79,6 +80,29 @@ TEST(Parallel, TheThreadLimitBoundsTheThreadsThatRun) {
       },
       1000);
   EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](const auto& n) { return n == 1; }));
+}
+
+TEST(Parallel, AStopRequestStartsNoFurtherTaskAndTheReferenceIsCancelled) {
+  std::stop_source stop;
+  int ran = 0;
+  parallelFor(
+      1000, 1, [&](std::size_t) { ++ran; },
+      ProgressCallback([&](double) { stop.request_stop(); }, stop.get_token()));
+  EXPECT_EQ(ran, 1);
+  const VectorField field = makeAnalyticField(AnalyticField::Abc, {8, 8, 8});
+  stop = std::stop_source();
+  int reports = 0;
+  const Result<ScalarVolume> lic =
+      computeLicReference(field, makeWhiteNoise(field.dims, 1), LicParams{}, 1,
+                          ProgressCallback(
+                              [&](double) {
+                                ++reports;
+                                stop.request_stop();
+                              },
+                              stop.get_token()));
+  ASSERT_FALSE(lic.ok());
+  EXPECT_EQ(lic.error().kind, ErrorKind::Cancelled);
+  EXPECT_EQ(reports, 1);
 }
 
 TEST(StageTimes, StagesAddUpInTheOrderTheyFirstRan) {

@@ -12,7 +12,7 @@ void addTimeAnimationOptions(CLI::App& app, BatchOptions& options) {
                  "analytic field (a loop: frame N would be frame 0), or over a series of files "
                  "from the first to the last step (N = the number of files: one frame per step); "
                  "with --animate-bias too, the bias cycles as well")
-      ->check(CLI::Range(1, 1000000));
+      ->check(rangeCheck(1, 1000000));
   options.timeRange.option = app.add_option(
       "--time-range", options.timeRange.text,
       "T0,T1: the times --animate-time covers instead (a loop when T1 - T0 is the field's "
@@ -32,7 +32,7 @@ void addFrameRangeAndVideoOptions(CLI::App& app, BatchOptions& options) {
                "Leave every frame (or the picture) whose PNG is already whole and render only "
                "the rest: a requeued task of a job array redoes only what is missing");
   app.add_option("--fps", options.fps, "Frames per second of --video")
-      ->check(CLI::Range(0.1, 1000.0))
+      ->check(rangeCheck(0.1, 1000.0))
       ->capture_default_str();
 }
 }  // namespace
@@ -41,11 +41,11 @@ void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
   app.add_option("--turntable", options.turntable,
                  "Render N frames of a full turn: the azimuth advances 360/N per frame from "
                  "--azimuth; -o is a pattern with %d or %04d (default lic3d_%04d.png)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(rangeCheck(1, 1000000));
   app.add_option("--animate-bias", options.animateBias,
                  "Render N frames of the bias cycle -L..L..-L (the texture flows along the "
                  "field, frame N would be frame 0 again); the LIC volume is recomputed per frame")
-      ->check(CLI::Range(1, 1000000));
+      ->check(rangeCheck(1, 1000000));
   addTimeAnimationOptions(app, options);
   addFrameRangeAndVideoOptions(app, options);
   app.add_option("--rgba-volume", options.rgbaVolume,
@@ -58,7 +58,7 @@ void addImageBatchOptions(CLI::App& app, BatchOptions& options) {
                  "Render N frames of the bias cycle -L..L..-L (the texture flows along the "
                  "field, frame N would be frame 0 again); with --animate-time, one bias cycle "
                  "lasts N frames")
-      ->check(CLI::Range(1, 1000000));
+      ->check(rangeCheck(1, 1000000));
   addTimeAnimationOptions(app, options);
   addFrameRangeAndVideoOptions(app, options);
 }

@@ -98,19 +98,19 @@ std::unique_ptr<CommandLine> makeCommandLine() {
       ->add_option("--frame-sizes", bench.frameSizes, "Square image sizes of the frame table")
       ->capture_default_str();
   benchCommand->add_option("--frame-volume", bench.frameVolume, "Volume size N of the frame table")
-      ->check(CLI::Range(4, 2048))
+      ->check(rangeCheck(4, 2048))
       ->capture_default_str();
   benchCommand->add_option("--repeats", bench.repeats, "Timed repeats per row (median reported)")
-      ->check(CLI::Range(5, 1000))
+      ->check(rangeCheck(5, 1000))
       ->capture_default_str();
   benchCommand->add_option("--warmup", bench.warmup, "Untimed runs before the repeats")
-      ->check(CLI::Range(1, 100))
+      ->check(rangeCheck(1, 100))
       ->capture_default_str();
   benchCommand
       ->add_option("--budget", bench.budgetSeconds,
                    "Seconds the whole benchmark may take; rows that would exceed it are "
                    "skipped")
-      ->check(CLI::Range(1.0, 86400.0))
+      ->check(rangeCheck(1.0, 86400.0))
       ->capture_default_str();
   benchCommand->add_option("--json", bench.json, "Also write the results as JSON");
   benchCommand->add_flag("--variants", bench.variants,
@@ -135,7 +135,7 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   benchCommand
       ->add_option("--distribution-volume", bench.distributionVolume,
                    "Volume size N (N^3) of --distributions")
-      ->check(CLI::Range(8, 1024))
+      ->check(rangeCheck(8, 1024))
       ->capture_default_str();
   benchCommand->footer(globalNote);
 

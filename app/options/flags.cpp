@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "options/flags.h"
 
+#include "core/text.h"
+
 namespace lic3d::cli {
 namespace {
 
@@ -46,13 +48,20 @@ CLI::Validator rangeCheck(const ParameterRange& range) {
   return CLI::Validator(
       [range](std::string& text) -> std::string {
         // CLI11 reads an empty value as the type's zero: refused here, or `--length ''` is 0.
-        if (text.empty()) return "needs a number, got ''";
+        if (text.empty()) return "expected a number in " + range.text() + ", got ''";
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error != std::errc() || end != text.data() + text.size()) return {};  // CLI11 says
-        return range.contains(value) ? std::string() : "must be in " + range.text();
+        const bool whole = end == text.data() + text.size();
+        // Not a number: the conversion refuses it, in parseErrorMessage's words.
+        if (!whole || (error != std::errc() && error != std::errc::result_out_of_range)) return {};
+        if (error == std::errc() && range.contains(value)) return {};
+        return "must be in " + range.text() + ", got '" + cutMessage(text, 60) + "'";
       },
       "in " + range.text(), "RANGE");
+}
+
+CLI::Validator rangeCheck(double min, double max) {
+  return rangeCheck(ParameterRange{.min = min, .max = max});
 }
 
 }  // namespace lic3d::cli

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "core/enum_names.h"
@@ -26,7 +27,9 @@ Result<T> parseNumber(std::string_view text, const char* flag) {
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(begin, end, value);
   if (ec != std::errc() || ptr != end)
-    return inputError(std::string(flag) + ": '" + std::string(text) + "' is not a number");
+    return inputError(std::string(flag) + ": expected " +
+                      (std::is_integral_v<T> ? "a whole number" : "a number") + ", got '" +
+                      std::string(text) + "'");
   return value;
 }
 
@@ -43,8 +46,12 @@ TextOption& addText(CLI::App& app, const std::string& flag, TextOption& option,
                     const std::string& help, const std::string& shownDefault = "",
                     std::string_view key = {});
 
-// CLI11's check of a value against its range of core/parameter_ranges.h.
+// CLI11's check of a value against its range of core/parameter_ranges.h: "must be in [0, 4096],
+// got '5000'". Text that is no number is left to the conversion, whose message
+// parseArguments and parseCommandLine put in the same words.
 CLI::Validator rangeCheck(const ParameterRange& range);
+// The same for a front end's own setting (threads, frames, benchmark sizes) in [min, max].
+CLI::Validator rangeCheck(double min, double max);
 
 // A numeric option with its range, whose key error messages name.
 template <class T>

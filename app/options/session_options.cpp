@@ -131,7 +131,7 @@ void addGlobalOptions(CLI::App& app, GlobalOptions& options) {
   app.add_option("--threads", options.threads,
                  "At most this many CPU threads for the CPU work (the field, noise, masks, the CPU "
                  "reference, files); default: the CPUs the process may run on (its affinity mask)")
-      ->check(CLI::Range(0u, 4096u));
+      ->check(rangeCheck(0, 4096));
   nameFlag("threads", "--threads");
   app.add_flag("--timings", options.timings,
                "Print where the time went, stage by stage (reading or making the field, noise, "
@@ -274,13 +274,51 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
           ->capture_default_str();
 }
 
+namespace {
+
+// The option `flag` names in the subcommand being parsed, else in `app`.
+const CLI::Option* findOption(const CLI::App& app, const std::string& flag) {
+  for (const CLI::App* sub : app.get_subcommands())
+    if (const CLI::Option* option = findOption(*sub, flag)) return option;
+  return app.get_option_no_throw(flag);
+}
+
+// CLI11's message for a refused value, with the flag, the value and what the flag takes instead
+// of CLI11's words: "Could not convert: --length = abc" becomes "--length: expected a whole
+// number in [0, 4096], got 'abc'". Other messages are kept (cut to a line: CLI11 echoes the
+// argument it refused, which may be megabytes long).
+std::string parseErrorMessage(const CLI::ParseError& error, const CLI::App& app) {
+  constexpr std::string_view kPrefix = "Could not convert: ";
+  const std::string message = error.what();
+  const std::size_t equals = message.find(" = ");
+  if (!message.starts_with(kPrefix) || equals == std::string::npos) return cutMessage(message);
+  const std::string flag = message.substr(kPrefix.size(), equals - kPrefix.size());
+  const CLI::Option* option = findOption(app, flag);
+  if (!option) return cutMessage(message);
+  const std::string type = option->get_type_name();
+  const std::size_t colon = type.find(':');
+  const std::string base = type.substr(0, colon);
+  // The validator's description is the range ("in [0, 4096]", rangeCheck).
+  const std::string range = colon == std::string::npos ? "" : type.substr(colon + 1);
+  const bool ranged = range.starts_with("in ");
+  const std::string kind = base == "INT"              ? "a whole number"
+                           : base == "UINT" && ranged ? "a whole number"
+                           : base == "UINT"           ? "a whole number from 0"
+                           : base == "FLOAT"          ? "a number"
+                                                      : base;
+  return flag + ": expected " + kind + (ranged ? " " + range : "") + ", got '" +
+         cutMessage(message.substr(equals + 3), 60) + "'";
+}
+
+}  // namespace
+
 Result<void> parseArguments(CLI::App& app, int argc, char** argv,
                             std::initializer_list<SessionOptions*> sessions) {
   try {
     for (SessionOptions* options : sessions) LIC3D_TRY(preloadSession(argc, argv, *options));
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return inputError(cutMessage(e.what()));
+    return inputError(parseErrorMessage(e, app));
   }
   return {};
 }
@@ -299,8 +337,7 @@ std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const 
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // CLI11 echoes the argument it refused, which may be megabytes long.
-    std::fprintf(stderr, "%s: error: %s\n%s\n", program, cutMessage(e.what()).c_str(), hint);
+    std::fprintf(stderr, "%s: error: %s\n%s\n", program, parseErrorMessage(e, app).c_str(), hint);
     return kExitBadInput;
   }
   return std::nullopt;
@@ -360,10 +397,11 @@ Result<Dims> parseGrid(const std::string& text, bool planar) {
       dims[a] = 1;
       continue;
     }
-    LIC3D_TRY_ASSIGN(dims[a], parseNumber<int>(parts[parts.size() == 1 ? 0 : a], "--grid"));
-    if (!ranges::kGrid.contains(dims[a]))
-      return inputError("--grid: each size must be in " + ranges::kGrid.text() + ", got '" + text +
-                        "'");
+    const Result<int> size = parseNumber<int>(parts[parts.size() == 1 ? 0 : a], "--grid");
+    if (!size || !ranges::kGrid.contains(*size))
+      return inputError("--grid: each size must be a whole number in " + ranges::kGrid.text() +
+                        ", got '" + text + "'");
+    dims[a] = *size;
   }
   return dims;
 }

@@ -17,6 +17,7 @@ enum class ErrorKind {
   Unsupported,    // no usable device, missing layer or feature (CLI exit status 1)
   Runtime,        // a Vulkan call failed at run time: out of memory, device lost (exit status 1)
   ResourceLimit,  // the request needs more memory than the device or host has (exit status 3)
+  Cancelled,      // stopped on request (ProgressCallback's stop token) before it finished
 };
 
 struct Error {
@@ -47,6 +48,7 @@ inline Error runtimeError(std::string message) { return {ErrorKind::Runtime, std
 inline Error resourceLimitError(std::string message) {
   return {ErrorKind::ResourceLimit, std::move(message)};
 }
+inline Error cancelledError() { return {ErrorKind::Cancelled, "stopped on request"}; }
 
 // A value or the Error that explains why there is none.
 template <class T>

@@ -64,12 +64,12 @@ void parallelCopy(void* to, const void* from, std::size_t bytes) {
 }
 
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,
-                 const std::function<void(double)>& progress) {
+                 const ProgressCallback& progress) {
   std::vector<std::exception_ptr> failures(count);
   std::atomic<std::size_t> next{0};
   std::atomic<std::size_t> finished{0};
   const auto work = [&](bool reports) {
-    for (std::size_t i = next++; i < count; i = next++) {
+    for (std::size_t i = next++; i < count && !progress.stopRequested(); i = next++) {
       try {
         task(i);
       } catch (...) {

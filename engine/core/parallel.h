@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <functional>
 
+#include "core/progress.h"
+
 namespace lic3d {
 
 // The CPUs this process may run on: its affinity mask (taskset, a batch system's CPU set), else
@@ -17,11 +19,11 @@ void setThreadLimit(unsigned threads);
 // Calls task(i) for every i in [0, count) on up to `threads` threads (0: availableThreads()), the
 // calling thread among them; a thread that finishes a task takes the next one not yet taken.
 // After each task the calling thread ran, `progress` (when given) gets the fraction of all tasks
-// finished, on the calling thread. Tasks must not write what other tasks read: the result is
-// then the same whichever thread ran which task. If tasks throw, the exception of the lowest one
-// is rethrown here once all have finished.
+// finished, on the calling thread; once its stop is requested no further task starts. Tasks must
+// not write what other tasks read: the result is then the same whichever thread ran which task.
+// If tasks throw, the exception of the lowest one is rethrown here once all have finished.
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& task,
-                 const std::function<void(double)>& progress = {});
+                 const ProgressCallback& progress = {});
 // [0, count) in consecutive chunks of at least `grain` items, chunk(begin, end) for each, on
 // availableThreads(). For loops over voxels whose iterations write only their own items.
 void parallelChunks(std::size_t count, const std::function<void(std::size_t, std::size_t)>& chunk,

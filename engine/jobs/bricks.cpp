@@ -138,7 +138,7 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
     stop = true;
   };
   const auto claim = [&]() -> std::optional<std::size_t> {
-    if (stop) return std::nullopt;
+    if (stop || progress.stopRequested()) return std::nullopt;
     const std::size_t b = next++;
     return b < bricks.size() ? std::optional(b) : std::nullopt;
   };
@@ -156,6 +156,7 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
     std::future<Prepared> prepared = prepare(*current);
     while (current) {
       Prepared inputs = prepared.get();
+      if (progress.stopRequested()) return;  // not even the brick claimed before the stop
       // The next brick's inputs are made while this one is on the device.
       const std::optional<std::size_t> following = claim();
       if (following) prepared = prepare(*following);
@@ -189,6 +190,7 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
     for (std::thread& thread : threads) thread.join();
   }
   if (failure) return *failure;
+  if (done < bricks.size()) return cancelledError();  // stopped before every brick was made
   return workerOf;
 }
 

@@ -76,7 +76,8 @@ struct BrickJobs {
 
 // Runs `bricks` on `workers` threads, each taking the next brick not yet taken and preparing the
 // one after it on a thread of its own while its `lic` runs. The first error stops every worker
-// and is returned. Returns the worker of each brick. `take` runs one call at a time unless
+// and is returned, as is Cancelled when the progress' stop is requested (no brick starts after
+// it). Returns the worker of each brick. `take` runs one call at a time unless
 // jobs.takeAtOnce.
 Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks,
                                    const BrickJobs& jobs, const ProgressCallback& progress = {});

@@ -260,6 +260,7 @@ Result<ScalarVolume> computeLicReference(const VectorField& field, const NoiseVo
   }
   ScalarVolume out =
       computeLicOnGrid(sampler, noise, params, mask ? &*mask : nullptr, threads, progress);
+  if (progress.stopRequested()) return cancelledError();
   out.geometry = field.geometry;
   return out;
 }
@@ -288,7 +289,7 @@ ScalarVolume computeLicOnGrid(const FieldSampler& sampler, const NoiseVolume& no
         }
       },
       progress);
-  if (progress) progress(1.0);
+  if (progress && !progress.stopRequested()) progress(1.0);
   return out;
 }
 

@@ -10,13 +10,11 @@
 
 #include "core/error.h"
 #include "core/lic_params.h"
+#include "core/progress.h"
 #include "core/volume.h"
 #include "lic/sparsity.h"
 
 namespace lic3d {
-
-// Called with the finished fraction in [0,1] from the calling thread.
-using ProgressCallback = std::function<void(double fraction)>;
 
 // ---- Voxel units (docs/LIC_SEMANTICS.md, "Anisotropic grids") ----------------------------------
 // LIC integrates in voxel units: component a of a physical vector is divided by the spacing along

@@ -289,6 +289,9 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
     if (work->finished) collectStatistics(0);
     if (progress && work->slicesRecorded > 0)
       progress(job_ ? static_cast<double>(job_->nextZ) / dims.z : 1.0);
+    // The slab has completed: nothing is left on the device, and the pending job goes on where
+    // it stopped when update() is called again.
+    if (job_ && progress.stopRequested()) return cancelledError();
   }
   return true;
 }
