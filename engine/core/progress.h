@@ -32,6 +32,10 @@ class ProgressCallback {
     if (report_) report_(fraction);
   }
   bool stopRequested() const { return stop_.stop_requested(); }
+  // Another report for a part of the call (a brick's LIC), stopped by the same token.
+  ProgressCallback withReport(std::function<void(double)> report) const {
+    return {std::move(report), stop_};
+  }
 
  private:
   std::function<void(double)> report_;

@@ -199,8 +199,14 @@ std::uint64_t pngSizeBound(int width, int height, int bytesPerPixel, const PngTe
   // libpng cuts the stream into IDAT chunks of its 8 KiB buffer, 12 bytes of frame each.
   const std::uint64_t idat = deflated + 12 * (deflated / 8192 + 1);
   // tEXt: key, NUL, value; iTXt adds 4 bytes (flags, method, empty language and translation).
+  // A compressed value (from kCompressedTextBytes on) takes at most deflateBound of it.
   std::uint64_t texts = 0;
-  for (const auto& [key, value] : text) texts += 12 + key.size() + 5 + value.size();
+  for (const auto& [key, value] : text) {
+    const std::uint64_t n = value.size();
+    const std::uint64_t stored =
+        n >= kCompressedTextBytes ? n + (n >> 12) + (n >> 14) + (n >> 25) + 13 + 6 : n;
+    texts += 12 + key.size() + 5 + stored;
+  }
   // Signature, IHDR, IEND.
   return 8 + 25 + 12 + idat + texts;
 }

@@ -541,9 +541,9 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     report.partial(worker, kInputsPart);
     LIC3D_TRY_ASSIGN(ScalarVolume lic,
                      licOnDevice(*devices[static_cast<std::size_t>(worker)], renderer, session.lic,
-                                 options.timeLic, share, [&](double f) {
+                                 options.timeLic, share, progress.withReport([&](double f) {
                                    report.partial(worker, kInputsPart + (1.0 - kInputsPart) * f);
-                                 }));
+                                 })));
     report.partial(worker, 0.0);  // counted as done once taken
     share.peakDeviceBytes = std::max(share.peakDeviceBytes,
                                      devices[static_cast<std::size_t>(worker)]->allocatedBytes());
@@ -560,7 +560,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     return {};
   };
   LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs,
-                      [&](double) { report.brickDone(); }));
+                      progress.withReport([&](double) { report.brickDone(); })));
   run.bricks = static_cast<int>(bricks.size());
   run.brickCore = core;
   return run;

@@ -276,6 +276,10 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
   const Dims dims = textures.field().dims;
   const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
   while (job_) {
+    // Stopped before a slab starts (also before the first: a stop asked for during what came
+    // before, a brick's upload): the pending job goes on where it stopped when update() is
+    // called again.
+    if (progress.stopRequested()) return cancelledError();
     if (job_->needsMask) {
       const StageTimer timer("mask");
       job_->mask.wait();
@@ -289,9 +293,6 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
     if (work->finished) collectStatistics(0);
     if (progress && work->slicesRecorded > 0)
       progress(job_ ? static_cast<double>(job_->nextZ) / dims.z : 1.0);
-    // The slab has completed: nothing is left on the device, and the pending job goes on where
-    // it stopped when update() is called again.
-    if (job_ && progress.stopRequested()) return cancelledError();
   }
   return true;
 }
