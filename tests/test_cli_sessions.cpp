@@ -158,5 +158,25 @@ TEST_F(CliTest, APngWithALargePresetStaysSmallAndReadsBack) {
   EXPECT_TRUE(test::readRgbaPng(path("again.png")).rgba == test::readRgbaPng(path("big.png")).rgba);
 }
 
+// A bad value the session file set is refused naming the file and the session's key, however
+// long the value (a 900 KB field name hid the file's name); the same value given as a flag names
+// the flag.
+TEST_F(CliTest, ABadValueFromASessionNamesTheSessionFile) {
+  const std::string session =
+      R"({"lic3d_session": 1, "field": {"source": ")" + std::string(900000, 'q') + R"("}})";
+  writeBytes("long.json", session);
+  const CommandRun fromFile = run("render -q --session long.json -o out.png");
+  EXPECT_EQ(fromFile.status, 2) << fromFile.output.substr(0, 500);
+  EXPECT_NE(fromFile.output.find("long.json: field.source 'qqq"), std::string::npos)
+      << fromFile.output.substr(0, 500);
+  EXPECT_NE(fromFile.output.find("is neither an analytic field"), std::string::npos)
+      << fromFile.output.substr(0, 500);
+  EXPECT_LT(fromFile.output.size(), 2000u);
+  const CommandRun fromFlag = run("render -q --session long.json --field qqq -o out.png");
+  EXPECT_EQ(fromFlag.status, 2);
+  EXPECT_NE(fromFlag.output.find("--field 'qqq' is neither"), std::string::npos) << fromFlag.output;
+  EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
 }  // namespace
 }  // namespace lic3d

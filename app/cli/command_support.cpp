@@ -114,9 +114,12 @@ Result<SessionInputs> loadInputs(const ComputeOptions& options, bool fieldOnDevi
         "this session is a 2D one (mode 2d): make it with `lic3d render2d --session`");
   LIC3D_TRY_ASSIGN(const TimeDomain domain, timeDomainOf(session));
   LIC3D_TRY(checkTimeGiven(options.inputs, domain));
-  return loadSessionInputs(session, {.gridGiven = options.inputs.grid.given(),
-                                     .analyticTimeSteps = session.timeSteps,
-                                     .fieldOnDevice = fieldOnDevice});
+  Result<SessionInputs> inputs =
+      loadSessionInputs(session, {.gridGiven = options.inputs.grid.given(),
+                                  .analyticTimeSteps = session.timeSteps,
+                                  .fieldOnDevice = fieldOnDevice});
+  if (!inputs) return fromSessionFile(inputs.error(), options.inputs);
+  return inputs;
 }
 
 // What a file gave besides the field: which of several arrays was read, and vectors lost to NaN.

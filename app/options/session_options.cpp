@@ -37,6 +37,16 @@ int exitCodeFor(const Error& error) {
 
 std::string messageWithFlags(const Error& error) { return rewriteKeys(error, flagNames()); }
 
+Error fromSessionFile(Error error, const SessionOptions& options) {
+  if (options.sessionFile.empty() || error.parameter.empty() || !options.app) return error;
+  const auto flag = flagNames().find(error.parameter);
+  if (flag != flagNames().end() && given(options.app->get_option_no_throw(flag->second)))
+    return error;
+  error.message = options.sessionFile + ": " + error.message;
+  error.parameter.clear();
+  return error;
+}
+
 int reportError(const Error& error) {
   // A message quotes what it was given (a path, a value): cut, so that no input fills the
   // terminal or a job's log.

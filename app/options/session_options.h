@@ -77,6 +77,11 @@ struct SessionOptions {
   CLI::App* app = nullptr;  // the command the flags belong to: which were given (flag_rules.cpp)
 };
 
+// An error about a parameter the session file set, not a flag of the command line, names the
+// file and the session's key ("run.json: field.source 'x' is neither ..."); others are returned
+// as they are (reportError names the flag).
+Error fromSessionFile(Error error, const SessionOptions& options);
+
 struct ComputeOptions {
   SessionOptions inputs;
   bool cpu = false;

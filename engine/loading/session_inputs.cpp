@@ -11,6 +11,7 @@
 #include "core/memory_budget.h"
 #include "core/resolution.h"
 #include "core/stage_times.h"
+#include "core/text.h"
 #include "core/value_histogram.h"
 #include "gpu/resources.h"
 #include "io/field_io.h"
@@ -101,20 +102,22 @@ Result<VectorField> loadField(const FieldSource& source, bool gridGiven, FieldRe
     return makeAnalyticField(*analytic, source.grid, time);
   }
   if (parseEnum<AnalyticField2D>(source.field))
-    return parameterError("field.source", source.field +
+    return parameterError("field.source", quoteForMessage(source.field) +
                                               " is a 2D field: make its LIC with `lic3d "
                                               "render2d` (or the app's 2D mode)");
   if (isFieldSeriesPattern(source.field))
-    return parameterError("field.source", source.field + " names a time series, not one field");
+    return parameterError("field.source",
+                          quoteForMessage(source.field) + " names a time series, not one field");
   if (gridGiven)
-    return parameterError("field.grid", "applies to analytic fields only; " + source.field +
+    return parameterError("field.grid", "applies to analytic fields only; " +
+                                            quoteForMessage(source.field) +
                                             " has its own grid (a finer LIC grid: "
                                             "field.resolution)");
   const std::filesystem::path path(source.field);
   if (!path.has_extension())
-    return parameterError("field.source", "'" + source.field + "' is neither an analytic field (" +
-                                              enumChoices<AnalyticField>() +
-                                              ") nor a file name with an extension");
+    return parameterError("field.source",
+                          quoteForMessage(source.field) + " is neither an analytic field (" +
+                              enumChoices<AnalyticField>() + ") nor a file name with an extension");
   FieldReadInfo read;
   StageTimer reading("field (read)");
   LIC3D_TRY_ASSIGN(VectorField field, readVectorField(path, source.array, &read));
