@@ -99,23 +99,6 @@ bool sameVector(const glm::vec3& a, const glm::vec3& b) {
   return true;
 }
 
-Result<glm::dvec3> readTriple(const std::filesystem::path& path, const pugi::xml_node& node,
-                              const char* name, double fallback, bool positive) {
-  const pugi::xml_attribute attribute = node.attribute(name);
-  if (!attribute) return glm::dvec3(fallback);
-  const std::vector<std::string_view> words = splitWords(attribute.value());
-  glm::dvec3 value{0.0};
-  bool good = words.size() == 3;
-  for (glm::length_t axis = 0; good && axis < 3; ++axis)
-    good = parseDouble(words[static_cast<std::size_t>(axis)], value[axis]) &&
-           std::isfinite(value[axis]) && (!positive || value[axis] > 0.0);
-  if (!good)
-    return fileError(path, std::string(node.name()) + " " + name + ": expected 3 " +
-                               (positive ? "positive" : "finite") + " numbers, found " +
-                               quoteForMessage(attribute.value()));
-  return value;
-}
-
 }  // namespace
 
 Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
@@ -136,8 +119,10 @@ Result<VectorField> readVectorFieldPvti(const std::filesystem::path& path,
         path, "PImageData WholeExtent " + quoteForMessage(extentText(whole)) + ": " + problem);
   const bool originGiven = static_cast<bool>(image.attribute("Origin"));
   const bool spacingGiven = static_cast<bool>(image.attribute("Spacing"));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 wholeOrigin, readTriple(path, image, "Origin", 0.0, false));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 wholeSpacing, readTriple(path, image, "Spacing", 1.0, true));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 wholeOrigin,
+                   vti::parseTriple(path, image, "Origin", 0.0, false));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 wholeSpacing,
+                   vti::parseTriple(path, image, "Spacing", 1.0, true));
   std::vector<PieceRef> pieces;
   const std::filesystem::path folder = path.parent_path();
   for (const pugi::xml_node node : image.children("Piece")) {

@@ -90,8 +90,10 @@ HeadRead openHead(VtiFile& file, bool stream) {
   return HeadRead::Head;
 }
 
-Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, const char* name,
-                               double fallback, bool positive) {
+}  // namespace
+
+Result<glm::dvec3> parseTriple(const std::filesystem::path& path, const pugi::xml_node& node,
+                               const char* name, double fallback, bool positive) {
   const pugi::xml_attribute attribute = node.attribute(name);
   if (!attribute) return glm::dvec3(fallback);
   const std::vector<std::string_view> words = splitWords(attribute.value());
@@ -101,11 +103,13 @@ Result<glm::dvec3> parseTriple(const VtiFile& file, const pugi::xml_node& node, 
     good = parseDouble(words[static_cast<std::size_t>(axis)], value[axis]) &&
            std::isfinite(value[axis]) && (!positive || value[axis] > 0.0);
   if (!good)
-    return file.fail(std::string(node.name()) + " " + name + ": expected 3 " +
-                     (positive ? "positive" : "finite") + " numbers, found " +
-                     quoteForMessage(attribute.value()));
+    return fileError(path, std::string(node.name()) + " " + name + ": expected 3 " +
+                               (positive ? "positive" : "finite") + " numbers, found " +
+                               quoteForMessage(attribute.value()));
   return value;
 }
+
+namespace {
 
 Result<Extent> readExtent(const VtiFile& file, const pugi::xml_node& node, const char* name) {
   const pugi::xml_attribute attribute = node.attribute(name);
@@ -229,8 +233,8 @@ Result<void> readGrid(VtiFile& file, const pugi::xml_node& image, bool stream) {
     return file.fail("WholeExtent: " + problem);
   file.dims =
       Dims(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]), static_cast<int>(sizes[2]));
-  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(file, image, "Origin", 0.0, false));
-  LIC3D_TRY_ASSIGN(file.geometry.spacing, parseTriple(file, image, "Spacing", 1.0, true));
+  LIC3D_TRY_ASSIGN(const glm::dvec3 origin, parseTriple(file.path, image, "Origin", 0.0, false));
+  LIC3D_TRY_ASSIGN(file.geometry.spacing, parseTriple(file.path, image, "Spacing", 1.0, true));
   // Point (i,j,k) of the extent sits at Origin + (i,j,k) * Spacing, so an extent that does not
   // start at 0 moves the first voxel.
   for (glm::length_t axis = 0; axis < 3; ++axis)

@@ -57,6 +57,11 @@ struct Extent {
 // nullopt for anything else. .vti and .pvti files write their extents so.
 std::optional<Extent> parseExtent(std::string_view text);
 
+// The attribute `name` of `node` ("Origin", "Spacing"): three finite numbers, positive with
+// `positive`; `fallback` on each axis where it is missing. The error names `path`.
+Result<glm::dvec3> parseTriple(const std::filesystem::path& path, const pugi::xml_node& node,
+                               const char* name, double fallback, bool positive);
+
 // A DataArray of PointData or CellData.
 struct ArrayRef {
   pugi::xml_node node;
