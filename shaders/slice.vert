@@ -11,6 +11,7 @@ layout(set = 0, binding = kSliceBindingUniforms, std140) uniform Uniforms { Slic
 
 layout(location = 0) out vec3 outTexCoord;
 layout(location = 1) out vec3 outWorld;
+layout(location = 2) flat out uint outSlice;  // the slice's index, 0 the farthest
 
 // The 12 box edges as pairs of corner indices; corner bit 0/1/2 selects max x/y/z.
 const ivec2 kEdges[12] = ivec2[12](ivec2(0, 1), ivec2(2, 3), ivec2(4, 5), ivec2(6, 7),
@@ -67,6 +68,7 @@ void main() {
   vec3 world = count >= 3 ? points[min(index, count - 1)] : vec3(0.0);
 
   outWorld = world;
+  outSlice = uint(gl_InstanceIndex);
   outTexCoord = world / (2.0 * u.halfExtent.xyz) + 0.5;
   gl_Position = u.viewProjection * vec4(world, 1.0);
 }

@@ -322,7 +322,23 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   writeUniforms(frame.uniforms, slot);
   // No occlusion buffer without occlusion: any 2D image fills the binding.
   pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);
-  vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
+  const auto count = static_cast<std::uint32_t>(frame.plan.count);
+  if (frame.specialization.halo == 0 || runtimeModes_ ||
+      context_->deviceInfo().type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, count, 0, 0);
+    return {};
+  }
+  // Halos are drawn by every other slice (slice.frag). A GPU skips the ring where a whole
+  // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the
+  // slices without take the pipeline without halos, one draw per slice, back to front as ever.
+  SliceFrame plain = frame;
+  plain.specialization.halo = 0;
+  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineFor(plain, colorFormat));
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (k > 0)
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, k % 2 == 0 ? pipeline : withoutHalo);
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, 1, 0, k);
+  }
   return {};
 }
 
