@@ -595,6 +595,10 @@ TEST_F(GpuTest, HalosOnACpuDriverDrawEveryOtherSliceWithoutTheRing) {
   ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
   const bool cpu = context().deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
   EXPECT_EQ(renderer.drawVariantCount(), before + (cpu ? 2 : 1));
+  // The same with occlusion, whose slices are drawn front to back one at a time.
+  view.occlusion = 0.5f;
+  ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
+  EXPECT_EQ(renderer.drawVariantCount(), before + (cpu ? 4 : 2));
 }
 
 }  // namespace

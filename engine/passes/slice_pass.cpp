@@ -257,6 +257,17 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceFrame& frame, VkFormat form
   return pipelines_.get({key, format}, [&](const SliceVariant& v) { return createPipeline(v); });
 }
 
+Result<VkPipeline> SlicePass::pipelineWithoutHalo(const SliceFrame& frame, VkFormat format) {
+  // Halos are drawn by every other slice (slice.frag). A GPU skips the ring where a whole
+  // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the slices
+  // without take the pipeline without halos.
+  SliceFrame plain = frame;
+  if (frame.specialization.halo == 1 && !runtimeModes_ &&
+      context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
+    plain.specialization.halo = 0;
+  return pipelineFor(plain, format);
+}
+
 void SlicePass::writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const {
   std::memcpy(static_cast<std::byte*>(uniforms_.mapped()) + slotSize_ * slot, &uniforms,
               sizeof(uniforms));
@@ -283,6 +294,7 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
   LIC3D_ASSERT(slot < kUniformSlots);
   if (frame.specialization.occlusion == 0) return {};
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, VK_FORMAT_UNDEFINED));
+  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineWithoutHalo(frame, VK_FORMAT_UNDEFINED));
   const VkExtent2D extent = viewport.extent;
   gpu::SliceUniforms uniforms = frame.uniforms;
   uniforms.occlusion.z = 1.0f / static_cast<float>(extent.width);
@@ -299,12 +311,13 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
   const int count = frame.plan.count;
   return occlusion_.record(cmd, frame.eyeIndex, extent, count,
                            [&](VkCommandBuffer c, int index, VkImageView inFront) {
-                             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-                             pushDescriptors(c, volume, field, scalars, inFront, slot);
                              // Slice 0 is the farthest: the index-th from the front is count - 1 -
                              // index.
-                             vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0,
-                                       static_cast<std::uint32_t>(count - 1 - index));
+                             const auto slice = static_cast<std::uint32_t>(count - 1 - index);
+                             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                               slice % 2 == 0 ? pipeline : withoutHalo);
+                             pushDescriptors(c, volume, field, scalars, inFront, slot);
+                             vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0, slice);
                            });
 }
 
@@ -323,17 +336,12 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   // No occlusion buffer without occlusion: any 2D image fills the binding.
   pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);
   const auto count = static_cast<std::uint32_t>(frame.plan.count);
-  if (frame.specialization.halo == 0 || runtimeModes_ ||
-      context_->deviceInfo().type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
+  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineWithoutHalo(frame, colorFormat));
+  if (withoutHalo == pipeline) {
     vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, count, 0, 0);
     return {};
   }
-  // Halos are drawn by every other slice (slice.frag). A GPU skips the ring where a whole
-  // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the
-  // slices without take the pipeline without halos, one draw per slice, back to front as ever.
-  SliceFrame plain = frame;
-  plain.specialization.halo = 0;
-  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineFor(plain, colorFormat));
+  // One draw per slice, back to front as ever.
   for (std::uint32_t k = 0; k < count; ++k) {
     if (k > 0)
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, k % 2 == 0 ? pipeline : withoutHalo);

@@ -167,6 +167,8 @@ class SlicePass {
   };
   Result<Pipeline> createPipeline(const SliceVariant& variant) const;
   Result<VkPipeline> pipelineFor(const SliceFrame& frame, VkFormat format);
+  // The pipeline for the slices that draw no halo: `pipelineFor` unless a CPU driver draws halos.
+  Result<VkPipeline> pipelineWithoutHalo(const SliceFrame& frame, VkFormat format);
   void writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const;
   void pushDescriptors(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
                        const Image& scalars, VkImageView occlusion, std::uint32_t slot) const;
