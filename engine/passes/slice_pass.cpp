@@ -162,10 +162,12 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   return frame;
 }
 
-Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
+Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes,
+                                    bool haloPipelinePerSlice) {
   SlicePass pass;
   pass.context_ = &context;
   pass.runtimeModes_ = runtimeModes;
+  pass.haloPipelinePerSlice_ = haloPipelinePerSlice;
   constexpr VkShaderStageFlags kBothStages =
       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -262,7 +264,7 @@ Result<VkPipeline> SlicePass::pipelineWithoutHalo(const SliceFrame& frame, VkFor
   // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the slices
   // without take the pipeline without halos.
   SliceFrame plain = frame;
-  if (frame.specialization.halo == 1 && !runtimeModes_ &&
+  if (frame.specialization.halo == 1 && haloPipelinePerSlice_ && !runtimeModes_ &&
       context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
     plain.specialization.halo = 0;
   return pipelineFor(plain, format);

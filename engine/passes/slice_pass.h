@@ -136,8 +136,11 @@ class SlicePass {
   static constexpr std::uint32_t kUniformSlots = 8;
 
   // `context` must outlive the pass. With `runtimeModes` (benchmark builds only) every display
-  // mode is decided at run time by one shader instead of by specialization.
-  static Result<SlicePass> create(const Context& context, bool runtimeModes = false);
+  // mode is decided at run time by one shader instead of by specialization. With
+  // `haloPipelinePerSlice`, on a CPU driver the slices that draw no halo take the pipeline without
+  // the ring, one draw per slice (pipelineWithoutHalo).
+  static Result<SlicePass> create(const Context& context, bool runtimeModes = false,
+                                  bool haloPipelinePerSlice = true);
 
   // Outside any rendering, before record(): what must be drawn before the frame's rendering
   // opens (the occlusion variant's front-to-back slices; nothing for the others). The same
@@ -175,6 +178,7 @@ class SlicePass {
 
   const Context* context_ = nullptr;
   bool runtimeModes_ = false;
+  bool haloPipelinePerSlice_ = true;
   PipelineLayout layout_;
   ShaderModule vertexShader_;
   ShaderModule fragmentShader_;

@@ -37,6 +37,10 @@ struct RendererOptions {
   FramePrecision framePrecision = FramePrecision::Float16;
   bool runtimeModes = false;    // benchmark builds only: see SlicePass::create
   bool doubleBuffered = false;  // a second LIC volume for frame-paced recomputes
+  // On a CPU driver, the slices without halos take a pipeline of their own, one draw per slice
+  // (SlicePass::create). The app keeps one draw: on lavapipe the draws per frame grew the driver's
+  // memory for hundreds of frames, past the soak's tolerance.
+  bool haloPipelinePerSlice = true;
   // Benchmark builds only: the LIC pass is the naive reference kernel (noise in an R8 texture of
   // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
   bool naiveLicKernel = false;
