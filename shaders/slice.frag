@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #version 460
+#extension GL_EXT_control_flow_attributes : require
 // Shades one slice fragment: region of interest, grey transfer of the LIC intensity, colour and
 // opacity by magnitude, sparsity mask, lighting, halos, occlusion, opacity correction, fog,
 // anaglyph. Each of these is a specialization constant: a variant compiles to exactly the code it
@@ -70,6 +71,10 @@ layout(constant_id = kSliceConstJitter) const uint JITTER = kSliceDefaultJitter;
 
 // Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
 layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = kSliceDefaultFieldPacking;
+// Not a display mode either: how many slices one fragment composites (slice.vert). The picture is
+// the same whatever it is, but for the rounding of the blend.
+layout(constant_id = kSliceConstSlicesPerFragment) const uint SLICES_PER_FRAGMENT =
+    kSliceDefaultSlicesPerFragment;
 
 layout(location = 0) in vec3 slicePoint;  // texture coordinates on the slice
 layout(location = 1) in vec3 sliceWorld;
@@ -320,9 +325,14 @@ float segmentLength(vec3 point, vec3 forward, float spacing) {
   return back + ahead;
 }
 
-void main() {
-  texCoord = slicePoint;
-  world = sliceWorld;
+// One slice's sample: slice `index`, its point `point` in world units and `pointTexture` in texture
+// coordinates, `haloSlice` whether it draws the halo. Premultiplied colour and opacity; `removed`
+// where the clip plane or the region of interest takes the point away (nothing drawn), and with
+// occlusion the buffer the next slice reads in `occlusionAfter`.
+vec4 shadeSlice(vec3 point, vec3 pointTexture, bool haloSlice, out bool removed,
+                out float occlusionAfter) {
+  texCoord = pointTexture;
+  world = point;
   vec3 toEye = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : normalize(u.eyePosition.xyz - world);
   // The slice spacing along this ray: the plane spacing over |cos| of the angle between ray and
   // plane normal.
@@ -334,12 +344,13 @@ void main() {
   }
 
   // With occlusion, a removed fragment still carries the buffer to the next slice.
-  bool removed = CLIP_PLANE == 1 && dot(u.clipPlane.xyz, sliceWorld) > u.clipPlane.w;
+  removed = CLIP_PLANE == 1 && dot(u.clipPlane.xyz, point) > u.clipPlane.w;
   if (ROI_SHAPE != 0) {
     vec3 p = (u.roiFromTexture * vec4(texCoord, 1.0)).xyz;
     removed = removed || insideRegion(p) == (ROI_OUTSIDE == 1);
   }
-  if (removed && OCCLUSION == 0) discard;
+  occlusionAfter = 0.0;
+  if (removed && OCCLUSION == 0) return vec4(0.0);
 
   float inFront = OCCLUSION == 1 ? occlusionInFront() : 0.0;
   Sample s = shadeAt(texCoord, false);
@@ -352,7 +363,7 @@ void main() {
   // opacity in the background colour. Every other slice draws it, over twice its spacing: a halo
   // reaches across a voxel or two, the slices are a voxel apart, and the ring is most of a
   // fragment's cost on a CPU driver.
-  bool haloSlice = HALO == 1 && !removed && (sliceIndex & 1u) == 0u;
+  haloSlice = HALO == 1 && !removed && haloSlice;
   float haloAlpha = 0.0;
   if (haloSlice) {
     float ring = ringOpacity(world, jitter, s.weight);
@@ -361,7 +372,7 @@ void main() {
 
   // Opacity per slice spacing from opacity per reference distance; the halo's share of the
   // light kept, (1 - alpha - halo) / (1 - alpha), over two spacings.
-  float exponent = segmentLength(sliceWorld, -toEye, spacing) / u.transfer.z;
+  float exponent = segmentLength(point, -toEye, spacing) / u.transfer.z;
   alpha = clamp(alpha, 0.0, 1.0);
   float kept = pow(1.0 - alpha, exponent);
   float total = 1.0 - kept;
@@ -382,7 +393,51 @@ void main() {
   // Anaglyph eyes see grey levels: red for the left eye, green and blue for the right.
   if (ANAGLYPH != 0) rgb = vec3(dot(rgb, vec3(0.299, 0.587, 0.114)));
 
-  color = vec4(clamp(rgb, 0.0, 1.0) * alpha + u.haloColor.rgb * haloAlpha, total);
   // The buffer the next slice reads: what lies in front of it, this slice included.
-  if (OCCLUSION == 1) occlusionOut = inFront + (1.0 - inFront) * total;
+  if (OCCLUSION == 1) occlusionAfter = inFront + (1.0 - inFront) * total;
+  return vec4(clamp(rgb, 0.0, 1.0) * alpha + u.haloColor.rgb * haloAlpha, total);
+}
+
+// Whether a point lies in the clip box: where the slice's polygon (slice.vert) reaches.
+bool insideClipBox(vec3 p) {
+  vec3 tolerance = vec3(1e-6 * length(u.halfExtent.xyz));
+  return all(greaterThanEqual(p, u.clipMin.xyz - tolerance)) &&
+         all(lessThanEqual(p, u.clipMax.xyz + tolerance));
+}
+
+void main() {
+  if (SLICES_PER_FRAGMENT == 1u) {
+    bool removed;
+    float occlusionAfter;
+    color = shadeSlice(sliceWorld, slicePoint, (sliceIndex & 1u) == 0u, removed, occlusionAfter);
+    if (removed && OCCLUSION == 0) discard;
+    if (OCCLUSION == 1) occlusionOut = occlusionAfter;
+    return;
+  }
+  // K slices, the group's first (the farthest) where the proxy lies: each slice's point where the
+  // pixel's ray meets its plane, composited back to front ("over") as the blend would, then
+  // blended once. The group's first slice has an even index when K is even, so which slices draw
+  // the halo is known as the loop unrolls.
+  vec3 n = u.planeNormal.xyz;
+  vec3 ray = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : sliceWorld - u.eyePosition.xyz;
+  float firstOffset = u.planeNormal.w + float(sliceIndex) * u.eyePosition.w;
+  uint count = uint(u.toViewer.w);
+  vec4 sum = vec4(0.0);
+  bool drawn = false;
+  [[unroll]] for (uint j = 0u; j < SLICES_PER_FRAGMENT; ++j) {
+    if (sliceIndex + j >= count) break;
+    float offset = firstOffset + float(j) * u.eyePosition.w;
+    vec3 point = j == 0u ? sliceWorld : sliceWorld + ray * (offset - dot(n, sliceWorld)) / dot(n, ray);
+    if (!insideClipBox(point)) continue;
+    bool removed;
+    float occlusionAfter;
+    vec4 c = shadeSlice(point, point / (2.0 * u.halfExtent.xyz) + 0.5,
+                        ((SLICES_PER_FRAGMENT % 2u == 0u ? 0u : sliceIndex) + j) % 2u == 0u,
+                        removed, occlusionAfter);
+    if (removed) continue;
+    drawn = true;
+    sum = c + (1.0 - c.a) * sum;
+  }
+  if (!drawn) discard;
+  color = sum;
 }

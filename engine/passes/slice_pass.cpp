@@ -101,6 +101,11 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   s.occlusion = view.occlusion > 0.0f ? 1u : 0u;
   s.jitter = view.jitter ? 1u : 0u;
   frame.eyeIndex = eye == Eye::Right ? 1 : 0;
+  // The box lies within the bounding sphere around the centre, at least distance - |target| -
+  // radius from the camera; the near plane is at distance - 2 radius - |target| (computeCamera)
+  // unless the camera is that close, and the far plane beyond the sphere.
+  frame.groupable = central.distance * (1.0f - 1e-3f) >=
+                    2.0f * glm::length(frame.halfExtent) + glm::length(view.camera.target);
 
   gpu::SliceUniforms& u = frame.uniforms;
   const glm::vec3 h = frame.halfExtent;
@@ -117,7 +122,7 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.clipMax = glm::vec4((glm::clamp(view.clipMax, 0.0f, 1.0f) - 0.5f) * 2.0f * h, 0.0f);
   u.planeNormal = glm::vec4(frame.plan.normal, frame.plan.firstOffset);
   u.eyePosition = glm::vec4(frame.camera.eye, frame.plan.spacing);
-  u.toViewer = glm::vec4(central.toViewer, 0.0f);
+  u.toViewer = glm::vec4(central.toViewer, static_cast<float>(frame.plan.count));
   u.transfer = glm::vec4(greyTransfer(view, transferFacts), frame.plan.voxelSize, 0.0f);
   u.magnitude =
       glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), view.opacityFloor, 0.0f);
@@ -253,7 +258,8 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceFrame& frame, VkFormat form
   if (runtimeModes_)
     key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
                               .fieldPacking = frame.specialization.fieldPacking,
-                              .occlusion = frame.specialization.occlusion};
+                              .occlusion = frame.specialization.occlusion,
+                              .slicesPerFragment = frame.specialization.slicesPerFragment};
   // The occlusion variant draws into the occlusion pass's attachments, whatever the frame's.
   if (key.occlusion == 1) format = VK_FORMAT_UNDEFINED;
   return pipelines_.get({key, format}, [&](const SliceVariant& v) { return createPipeline(v); });
@@ -264,10 +270,20 @@ Result<VkPipeline> SlicePass::pipelineWithoutHalo(const SliceFrame& frame, VkFor
   // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the slices
   // without take the pipeline without halos.
   SliceFrame plain = frame;
-  if (frame.specialization.halo == 1 && haloPipelinePerSlice_ && !runtimeModes_ &&
+  if (frame.specialization.halo == 1 && frame.specialization.slicesPerFragment == 1 &&
+      haloPipelinePerSlice_ && !runtimeModes_ &&
       context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
     plain.specialization.halo = 0;
   return pipelineFor(plain, format);
+}
+
+std::uint32_t SlicePass::slicesPerFragment(const SliceFrame& frame) const {
+  if (frame.specialization.occlusion == 1 || !frame.groupable) return 1;
+  int k = requestedSlicesPerFragment_;
+  if (k <= 0)
+    k = context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kSlicesPerFragmentCpu
+                                                                   : kSlicesPerFragmentGpu;
+  return k >= 4 ? 4u : k >= 2 ? 2u : 1u;
 }
 
 void SlicePass::writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const {
@@ -325,11 +341,13 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
                                const Image& volume, const FieldTexture& field, const Image& scalars,
-                               const SliceFrame& frame, std::uint32_t slot) {
+                               const SliceFrame& sliceFrame, std::uint32_t slot) {
   LIC3D_ASSERT(slot < kUniformSlots);
-  if (frame.specialization.occlusion == 1)
-    return occlusion_.composite(cmd, frame.eyeIndex, colorFormat, viewport,
-                                anaglyphWriteMask(frame.specialization.anaglyph));
+  if (sliceFrame.specialization.occlusion == 1)
+    return occlusion_.composite(cmd, sliceFrame.eyeIndex, colorFormat, viewport,
+                                anaglyphWriteMask(sliceFrame.specialization.anaglyph));
+  SliceFrame frame = sliceFrame;
+  const std::uint32_t k = frame.specialization.slicesPerFragment = slicesPerFragment(sliceFrame);
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
@@ -338,16 +356,22 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   // No occlusion buffer without occlusion: any 2D image fills the binding.
   pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);
   const auto count = static_cast<std::uint32_t>(frame.plan.count);
+  if (k > 1) {
+    // A proxy per group of K slices (slice.vert), the last group perhaps short.
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerGroup, (count + k - 1) / k, 0, 0);
+    return {};
+  }
   LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineWithoutHalo(frame, colorFormat));
   if (withoutHalo == pipeline) {
     vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, count, 0, 0);
     return {};
   }
   // One draw per slice, back to front as ever.
-  for (std::uint32_t k = 0; k < count; ++k) {
-    if (k > 0)
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, k % 2 == 0 ? pipeline : withoutHalo);
-    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, 1, 0, k);
+  for (std::uint32_t slice = 0; slice < count; ++slice) {
+    if (slice > 0)
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                        slice % 2 == 0 ? pipeline : withoutHalo);
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, 1, 0, slice);
   }
   return {};
 }

@@ -19,6 +19,7 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
                                                        options.naiveLicKernel, options.licLaunch));
   LIC3D_TRY_ASSIGN(renderer.slicePass_,
                    SlicePass::create(context, options.runtimeModes, options.haloPipelinePerSlice));
+  renderer.slicePass_.setSlicesPerFragment(options.slicesPerFragment);
   return renderer;
 }
 
