@@ -170,13 +170,15 @@ class SlicePass {
 
   // K, the slices one fragment composites: 1, 2 or 4, or 0 for the device's choice
   // (kSlicesPerFragmentGpu, kSlicesPerFragmentCpu). Pictures are the same whatever K but for the
-  // rounding of the blend; K > 1 blends 1/K as often.
+  // rounding of the blend; K > 1 blends 1/K as often. A GPU blends less; a CPU driver gains
+  // nothing (its cost is the samples shaded, and it shades a group's samples outside the box as
+  // well, masked): docs/BENCHMARKS.md.
   void setSlicesPerFragment(int k) { requestedSlicesPerFragment_ = k; }
   // What a frame is drawn with: 1 with occlusion (each slice reads the buffer the one in front
   // wrote, blurred) or where the frame is not groupable, else the requested K.
   std::uint32_t slicesPerFragment(const SliceFrame& frame) const;
   static constexpr int kSlicesPerFragmentGpu = 2;
-  static constexpr int kSlicesPerFragmentCpu = 4;
+  static constexpr int kSlicesPerFragmentCpu = 1;
 
  private:
   // A pipeline per display variant and colour attachment format.
