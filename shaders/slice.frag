@@ -5,6 +5,9 @@
 // opacity by magnitude, sparsity mask, lighting, halos, occlusion, opacity correction, fog,
 // anaglyph. Each of these is a specialization constant: a variant compiles to exactly the code it
 // uses.
+//
+// With K slices per fragment (SLICES_PER_FRAGMENT > 1) the fragment stands for a group of K slices
+// (slice.vert): it shades each slice's sample on its ray and composites them before one blend.
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
