@@ -115,6 +115,7 @@ LIC3D_CONST kSliceConstOpacitySource = 16;    // opacity scalar: 0 |v|, 1 scalar
 LIC3D_CONST kSliceConstHalo = 17;             // 0 off, 1 dark borders around streaks (halos)
 LIC3D_CONST kSliceConstOcclusion = 18;        // 0 off, 1 front to back with an occlusion buffer
 LIC3D_CONST kSliceConstJitter = 19;           // 0 off, 1 each pixel's samples offset along its ray
+LIC3D_CONST kSliceConstSlicesPerFragment = 20;  // K: slices a fragment composites (1, 2 or 4)
 // Their one default each, which slice.frag and SliceSpecialization both take.
 LIC3D_CONST kSliceDefaultOpacityMode = 1;  // alpha * grey
 LIC3D_CONST kSliceDefaultOrthographic = 0;
@@ -136,6 +137,12 @@ LIC3D_CONST kSliceDefaultOpacitySource = 0;
 LIC3D_CONST kSliceDefaultHalo = 0;
 LIC3D_CONST kSliceDefaultOcclusion = 0;
 LIC3D_CONST kSliceDefaultJitter = 1;
+LIC3D_CONST kSliceDefaultSlicesPerFragment = 1;
+// With K > 1, one proxy per group of K slices: the convex hull of their polygons seen from the
+// eye, a fan of up to kSliceGroupCorners corners: as many as a group has points, so that near-
+// collinear points (a box edge crossing the group's planes) never cut the hull short.
+LIC3D_CONST kSliceGroupCorners = 24;
+LIC3D_CONST kSliceVerticesPerGroup = 3 * (kSliceGroupCorners - 2);
 LIC3D_CONST kSliceBindingOcclusion = 5;  // sampler2D: the occlusion buffer of the slice in front
 LIC3D_CONST kOcclusionTaps = 6;  // the occlusion buffer blurred by a ring of taps and the centre
 // The composite of the occlusion-shaded image into the frame (passes/occlusion_pass.h).
@@ -152,7 +159,7 @@ struct SliceUniforms {
   vec4 planeNormal;       // xyz: unit normal of the slice planes, pointing towards the viewer;
                           // w: plane offset of slice 0 (the farthest)
   vec4 eyePosition;       // xyz: the camera (this eye); w: distance between slices
-  vec4 toViewer;          // xyz: unit direction from the volume to the camera; w: unused
+  vec4 toViewer;          // xyz: unit direction from the volume to the camera; w: slice count
   vec4 transfer;          // grey = clamp(x * intensity + y); z: reference distance; w: unused
   vec4 magnitude;         // x: low end of the colour range (physical |v|), y: 1 / (high - low),
                           // z: the opacity weight's floor above the threshold; w: unused

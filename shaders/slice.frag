@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #version 460
+#extension GL_EXT_control_flow_attributes : require
 // Shades one slice fragment: region of interest, grey transfer of the LIC intensity, colour and
 // opacity by magnitude, sparsity mask, lighting, halos, occlusion, opacity correction, fog,
 // anaglyph. Each of these is a specialization constant: a variant compiles to exactly the code it
 // uses.
+//
+// With K slices per fragment (SLICES_PER_FRAGMENT > 1) the fragment stands for a group of K slices
+// (slice.vert): it shades each slice's sample on its ray and composites them before one blend.
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
 
@@ -70,9 +74,14 @@ layout(constant_id = kSliceConstJitter) const uint JITTER = kSliceDefaultJitter;
 
 // Not a display mode: how the field texture is packed (shared_layout.h, kLicConstPacking).
 layout(constant_id = kSliceConstFieldPacking) const uint FIELD_PACKING = kSliceDefaultFieldPacking;
+// Not a display mode either: how many slices one fragment composites (slice.vert). The picture is
+// the same whatever it is, but for the rounding of the blend.
+layout(constant_id = kSliceConstSlicesPerFragment) const uint SLICES_PER_FRAGMENT =
+    kSliceDefaultSlicesPerFragment;
 
 layout(location = 0) in vec3 slicePoint;  // texture coordinates on the slice
 layout(location = 1) in vec3 sliceWorld;
+layout(location = 2) flat in uint sliceIndex;
 layout(location = 0) out vec4 color;
 // The opacity this fragment adds to the occlusion buffer (OCCLUSION only; without, the frame has
 // no second attachment and the output is dropped).
@@ -205,17 +214,32 @@ float pixelJitter() {
 }
 
 // A sample's grey and opacity before the slice spacing is accounted for: alpha is per reference
-// distance (one voxel).
+// distance (one voxel). `weight` is the part of alpha that follows speed or a scalar (1 without):
+// it varies slowly, the LIC part from streak to streak.
 struct Sample {
   vec3 rgb;
   float alpha;
+  float weight;
 };
+
+// Whether the opacity follows the LIC volume (its grey or its sparsity mask): then streaks have
+// halos of their own.
+bool streakOpacity() { return OPACITY_MODE == 1 || SPARSITY == 1; }
+
+float greyOf(vec2 lic) { return clamp(u.transfer.x * lic.r + u.transfer.y, 0.0, 1.0); }
+
+// The LIC part of a sample's opacity.
+float licOpacity(vec2 lic) {
+  float alpha = OPACITY_MODE == 1 ? u.halfExtent.w * greyOf(lic) : u.halfExtent.w;
+  if (SPARSITY == 1) alpha *= lic.g;
+  return alpha;
+}
 
 Sample shadeAt(vec3 uvw, bool coarse) {
   vec2 lic = sampleLic(uvw, coarse);
-  float grey = clamp(u.transfer.x * lic.r + u.transfer.y, 0.0, 1.0);
-  float alpha = OPACITY_MODE == 1 ? u.halfExtent.w * grey : u.halfExtent.w;
-  if (SPARSITY == 1) alpha *= lic.g;
+  float grey = greyOf(lic);
+  float alpha = licOpacity(lic);
+  float weight = 1.0;
 
   vec3 rgb = vec3(grey);
   if (COLOR_MODE == 1 || MAGNITUDE_OPACITY == 1 || OPACITY_TABLE == 1) {
@@ -239,27 +263,32 @@ Sample shadeAt(vec3 uvw, bool coarse) {
     float o = clamp((opacityValue - u.magnitudeOpacity.z) * u.magnitudeOpacity.w, 0.0, 1.0);
     // Thesis 5.1.3: slow regions fade; below the threshold they vanish.
     if (OPACITY_TABLE == 1) {
-      alpha *= tableAt(o, kSliceCustomColormapRow).a;
+      weight = tableAt(o, kSliceCustomColormapRow).a;
     } else if (MAGNITUDE_OPACITY == 1) {
-      alpha *= o < u.magnitudeOpacity.y ? 0.0 : max(pow(o, u.magnitudeOpacity.x), u.magnitude.z);
+      weight = o < u.magnitudeOpacity.y ? 0.0 : max(pow(o, u.magnitudeOpacity.x), u.magnitude.z);
     }
     // A scalar with no value there (NaN in the file) is empty space.
-    if (isnan(colorValue) || isnan(opacityValue)) alpha = 0.0;
+    if (isnan(colorValue) || isnan(opacityValue)) weight = 0.0;
   }
-  return Sample(rgb, alpha);
+  return Sample(rgb, alpha * weight, weight);
 }
 
 // The strongest opacity on a ring around `p` in the screen plane, the halo's radius out: what a
 // streak passing near this point would cover. Four taps, the ring turned from pixel to pixel by
-// `turn` in [0, 1) so that neighbouring pixels cover the angles between.
-float ringOpacity(vec3 p, float turn) {
+// `turn` in [0, 1) so that neighbouring pixels cover the angles between. Where the opacity follows
+// the LIC, a tap reads the LIC volume alone and takes the centre's `weight`: speed and scalars
+// change little over the halo's radius of a voxel or two, and their fetches and transfer were
+// two thirds of the halo's cost on a CPU driver.
+float ringOpacity(vec3 p, float turn, float weight) {
   float strongest = 0.0;
   for (int k = 0; k < 4; ++k) {
     float angle = 1.57079633 * (float(k) + turn);
     vec3 q = p + u.screenRight.w * (cos(angle) * u.screenRight.xyz + sin(angle) * u.screenUp.xyz);
-    strongest = max(strongest, shadeAt(q / (2.0 * u.halfExtent.xyz) + 0.5, true).alpha);
+    vec3 at = q / (2.0 * u.halfExtent.xyz) + 0.5;
+    float alpha = streakOpacity() ? licOpacity(sampleLic(at, true)) : shadeAt(at, true).alpha;
+    strongest = max(strongest, alpha);
   }
-  return strongest;
+  return streakOpacity() ? strongest * weight : strongest;
 }
 
 // The occlusion buffer of the slice in front, blurred over the cone's footprint (one slice's
@@ -299,9 +328,14 @@ float segmentLength(vec3 point, vec3 forward, float spacing) {
   return back + ahead;
 }
 
-void main() {
-  texCoord = slicePoint;
-  world = sliceWorld;
+// One slice's sample: slice `index`, its point `point` in world units and `pointTexture` in texture
+// coordinates, `haloSlice` whether it draws the halo. Premultiplied colour and opacity; `removed`
+// where the clip plane or the region of interest takes the point away (nothing drawn), and with
+// occlusion the buffer the next slice reads in `occlusionAfter`.
+vec4 shadeSlice(vec3 point, vec3 pointTexture, bool haloSlice, out bool removed,
+                out float occlusionAfter) {
+  texCoord = pointTexture;
+  world = point;
   vec3 toEye = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : normalize(u.eyePosition.xyz - world);
   // The slice spacing along this ray: the plane spacing over |cos| of the angle between ray and
   // plane normal.
@@ -313,12 +347,13 @@ void main() {
   }
 
   // With occlusion, a removed fragment still carries the buffer to the next slice.
-  bool removed = CLIP_PLANE == 1 && dot(u.clipPlane.xyz, sliceWorld) > u.clipPlane.w;
+  removed = CLIP_PLANE == 1 && dot(u.clipPlane.xyz, point) > u.clipPlane.w;
   if (ROI_SHAPE != 0) {
     vec3 p = (u.roiFromTexture * vec4(texCoord, 1.0)).xyz;
     removed = removed || insideRegion(p) == (ROI_OUTSIDE == 1);
   }
-  if (removed && OCCLUSION == 0) discard;
+  occlusionAfter = 0.0;
+  if (removed && OCCLUSION == 0) return vec4(0.0);
 
   float inFront = OCCLUSION == 1 ? occlusionInFront() : 0.0;
   Sample s = shadeAt(texCoord, false);
@@ -328,15 +363,27 @@ void main() {
   if (OCCLUSION == 1) rgb *= 1.0 - u.occlusion.x * inFront;
 
   // Halo: where a neighbouring streak is more opaque than this point, the point takes up to its
-  // opacity in the background colour.
+  // opacity in the background colour. Every other slice draws it, over twice its spacing: a halo
+  // reaches across a voxel or two, the slices are a voxel apart, and the ring is most of a
+  // fragment's cost on a CPU driver.
+  haloSlice = HALO == 1 && !removed && haloSlice;
   float haloAlpha = 0.0;
-  if (HALO == 1 && !removed)
-    haloAlpha = clamp(u.screenUp.w * (ringOpacity(world, jitter) - alpha), 0.0, 1.0 - alpha);
+  if (haloSlice) {
+    float ring = ringOpacity(world, jitter, s.weight);
+    haloAlpha = clamp(u.screenUp.w * (ring - alpha), 0.0, 1.0 - alpha);
+  }
 
-  // Opacity per slice spacing from opacity per reference distance.
-  float exponent = segmentLength(sliceWorld, -toEye, spacing) / u.transfer.z;
-  float total = 1.0 - pow(1.0 - clamp(alpha + haloAlpha, 0.0, 1.0), exponent);
-  alpha = 1.0 - pow(1.0 - clamp(alpha, 0.0, 1.0), exponent);
+  // Opacity per slice spacing from opacity per reference distance; the halo's share of the
+  // light kept, (1 - alpha - halo) / (1 - alpha), over two spacings.
+  float exponent = segmentLength(point, -toEye, spacing) / u.transfer.z;
+  alpha = clamp(alpha, 0.0, 1.0);
+  float kept = pow(1.0 - alpha, exponent);
+  float total = 1.0 - kept;
+  if (haloSlice) {
+    float haloKept = clamp(1.0 - haloAlpha / max(1.0 - alpha, 1e-6), 0.0, 1.0);
+    total = 1.0 - kept * pow(haloKept, 2.0 * exponent);
+  }
+  alpha = 1.0 - kept;
   haloAlpha = total - alpha;
 
   if (FOG == 1) {
@@ -349,7 +396,51 @@ void main() {
   // Anaglyph eyes see grey levels: red for the left eye, green and blue for the right.
   if (ANAGLYPH != 0) rgb = vec3(dot(rgb, vec3(0.299, 0.587, 0.114)));
 
-  color = vec4(clamp(rgb, 0.0, 1.0) * alpha + u.haloColor.rgb * haloAlpha, total);
   // The buffer the next slice reads: what lies in front of it, this slice included.
-  if (OCCLUSION == 1) occlusionOut = inFront + (1.0 - inFront) * total;
+  if (OCCLUSION == 1) occlusionAfter = inFront + (1.0 - inFront) * total;
+  return vec4(clamp(rgb, 0.0, 1.0) * alpha + u.haloColor.rgb * haloAlpha, total);
+}
+
+// Whether a point lies in the clip box: where the slice's polygon (slice.vert) reaches.
+bool insideClipBox(vec3 p) {
+  vec3 tolerance = vec3(1e-6 * length(u.halfExtent.xyz));
+  return all(greaterThanEqual(p, u.clipMin.xyz - tolerance)) &&
+         all(lessThanEqual(p, u.clipMax.xyz + tolerance));
+}
+
+void main() {
+  if (SLICES_PER_FRAGMENT == 1u) {
+    bool removed;
+    float occlusionAfter;
+    color = shadeSlice(sliceWorld, slicePoint, (sliceIndex & 1u) == 0u, removed, occlusionAfter);
+    if (removed && OCCLUSION == 0) discard;
+    if (OCCLUSION == 1) occlusionOut = occlusionAfter;
+    return;
+  }
+  // K slices, the group's first (the farthest) where the proxy lies: each slice's point where the
+  // pixel's ray meets its plane, composited back to front ("over") as the blend would, then
+  // blended once. The group's first slice has an even index when K is even, so which slices draw
+  // the halo is known as the loop unrolls.
+  vec3 n = u.planeNormal.xyz;
+  vec3 ray = ORTHOGRAPHIC == 1 ? u.toViewer.xyz : sliceWorld - u.eyePosition.xyz;
+  float firstOffset = u.planeNormal.w + float(sliceIndex) * u.eyePosition.w;
+  uint count = uint(u.toViewer.w);
+  vec4 sum = vec4(0.0);
+  bool drawn = false;
+  [[unroll]] for (uint j = 0u; j < SLICES_PER_FRAGMENT; ++j) {
+    if (sliceIndex + j >= count) break;
+    float offset = firstOffset + float(j) * u.eyePosition.w;
+    vec3 point = j == 0u ? sliceWorld : sliceWorld + ray * (offset - dot(n, sliceWorld)) / dot(n, ray);
+    if (!insideClipBox(point)) continue;
+    bool removed;
+    float occlusionAfter;
+    vec4 c = shadeSlice(point, point / (2.0 * u.halfExtent.xyz) + 0.5,
+                        ((SLICES_PER_FRAGMENT % 2u == 0u ? 0u : sliceIndex) + j) % 2u == 0u,
+                        removed, occlusionAfter);
+    if (removed) continue;
+    drawn = true;
+    sum = c + (1.0 - c.a) * sum;
+  }
+  if (!drawn) discard;
+  color = sum;
 }

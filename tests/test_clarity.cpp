@@ -584,6 +584,24 @@ TEST_F(GpuTest, EachDisplayVariantIsItsOwnCachedPipeline) {
   EXPECT_EQ(renderer.drawVariantCount(), before + 3);
 }
 
+// Halos are drawn by every other slice. A CPU driver runs both sides of the shader's branch, so
+// there the slices without halos take the pipeline without them: two variants for one frame.
+TEST_F(GpuTest, HalosOnACpuDriverDrawEveryOtherSliceWithoutTheRing) {
+  const Dims dims{8, 8, 8};
+  LicRenderer renderer = rendererWithVolume(context(), dims, [](int, int, int) { return 0.5f; });
+  renderer.setSlicesPerFragment(1);  // K > 1 draws each group's halo slice in its one draw
+  ViewParams view = opaqueView(32);
+  view.halo = 0.6f;
+  const std::size_t before = renderer.drawVariantCount();
+  ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
+  const bool cpu = context().deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  EXPECT_EQ(renderer.drawVariantCount(), before + (cpu ? 2 : 1));
+  // The same with occlusion, whose slices are drawn front to back one at a time.
+  view.occlusion = 0.5f;
+  ASSERT_TRUE(renderer.render(LicParams{}, view).ok());
+  EXPECT_EQ(renderer.drawVariantCount(), before + (cpu ? 4 : 2));
+}
+
 }  // namespace
 }  // namespace lic3d
 
@@ -599,7 +617,7 @@ TEST_F(GpuTest, RuntimeModeShaderDrawsWhatTheSpecializedVariantsDraw) {
   lic.sparsity.distribution = SparsityDistribution::Halton;
   ViewParams base;
   base.width = base.height = 64;
-  std::vector<ViewParams> views(4, base);
+  std::vector<ViewParams> views(5, base);
   views[1].color = ColorMode::Magnitude;
   views[1].magnitudeOpacity = 1.0f;
   views[2].fog = true;
@@ -609,6 +627,11 @@ TEST_F(GpuTest, RuntimeModeShaderDrawsWhatTheSpecializedVariantsDraw) {
   views[3].stereo = StereoMode::Anaglyph;
   views[3].colormap = Colormap::Viridis;
   views[3].color = ColorMode::Magnitude;
+  // On a CPU driver the specialized halos take one draw per slice, the runtime-mode shader one
+  // draw whose slices decide by their index.
+  views[4].color = ColorMode::Magnitude;
+  views[4].magnitudeOpacity = 1.0f;
+  views[4].halo = 0.6f;
   Result<LicRenderer> specialized = LicRenderer::create(context());
   RendererOptions runtimeOptions;
   runtimeOptions.runtimeModes = true;

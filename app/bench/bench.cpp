@@ -25,6 +25,7 @@
 #include "lic/noise.h"
 #include "lic/sparsity.h"
 #include "loading/session_inputs.h"
+#include "options/flags.h"
 #include "render/lic_renderer.h"
 
 namespace lic3d::cli {
@@ -167,45 +168,76 @@ Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& 
                         {"host_peak_bytes", hostPeakBytes()}};
 }
 
-// The frame table's rows for a volume of n^3 in `renderer`: each buffer format at each size.
+// The frame table's rows for a volume of n^3 in `renderer`: each view (look), K and buffer
+// format at each size, with one slice per voxel and with a quarter of them: how the time splits
+// between what each slice costs and what each frame costs.
 Result<void> frameRows(const Context& context, const BenchOptions& options, double& budgetLeft,
                        LicRenderer& renderer, const GpuTimer& timer, int n,
                        const std::vector<int>& frameSizes, nlohmann::json& rows) {
   LIC3D_TRY_ASSIGN(OffscreenTarget target,
                    OffscreenTarget::create(context, FramePrecision::Float16));
-  // Each buffer format at each size with one slice per voxel, then with a quarter of them:
-  // how the time splits between what each slice costs and what each frame costs.
+  LIC3D_TRY_ASSIGN(const std::vector<int> ks,
+                   parseIntList(options.slicesPerFragment, "--slices-per-fragment", 0, 4));
+  for (const int k : ks)
+    if (k == 3) return inputError("--slices-per-fragment: K is 0, 1, 2 or 4");
+  constexpr std::pair<FramePrecision, const char*> kBuffers[] = {
+      {FramePrecision::Float16, "rgba16f"},
+      {FramePrecision::Unorm16, "rgba16"},
+      {FramePrecision::Unorm10, "rgb10a2"},
+      {FramePrecision::Unorm8, "rgba8"}};
+  std::vector<std::pair<FramePrecision, const char*>> buffers;
+  for (const std::string_view name : splitCommas(options.frameBuffers)) {
+    const auto* found = std::find_if(std::begin(kBuffers), std::end(kBuffers),
+                                     [&](const auto& b) { return name == b.second; });
+    if (found == std::end(kBuffers))
+      return inputError("--frame-buffers: unknown buffer " + std::string(name));
+    buffers.push_back(*found);
+  }
+  std::vector<std::pair<std::string, ViewParams>> looks;
+  for (const std::string_view name : splitCommas(options.frameLooks)) {
+    if (name == "plain") {
+      looks.emplace_back(std::string(name), ViewParams{});
+    } else if (name == "default") {
+      Session session;
+      applyLook(kDefaultLook, session);
+      looks.emplace_back(std::string(name), session.view);
+    } else {
+      return inputError("--frame-looks: plain or default, not " + std::string(name));
+    }
+  }
   for (const int slices : {n, std::max(1, n / 4)}) {
-    for (const FramePrecision frame : {FramePrecision::Float16, FramePrecision::Unorm16,
-                                       FramePrecision::Unorm10, FramePrecision::Unorm8}) {
-      LIC3D_TRY(target.setPrecision(frame));
-      const char* bufferName = frame == FramePrecision::Float16   ? "rgba16f"
-                               : frame == FramePrecision::Unorm16 ? "rgba16"
-                               : frame == FramePrecision::Unorm10 ? "rgb10a2"
-                                                                  : "rgba8";
-      for (const int size : frameSizes) {
-        ViewParams view;
-        view.width = view.height = size;
-        view.slices = slices;
-        LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
-                           return timeFrame(context, renderer, target, timer, view);
-                         }));
-        nlohmann::json row{{"image", size}, {"buffer", bufferName}, {"slices", slices}};
-        if (t.measured) {
-          std::printf("%9d^2 %10s %7d %12.3f %12.3f\n", size, bufferName, slices, t.medianMs,
-                      t.minMs);
-          row["median_ms"] = t.medianMs;
-          row["min_ms"] = t.minMs;
-        } else {
-          std::printf("%9d^2 %10s %7d %12s (skipped: %s)\n", size, bufferName, slices, "-",
-                      t.skipped.c_str());
-          row["skipped"] = t.skipped;
+    for (const auto& [lookName, lookView] : looks) {
+      for (const auto& [frame, bufferName] : buffers) {
+        LIC3D_TRY(target.setPrecision(frame));
+        for (const int size : frameSizes) {
+          for (const int k : ks) {
+            renderer.setSlicesPerFragment(k);
+            ViewParams view = lookView;
+            view.width = view.height = size;
+            view.slices = slices;
+            LIC3D_TRY_ASSIGN(const Timing t, measure(options, budgetLeft, [&] {
+                               return timeFrame(context, renderer, target, timer, view);
+                             }));
+            nlohmann::json row{{"image", size},    {"buffer", bufferName}, {"slices", slices},
+                               {"look", lookName}, {"halo", view.halo},    {"k", k}};
+            if (t.measured) {
+              std::printf("%9d^2 %10s %7d %8s %2d %12.3f %12.3f\n", size, bufferName, slices,
+                          lookName.c_str(), k, t.medianMs, t.minMs);
+              row["median_ms"] = t.medianMs;
+              row["min_ms"] = t.minMs;
+            } else {
+              std::printf("%9d^2 %10s %7d %8s %2d %12s (skipped: %s)\n", size, bufferName, slices,
+                          lookName.c_str(), k, "-", t.skipped.c_str());
+              row["skipped"] = t.skipped;
+            }
+            std::fflush(stdout);
+            rows.push_back(row);
+          }
         }
-        std::fflush(stdout);
-        rows.push_back(row);
       }
     }
   }
+  renderer.setSlicesPerFragment(0);
   return {};
 }
 
@@ -278,7 +310,10 @@ Result<nlohmann::json> runBenchmarks(const Context& context, const BenchOptions&
   const int n = options.frameVolume;
   std::printf("\nFrame: %d^3 volume, view-aligned slices (%d = one per voxel), default camera\n", n,
               n);
-  std::printf("%12s %10s %7s %12s %12s\n", "image", "buffer", "slices", "median ms", "min ms");
+  std::printf("(K: slices per fragment, 0 the device's choice: %d on a GPU, %d on a CPU driver)\n",
+              SlicePass::kSlicesPerFragmentGpu, SlicePass::kSlicesPerFragmentCpu);
+  std::printf("%12s %10s %7s %8s %2s %12s %12s\n", "image", "buffer", "slices", "look", "K",
+              "median ms", "min ms");
   report["frame"] = {{"volume", n}, {"slices", n}, {"rows", nlohmann::json::array()}};
   if (residentBytes(n, precision) > 0.8 * memory) {
     report["frame"]["skipped"] = "device memory";

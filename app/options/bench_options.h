@@ -17,6 +17,9 @@ struct BenchOptions {
   std::string lengths = "10,20";
   std::string frameSizes = "512,1024,2048";
   int frameVolume = 256;
+  std::string frameBuffers = "rgba16f,rgba16,rgb10a2,rgba8";
+  std::string frameLooks = "plain";     // plain: ViewParams' defaults; default: the default look
+  std::string slicesPerFragment = "0";  // K of each frame row; 0: the device's choice
   int repeats = 7;
   int warmup = 2;
   double budgetSeconds = 120.0;

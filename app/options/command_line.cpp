@@ -100,6 +100,20 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   benchCommand->add_option("--frame-volume", bench.frameVolume, "Volume size N of the frame table")
       ->check(rangeCheck(4, 2048))
       ->capture_default_str();
+  benchCommand
+      ->add_option("--frame-buffers", bench.frameBuffers,
+                   "Colour buffers of the frame table: rgba16f, rgba16, rgb10a2, rgba8")
+      ->capture_default_str();
+  benchCommand
+      ->add_option("--frame-looks", bench.frameLooks,
+                   "Views of the frame table: plain (no halos, the view's defaults) and default "
+                   "(the default look, with halos)")
+      ->capture_default_str();
+  benchCommand
+      ->add_option("--slices-per-fragment", bench.slicesPerFragment,
+                   "Slices composited per fragment (K) of the frame table's rows: 1, 2, 4, or 0 "
+                   "for the device's choice")
+      ->capture_default_str();
   benchCommand->add_option("--repeats", bench.repeats, "Timed repeats per row (median reported)")
       ->check(rangeCheck(5, 1000))
       ->capture_default_str();

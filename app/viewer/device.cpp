@@ -138,6 +138,7 @@ Result<void> App::createGpu() {
   RendererOptions rendererOptions;
   rendererOptions.fieldPrecision = session_.precision;
   rendererOptions.doubleBuffered = true;
+  rendererOptions.haloPipelinePerSlice = false;
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(*context_, rendererOptions));
   renderer_.emplace(std::move(renderer));
   LIC3D_TRY_ASSIGN(FramePresenter presenter,

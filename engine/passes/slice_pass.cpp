@@ -101,6 +101,11 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   s.occlusion = view.occlusion > 0.0f ? 1u : 0u;
   s.jitter = view.jitter ? 1u : 0u;
   frame.eyeIndex = eye == Eye::Right ? 1 : 0;
+  // The box lies within the bounding sphere around the centre, at least distance - |target| -
+  // radius from the camera; the near plane is at distance - 2 radius - |target| (computeCamera)
+  // unless the camera is that close, and the far plane beyond the sphere.
+  frame.groupable = central.distance * (1.0f - 1e-3f) >=
+                    2.0f * glm::length(frame.halfExtent) + glm::length(view.camera.target);
 
   gpu::SliceUniforms& u = frame.uniforms;
   const glm::vec3 h = frame.halfExtent;
@@ -117,7 +122,7 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   u.clipMax = glm::vec4((glm::clamp(view.clipMax, 0.0f, 1.0f) - 0.5f) * 2.0f * h, 0.0f);
   u.planeNormal = glm::vec4(frame.plan.normal, frame.plan.firstOffset);
   u.eyePosition = glm::vec4(frame.camera.eye, frame.plan.spacing);
-  u.toViewer = glm::vec4(central.toViewer, 0.0f);
+  u.toViewer = glm::vec4(central.toViewer, static_cast<float>(frame.plan.count));
   u.transfer = glm::vec4(greyTransfer(view, transferFacts), frame.plan.voxelSize, 0.0f);
   u.magnitude =
       glm::vec4(magnitudeTransfer(colorRange(view, transferFacts)), view.opacityFloor, 0.0f);
@@ -162,10 +167,12 @@ SliceFrame makeSliceFrame(const ViewParams& view, const VolumeFacts& volume, Eye
   return frame;
 }
 
-Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes) {
+Result<SlicePass> SlicePass::create(const Context& context, bool runtimeModes,
+                                    bool haloPipelinePerSlice) {
   SlicePass pass;
   pass.context_ = &context;
   pass.runtimeModes_ = runtimeModes;
+  pass.haloPipelinePerSlice_ = haloPipelinePerSlice;
   constexpr VkShaderStageFlags kBothStages =
       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -251,10 +258,32 @@ Result<VkPipeline> SlicePass::pipelineFor(const SliceFrame& frame, VkFormat form
   if (runtimeModes_)
     key = SliceSpecialization{.anaglyph = frame.specialization.anaglyph,
                               .fieldPacking = frame.specialization.fieldPacking,
-                              .occlusion = frame.specialization.occlusion};
+                              .occlusion = frame.specialization.occlusion,
+                              .slicesPerFragment = frame.specialization.slicesPerFragment};
   // The occlusion variant draws into the occlusion pass's attachments, whatever the frame's.
   if (key.occlusion == 1) format = VK_FORMAT_UNDEFINED;
   return pipelines_.get({key, format}, [&](const SliceVariant& v) { return createPipeline(v); });
+}
+
+Result<VkPipeline> SlicePass::pipelineWithoutHalo(const SliceFrame& frame, VkFormat format) {
+  // Halos are drawn by every other slice (slice.frag). A GPU skips the ring where a whole
+  // subgroup is on a slice without; a CPU driver runs both sides of a branch, so there the slices
+  // without take the pipeline without halos.
+  SliceFrame plain = frame;
+  if (frame.specialization.halo == 1 && frame.specialization.slicesPerFragment == 1 &&
+      haloPipelinePerSlice_ && !runtimeModes_ &&
+      context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
+    plain.specialization.halo = 0;
+  return pipelineFor(plain, format);
+}
+
+std::uint32_t SlicePass::slicesPerFragment(const SliceFrame& frame) const {
+  if (frame.specialization.occlusion == 1 || !frame.groupable) return 1;
+  int k = requestedSlicesPerFragment_;
+  if (k <= 0)
+    k = context_->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kSlicesPerFragmentCpu
+                                                                   : kSlicesPerFragmentGpu;
+  return k >= 4 ? 4u : k >= 2 ? 2u : 1u;
 }
 
 void SlicePass::writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const {
@@ -283,6 +312,7 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
   LIC3D_ASSERT(slot < kUniformSlots);
   if (frame.specialization.occlusion == 0) return {};
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, VK_FORMAT_UNDEFINED));
+  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineWithoutHalo(frame, VK_FORMAT_UNDEFINED));
   const VkExtent2D extent = viewport.extent;
   gpu::SliceUniforms uniforms = frame.uniforms;
   uniforms.occlusion.z = 1.0f / static_cast<float>(extent.width);
@@ -299,22 +329,25 @@ Result<void> SlicePass::prepare(VkCommandBuffer cmd, VkRect2D viewport, const Im
   const int count = frame.plan.count;
   return occlusion_.record(cmd, frame.eyeIndex, extent, count,
                            [&](VkCommandBuffer c, int index, VkImageView inFront) {
-                             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-                             pushDescriptors(c, volume, field, scalars, inFront, slot);
                              // Slice 0 is the farthest: the index-th from the front is count - 1 -
                              // index.
-                             vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0,
-                                       static_cast<std::uint32_t>(count - 1 - index));
+                             const auto slice = static_cast<std::uint32_t>(count - 1 - index);
+                             vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                               slice % 2 == 0 ? pipeline : withoutHalo);
+                             pushDescriptors(c, volume, field, scalars, inFront, slot);
+                             vkCmdDraw(c, gpu::kSliceVerticesPerSlice, 1, 0, slice);
                            });
 }
 
 Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect2D viewport,
                                const Image& volume, const FieldTexture& field, const Image& scalars,
-                               const SliceFrame& frame, std::uint32_t slot) {
+                               const SliceFrame& sliceFrame, std::uint32_t slot) {
   LIC3D_ASSERT(slot < kUniformSlots);
-  if (frame.specialization.occlusion == 1)
-    return occlusion_.composite(cmd, frame.eyeIndex, colorFormat, viewport,
-                                anaglyphWriteMask(frame.specialization.anaglyph));
+  if (sliceFrame.specialization.occlusion == 1)
+    return occlusion_.composite(cmd, sliceFrame.eyeIndex, colorFormat, viewport,
+                                anaglyphWriteMask(sliceFrame.specialization.anaglyph));
+  SliceFrame frame = sliceFrame;
+  const std::uint32_t k = frame.specialization.slicesPerFragment = slicesPerFragment(sliceFrame);
   LIC3D_TRY_ASSIGN(VkPipeline pipeline, pipelineFor(frame, colorFormat));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
 
@@ -322,7 +355,24 @@ Result<void> SlicePass::record(VkCommandBuffer cmd, VkFormat colorFormat, VkRect
   writeUniforms(frame.uniforms, slot);
   // No occlusion buffer without occlusion: any 2D image fills the binding.
   pushDescriptors(cmd, volume, field, scalars, colormaps_.view(), slot);
-  vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, static_cast<std::uint32_t>(frame.plan.count), 0, 0);
+  const auto count = static_cast<std::uint32_t>(frame.plan.count);
+  if (k > 1) {
+    // A proxy per group of K slices (slice.vert), the last group perhaps short.
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerGroup, (count + k - 1) / k, 0, 0);
+    return {};
+  }
+  LIC3D_TRY_ASSIGN(VkPipeline withoutHalo, pipelineWithoutHalo(frame, colorFormat));
+  if (withoutHalo == pipeline) {
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, count, 0, 0);
+    return {};
+  }
+  // One draw per slice, back to front as ever.
+  for (std::uint32_t slice = 0; slice < count; ++slice) {
+    if (slice > 0)
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                        slice % 2 == 0 ? pipeline : withoutHalo);
+    vkCmdDraw(cmd, gpu::kSliceVerticesPerSlice, 1, 0, slice);
+  }
   return {};
 }
 

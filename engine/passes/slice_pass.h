@@ -52,10 +52,12 @@ struct SliceSpecialization {
   std::uint32_t halo = gpu::kSliceDefaultHalo;
   std::uint32_t occlusion = gpu::kSliceDefaultOcclusion;  // drawn front to back (OcclusionPass)
   std::uint32_t jitter = gpu::kSliceDefaultJitter;
+  // Not a display mode: K slices composited per fragment (SlicePass::slicesPerFragment).
+  std::uint32_t slicesPerFragment = gpu::kSliceDefaultSlicesPerFragment;
 
   bool operator==(const SliceSpecialization&) const = default;
 };
-static_assert(sizeof(SliceSpecialization) == 20 * 4);
+static_assert(sizeof(SliceSpecialization) == 21 * 4);
 static_assert(offsetof(SliceSpecialization, opacityMode) == 4 * gpu::kSliceConstOpacityMode);
 static_assert(offsetof(SliceSpecialization, orthographic) == 4 * gpu::kSliceConstOrthographic);
 static_assert(offsetof(SliceSpecialization, colorMode) == 4 * gpu::kSliceConstColorMode);
@@ -77,6 +79,8 @@ static_assert(offsetof(SliceSpecialization, opacitySource) == 4 * gpu::kSliceCon
 static_assert(offsetof(SliceSpecialization, halo) == 4 * gpu::kSliceConstHalo);
 static_assert(offsetof(SliceSpecialization, occlusion) == 4 * gpu::kSliceConstOcclusion);
 static_assert(offsetof(SliceSpecialization, jitter) == 4 * gpu::kSliceConstJitter);
+static_assert(offsetof(SliceSpecialization, slicesPerFragment) ==
+              4 * gpu::kSliceConstSlicesPerFragment);
 
 // What a frame needs to know about the volume besides the view.
 struct VolumeFacts {
@@ -120,6 +124,9 @@ struct SliceFrame {
   SlicePlan plan;
   glm::vec3 halfExtent{0.5f};
   int eyeIndex = 0;  // 0 mono or left, 1 right: whose occlusion images
+  // Whether slices may be drawn K to a fragment: the clip box lies wholly between the camera's
+  // near and far planes, so no slice is cut by them (slice.vert's group proxies are not).
+  bool groupable = false;
 };
 
 // `viewport` is the eye's size in pixels.
@@ -136,8 +143,11 @@ class SlicePass {
   static constexpr std::uint32_t kUniformSlots = 8;
 
   // `context` must outlive the pass. With `runtimeModes` (benchmark builds only) every display
-  // mode is decided at run time by one shader instead of by specialization.
-  static Result<SlicePass> create(const Context& context, bool runtimeModes = false);
+  // mode is decided at run time by one shader instead of by specialization. With
+  // `haloPipelinePerSlice`, on a CPU driver the slices that draw no halo take the pipeline without
+  // the ring, one draw per slice (pipelineWithoutHalo).
+  static Result<SlicePass> create(const Context& context, bool runtimeModes = false,
+                                  bool haloPipelinePerSlice = true);
 
   // Outside any rendering, before record(): what must be drawn before the frame's rendering
   // opens (the occlusion variant's front-to-back slices; nothing for the others). The same
@@ -158,6 +168,18 @@ class SlicePass {
 
   std::size_t variantCount() const { return pipelines_.size(); }
 
+  // K, the slices one fragment composites: 1, 2 or 4, or 0 for the device's choice
+  // (kSlicesPerFragmentGpu, kSlicesPerFragmentCpu). Pictures are the same whatever K but for the
+  // rounding of the blend; K > 1 blends 1/K as often. A GPU blends less; a CPU driver gains
+  // nothing (its cost is the samples shaded, and it shades a group's samples outside the box as
+  // well, masked): docs/BENCHMARKS.md.
+  void setSlicesPerFragment(int k) { requestedSlicesPerFragment_ = k; }
+  // What a frame is drawn with: 1 with occlusion (each slice reads the buffer the one in front
+  // wrote, blurred) or where the frame is not groupable, else the requested K.
+  std::uint32_t slicesPerFragment(const SliceFrame& frame) const;
+  static constexpr int kSlicesPerFragmentGpu = 2;
+  static constexpr int kSlicesPerFragmentCpu = 1;
+
  private:
   // A pipeline per display variant and colour attachment format.
   struct SliceVariant {
@@ -167,12 +189,16 @@ class SlicePass {
   };
   Result<Pipeline> createPipeline(const SliceVariant& variant) const;
   Result<VkPipeline> pipelineFor(const SliceFrame& frame, VkFormat format);
+  // The pipeline for the slices that draw no halo: `pipelineFor` unless a CPU driver draws halos.
+  Result<VkPipeline> pipelineWithoutHalo(const SliceFrame& frame, VkFormat format);
   void writeUniforms(const gpu::SliceUniforms& uniforms, std::uint32_t slot) const;
   void pushDescriptors(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
                        const Image& scalars, VkImageView occlusion, std::uint32_t slot) const;
 
   const Context* context_ = nullptr;
   bool runtimeModes_ = false;
+  bool haloPipelinePerSlice_ = true;
+  int requestedSlicesPerFragment_ = 0;
   PipelineLayout layout_;
   ShaderModule vertexShader_;
   ShaderModule fragmentShader_;

@@ -17,7 +17,9 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   LIC3D_TRY_ASSIGN(renderer.target_, OffscreenTarget::create(context, options.framePrecision));
   LIC3D_TRY_ASSIGN(renderer.job_, LicVolumeJob::create(context, options.doubleBuffered,
                                                        options.naiveLicKernel, options.licLaunch));
-  LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context, options.runtimeModes));
+  LIC3D_TRY_ASSIGN(renderer.slicePass_,
+                   SlicePass::create(context, options.runtimeModes, options.haloPipelinePerSlice));
+  renderer.slicePass_.setSlicesPerFragment(options.slicesPerFragment);
   return renderer;
 }
 

@@ -37,6 +37,12 @@ struct RendererOptions {
   FramePrecision framePrecision = FramePrecision::Float16;
   bool runtimeModes = false;    // benchmark builds only: see SlicePass::create
   bool doubleBuffered = false;  // a second LIC volume for frame-paced recomputes
+  // On a CPU driver, the slices without halos take a pipeline of their own, one draw per slice
+  // (SlicePass::create). The app keeps one draw: on lavapipe the draws per frame grew the driver's
+  // memory for hundreds of frames, past the soak's tolerance.
+  bool haloPipelinePerSlice = true;
+  // K slices composited per fragment, 1, 2 or 4; 0: the device's choice (SlicePass).
+  int slicesPerFragment = 0;
   // Benchmark builds only: the LIC pass is the naive reference kernel (noise in an R8 texture of
   // its own, three fetches per exact RK2 sample), which `lic3d bench` compares the others with.
   bool naiveLicKernel = false;
@@ -172,6 +178,8 @@ class LicRenderer {
   const LicVolumeJob& licJob() const { return job_; }
   const FieldTextures& fieldTextures() const { return textures_; }
   std::size_t drawVariantCount() const { return slicePass_.variantCount(); }
+  // SlicePass::setSlicesPerFragment: 1, 2 or 4 slices composited per fragment, 0 automatic.
+  void setSlicesPerFragment(int k) { slicePass_.setSlicesPerFragment(k); }
 
  private:
   LicRenderer() = default;
