@@ -85,6 +85,43 @@ struct HistogramPushConstants {
                          // with length(texel * xyz) below this are empty, not counted
 };
 
+// ---- Visible bricks (visible_bricks.comp, docs/VISIBLE_WORK.md) ---------------------------------
+// One workgroup per brick of kVisibleBrickSize^3 voxels: whether a fragment the slice pass can
+// draw with non-zero opacity reads one of its LIC voxels, and the list of the visible bricks not
+// made yet, one list and one VkDispatchIndirectCommand per layer of bricks along z.
+LIC3D_CONST kVisibleBrickSize = 8;
+LIC3D_CONST kVisibleLocalSize = 64;
+LIC3D_CONST kVisibleBindingField = 0;     // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kVisibleBindingUniforms = 1;  // uniform VisibleBricksUniforms
+LIC3D_CONST kVisibleBindingVisible = 2;   // buffer: a uint per brick, 1 visible, 0 not
+LIC3D_CONST kVisibleBindingMade = 3;      // buffer: a uint per brick, 1 if its LIC is made
+LIC3D_CONST kVisibleBindingLists = 4;     // buffer: per brick layer, bricksX * bricksY indices
+LIC3D_CONST kVisibleBindingDispatch = 5;  // buffer: per brick layer, x = listed count, y, z
+// Specialization constant ids (see VisibleBricksSpecialization in visible_bricks_pass.h).
+LIC3D_CONST kVisibleConstOpacityRule = 0;  // 0 every voxel, 1 not NaN, 2 not NaN and o >= threshold
+LIC3D_CONST kVisibleConstPacking = 1;      // the field texture's packing (kLicConstPacking)
+LIC3D_CONST kVisibleConstClipPlane = 2;    // as kSliceConstClipPlane
+LIC3D_CONST kVisibleConstRoiShape = 3;     // as kSliceConstRoiShape
+LIC3D_CONST kVisibleConstRoiOutside = 4;   // as kSliceConstRoiOutside
+LIC3D_CONST kVisibleDefaultOpacityRule = 0;
+LIC3D_CONST kVisibleDefaultPacking = kLicDefaultPacking;
+LIC3D_CONST kVisibleDefaultClipPlane = 0;
+LIC3D_CONST kVisibleDefaultRoiShape = 0;
+LIC3D_CONST kVisibleDefaultRoiOutside = 0;
+
+struct VisibleBricksUniforms {
+  mat4 roiFromTexture;   // as SliceUniforms
+  ivec4 dims;            // xyz: the grid; w: the margin M in voxels
+  ivec4 bricks;          // xyz: bricks per axis; w: unused
+  vec4 halfExtent;       // xyz: as SliceUniforms; w: the jitter margin J in world units
+  vec4 clipMin;          // xyz: as SliceUniforms
+  vec4 clipMax;          // xyz: as SliceUniforms
+  vec4 clipPlane;        // as SliceUniforms
+  vec4 texelToPhysical;  // as SliceUniforms
+  vec4 opacity;          // x: low end of the opacity range, y: 1 / its width, z: the lowest o
+                         // that may be opaque (o below it is transparent); w: unused
+};
+
 // ---- Slice rendering pass ----------------------------------------------------------------------
 LIC3D_CONST kSliceBindingVolume = 0;      // sampler3D: the LIC volume (r = LIC, g = drawn)
 LIC3D_CONST kSliceBindingField = 1;       // sampler3D: the field texture (volume_textures.h)
@@ -286,6 +323,7 @@ static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(TimeBlendPushConstants) == 48);
 static_assert(sizeof(SliceUniforms) == 2 * 64 + 26 * 16);
 static_assert(sizeof(OcclusionPushConstants) == 16);
+static_assert(sizeof(VisibleBricksUniforms) == 64 + 8 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif
