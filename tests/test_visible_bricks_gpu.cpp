@@ -5,14 +5,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
+#include "core/look.h"
+#include "core/session.h"
 #include "core/slice_geometry.h"
 #include "gpu/submit.h"
+#include "gpu/timer.h"
 #include "gpu_test_support.h"
+#include "io/field_io.h"
 #include "lic/noise.h"
+#include "loading/session_inputs.h"
+#include "passes/lic_pass.h"
 #include "passes/visible_bricks_pass.h"
+#include "render/lic_renderer.h"
+#include "test_support.h"
 
 namespace lic3d {
 namespace {
@@ -225,6 +234,251 @@ TEST_F(VisibleBricksTest, SetupFollowsTheSliceShader) {
   EXPECT_FLOAT_EQ(opaqueFromTable(table), 0.5f);
   EXPECT_FLOAT_EQ(opaqueFromTable(std::vector<float>{0.3f, 0.0f}), 0.0f);
   EXPECT_GT(opaqueFromTable(std::vector<float>{0.0f, 0.0f}), 1.0f);
+}
+
+// The LIC pass over the listed bricks against the full pass: the listed bricks' voxels equal, bit
+// for bit; the others untouched. Then the invalidation: bricks made are not listed again, and a
+// looser rule lists only the bricks that became visible.
+class BrickLicTest : public VisibleBricksTest {
+ protected:
+  void SetUp() override {
+    VisibleBricksTest::SetUp();
+    if (HasFatalFailure()) return;
+    Result<LicPass> lic = LicPass::create(context());
+    ASSERT_TRUE(lic.ok()) << lic.error().message;
+    lic_.emplace(std::move(*lic));
+    ImageDesc maskDesc;
+    maskDesc.format = kSparsityMaskFormat;
+    maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    maskDesc.name = "test mask";
+    Result<Image> mask = Image::create(context(), maskDesc);
+    ASSERT_TRUE(mask.ok());
+    mask_ = std::move(*mask);
+    const std::uint8_t white = 0;
+    ASSERT_TRUE(uploadImage(context(), mask_, &white, 1).ok());
+    for (Image* image : {&full_, &bricks_}) {
+      ImageDesc desc;
+      desc.format = kLicVolumeFormat;
+      desc.extent = {static_cast<std::uint32_t>(kGrid.x), static_cast<std::uint32_t>(kGrid.y),
+                     static_cast<std::uint32_t>(kGrid.z)};
+      desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                   VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+      desc.name = "test lic volume";
+      Result<Image> made = Image::create(context(), desc);
+      ASSERT_TRUE(made.ok());
+      *image = std::move(*made);
+    }
+    // Both cleared to 0 in GENERAL; the full one made whole.
+    const Result<void> ran = submitAndWait(
+        context(),
+        [&](VkCommandBuffer cmd) {
+          const VkClearColorValue zero{};
+          const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+          for (const Image* image : {&full_, &bricks_}) {
+            imageBarrier(cmd, image->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                         VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+          }
+          memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+          EXPECT_TRUE(lic_->record(cmd, texture_, mask_, {}, full_, params_, 0, kGrid.z).ok());
+        },
+        "brick lic test setup");
+    ASSERT_TRUE(ran.ok()) << ran.error().message;
+  }
+  void TearDown() override {
+    lic_.reset();
+    mask_ = Image();
+    full_ = Image();
+    bricks_ = Image();
+    VisibleBricksTest::TearDown();
+  }
+
+  // Classifies, makes the listed bricks, reads the lists back: the bricks listed.
+  std::vector<std::uint32_t> classifyAndMake(const VisibleBricksSetup& setup) {
+    const Result<void> ran = submitAndWait(
+        context(),
+        [&](VkCommandBuffer cmd) {
+          EXPECT_TRUE(pass_->record(cmd, texture_, setup).ok());
+          pass_->recordReadback(cmd);
+          EXPECT_TRUE(lic_->recordBricks(cmd, texture_, mask_, {}, bricks_, params_, *pass_, 0,
+                                         brickCounts(kGrid).z)
+                          .ok());
+        },
+        "brick lic test");
+    EXPECT_TRUE(ran.ok()) << ran.error().message;
+    std::vector<std::uint32_t> listed;
+    for (const std::vector<std::uint32_t>& layer : pass_->listedBricks())
+      listed.insert(listed.end(), layer.begin(), layer.end());
+    std::sort(listed.begin(), listed.end());
+    return listed;
+  }
+
+  std::vector<std::uint32_t> texels(const Image& image) {
+    Result<std::vector<std::byte>> bytes = readImage(context(), image, VK_IMAGE_LAYOUT_GENERAL, 4);
+    EXPECT_TRUE(bytes.ok());
+    std::vector<std::uint32_t> out(voxelCount(kGrid));
+    if (bytes.ok()) std::memcpy(out.data(), bytes->data(), out.size() * 4);
+    return out;
+  }
+
+  // Each voxel of a made brick equals the full pass'; every other voxel is 0.
+  void expectMadeBricksEqual(const std::vector<std::uint32_t>& made) {
+    const std::vector<std::uint32_t> full = texels(full_), bricks = texels(bricks_);
+    const glm::ivec3 counts = brickCounts(kGrid);
+    std::size_t equal = 0, differing = 0, untouched = 0;
+    for (int k = 0; k < kGrid.z; ++k)
+      for (int j = 0; j < kGrid.y; ++j)
+        for (int i = 0; i < kGrid.x; ++i) {
+          const std::size_t v = voxelIndex(kGrid, i, j, k);
+          const std::uint32_t brick =
+              static_cast<std::uint32_t>(i / 8 + counts.x * (j / 8 + counts.y * (k / 8)));
+          const bool isMade = std::binary_search(made.begin(), made.end(), brick);
+          if (isMade) {
+            (bricks[v] == full[v] ? equal : differing) += 1;
+          } else {
+            EXPECT_EQ(bricks[v], 0u) << "voxel " << i << " " << j << " " << k;
+            ++untouched;
+          }
+        }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(equal, 0u);
+    RecordProperty("untouched", static_cast<int>(untouched));
+  }
+
+  std::optional<LicPass> lic_;
+  LicParams params_;
+  Image mask_;
+  Image full_;
+  Image bricks_;
+};
+
+TEST_F(BrickLicTest, ListedBricksEqualTheFullPassAndAreMadeOnce) {
+  VisibleBricksSetup tube = openSetup(texture_);
+  tube.specialization.opacityRule = 2;
+  const std::vector<std::uint32_t> first = classifyAndMake(tube);
+  const std::size_t all =
+      static_cast<std::size_t>(brickCounts(kGrid).x) * brickCounts(kGrid).y * brickCounts(kGrid).z;
+  ASSERT_GT(first.size(), 0u);
+  ASSERT_LT(first.size(), all);
+  expectMadeBricksEqual(first);
+
+  // Made: the same view lists nothing.
+  EXPECT_TRUE(classifyAndMake(tube).empty());
+
+  // Every brick visible: only those not made before are listed, and then all equal.
+  const std::vector<std::uint32_t> second = classifyAndMake(openSetup(texture_));
+  EXPECT_EQ(first.size() + second.size(), all);
+  for (std::uint32_t brick : second)
+    EXPECT_FALSE(std::binary_search(first.begin(), first.end(), brick)) << brick;
+  std::vector<std::uint32_t> every(all);
+  for (std::size_t n = 0; n < all; ++n) every[n] = static_cast<std::uint32_t>(n);
+  expectMadeBricksEqual(every);
+
+  // Forgotten (new LIC values): every visible brick is listed again.
+  ASSERT_TRUE(submitAndWait(
+                  context(), [&](VkCommandBuffer cmd) { pass_->recordForget(cmd); }, "forget")
+                  .ok());
+  EXPECT_EQ(classifyAndMake(tube), first);
+}
+
+// The carotid at twice its resolution under the default look is mostly empty space: its visible
+// bricks hold a small part of the grid, and the LIC over them is the full pass' there. The GPU
+// times of both passes are recorded (full_ms, bricks_ms: informative, not a bound).
+TEST_F(GpuTest, CarotidAtTwiceItsResolutionMakesAFewOfItsBricks) {
+  Result<VectorField> file = readVectorField(test::dataFolder() / "carotid.vtk");
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  Session session;
+  applyLook(kDefaultLook, session);
+  session.field.resolution = "2x";
+  Result<VectorField> field = atResolution(std::move(*file), session.field);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  const Dims dims = field->dims;
+  Result<LicRenderer> renderer = LicRenderer::create(context(), {});
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  ASSERT_TRUE(renderer->setInputs(*field, makeWhiteNoise(dims, 7)).ok());
+  ASSERT_TRUE(renderer->updateLic(session.lic).ok());
+  const SliceFrame frame =
+      makeSliceFrame(session.view, renderer->volumeFacts(), Eye::Mono, {1024, 1024});
+  // A jitter margin of a whole slice spacing: more than half a spacing over the cosine of any
+  // ray's angle in this view.
+  const VisibleBricksSetup setup = visibleBricksSetup(frame.uniforms, frame.specialization, dims,
+                                                      0.0f, frame.uniforms.eyePosition.w);
+  const FieldTexture& texture = renderer->fieldTextures().field();
+
+  Result<VisibleBricksPass> bricks = VisibleBricksPass::create(context());
+  ASSERT_TRUE(bricks.ok());
+  ASSERT_TRUE(bricks->reserve(dims).ok());
+  Result<LicPass> lic = LicPass::create(context());
+  ASSERT_TRUE(lic.ok());
+  Result<GpuTimer> timer = GpuTimer::create(context(), 2, "visible bricks timer");
+  ASSERT_TRUE(timer.ok());
+  ImageDesc maskDesc;
+  maskDesc.format = kSparsityMaskFormat;
+  maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  maskDesc.name = "test mask";
+  Result<Image> mask = Image::create(context(), maskDesc);
+  ASSERT_TRUE(mask.ok());
+  const std::uint8_t white = 0;
+  ASSERT_TRUE(uploadImage(context(), *mask, &white, 1).ok());
+  ImageDesc desc;
+  desc.format = kLicVolumeFormat;
+  desc.extent = {static_cast<std::uint32_t>(dims.x), static_cast<std::uint32_t>(dims.y),
+                 static_cast<std::uint32_t>(dims.z)};
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  desc.name = "test lic volume";
+  Result<Image> output = Image::create(context(), desc);
+  ASSERT_TRUE(output.ok());
+
+  const Result<void> ran = submitAndWait(
+      context(),
+      [&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, output->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        timer->reset(cmd, 0);
+        timer->begin(cmd, 0);
+        EXPECT_TRUE(lic->record(cmd, texture, *mask, {}, *output, session.lic, 0, dims.z).ok());
+        timer->end(cmd, 0);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        timer->reset(cmd, 1);
+        timer->begin(cmd, 1);
+        EXPECT_TRUE(bricks->record(cmd, texture, setup).ok());
+        EXPECT_TRUE(lic->recordBricks(cmd, texture, *mask, {}, *output, session.lic, *bricks, 0,
+                                      bricks->bricks().z)
+                        .ok());
+        timer->end(cmd, 1);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+        bricks->recordReadback(cmd);
+      },
+      "carotid bricks");
+  ASSERT_TRUE(ran.ok()) << ran.error().message;
+
+  const std::vector<std::uint32_t> flags = bricks->visibleFlags();
+  const glm::ivec3 counts = bricks->bricks();
+  std::size_t visibleVoxels = 0;
+  for (int bz = 0; bz < counts.z; ++bz)
+    for (int by = 0; by < counts.y; ++by)
+      for (int bx = 0; bx < counts.x; ++bx) {
+        if (flags[(static_cast<std::size_t>(bz) * counts.y + by) * counts.x + bx] == 0) continue;
+        const glm::ivec3 first = glm::ivec3(bx, by, bz) * 8;
+        const glm::ivec3 size = glm::min(first + 8, glm::ivec3(dims)) - first;
+        visibleVoxels += static_cast<std::size_t>(size.x) * size.y * size.z;
+      }
+  const double fraction =
+      static_cast<double>(visibleVoxels) / static_cast<double>(voxelCount(dims));
+  RecordProperty("grid", gridText(dims));
+  RecordProperty("visible_voxel_fraction", std::to_string(fraction));
+  RecordProperty("full_ms", std::to_string(*timer->milliseconds(0)));
+  RecordProperty("bricks_ms", std::to_string(*timer->milliseconds(1)));
+  EXPECT_GT(fraction, 0.0);
+  EXPECT_LT(fraction, 0.5);
 }
 
 }  // namespace
