@@ -78,9 +78,13 @@ struct LicPushConstants {
 };
 
 // ---- LIC histogram (auto contrast window) ------------------------------------------------------
-LIC3D_CONST kHistogramBindingVolume = 0;  // sampler3D: the LIC volume
-LIC3D_CONST kHistogramBindingCounts = 1;  // kHistogramBins uints, then the masked voxels
-LIC3D_CONST kHistogramBindingField = 2;   // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kHistogramBindingVolume = 0;   // sampler3D: the LIC volume
+LIC3D_CONST kHistogramBindingCounts = 1;   // kHistogramBins uints, then the masked voxels
+LIC3D_CONST kHistogramBindingField = 2;    // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kHistogramBindingVisible = 3;  // buffer: a uint per brick (kVisibleBindingVisible)
+// 0: every voxel of the grid; 1: the voxels of the visible bricks only (docs/VISIBLE_WORK.md)
+LIC3D_CONST kHistogramConstVisibleBricks = 0;
+LIC3D_CONST kHistogramDefaultVisibleBricks = 0;
 LIC3D_CONST kHistogramBins = 1024;
 LIC3D_CONST kHistogramLocalSize = 256;
 

@@ -19,6 +19,7 @@
 #include "lic/analytic_fields.h"
 #include "lic/noise.h"
 #include "loading/session_inputs.h"
+#include "passes/lic_histogram_pass.h"
 #include "passes/lic_pass.h"
 #include "passes/visible_bricks_pass.h"
 #include "render/lic_renderer.h"
@@ -235,6 +236,51 @@ TEST_F(VisibleBricksTest, SetupFollowsTheSliceShader) {
   EXPECT_FLOAT_EQ(opaqueFromTable(table), 0.5f);
   EXPECT_FLOAT_EQ(opaqueFromTable(std::vector<float>{0.3f, 0.0f}), 0.0f);
   EXPECT_GT(opaqueFromTable(std::vector<float>{0.0f, 0.0f}), 1.0f);
+}
+
+// The histogram of the visible bricks' voxels only: on a LIC volume of zeros every voxel is masked
+// (counted apart), so the masked count is the number of voxels counted.
+TEST_F(VisibleBricksTest, HistogramCountsTheVisibleBricksVoxelsOnly) {
+  VisibleBricksSetup setup = openSetup(texture_);
+  setup.specialization.opacityRule = 2;
+  const std::vector<std::uint32_t> flags = expectSameBricks(setup);
+  const glm::ivec3 counts = brickCounts(kGrid);
+  std::uint32_t visibleVoxels = 0;
+  for (int k = 0; k < kGrid.z; ++k)
+    for (int j = 0; j < kGrid.y; ++j)
+      for (int i = 0; i < kGrid.x; ++i)
+        visibleVoxels += flags[i / 8 + counts.x * (j / 8 + counts.y * (k / 8))];
+  ASSERT_GT(visibleVoxels, 0u);
+  ASSERT_LT(visibleVoxels, voxelCount(kGrid));
+
+  Result<LicHistogramPass> histogram = LicHistogramPass::create(context());
+  ASSERT_TRUE(histogram.ok()) << histogram.error().message;
+  ImageDesc desc;
+  desc.format = kLicVolumeFormat;
+  desc.extent = {static_cast<std::uint32_t>(kGrid.x), static_cast<std::uint32_t>(kGrid.y),
+                 static_cast<std::uint32_t>(kGrid.z)};
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  desc.name = "zero lic volume";
+  Result<Image> volume = Image::create(context(), desc);
+  ASSERT_TRUE(volume.ok());
+  const std::vector<std::uint32_t> zeros(voxelCount(kGrid), 0u);
+  ASSERT_TRUE(uploadImage(context(), *volume, zeros.data(), zeros.size() * 4).ok());
+  ASSERT_TRUE(submitAndWait(
+                  context(),
+                  [&](VkCommandBuffer cmd) {
+                    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                    histogram->record(cmd, *volume, texture_, 0.1, 0, &pass_->visible());
+                    histogram->record(cmd, *volume, texture_, 0.1, 1);
+                  },
+                  "histogram of visible bricks")
+                  .ok());
+  const std::vector<std::uint32_t> visible = histogram->counts(0), whole = histogram->counts(1);
+  EXPECT_EQ(visible.back(), visibleVoxels);
+  EXPECT_EQ(whole.back(), voxelCount(kGrid));
+  EXPECT_EQ(std::count(visible.begin(), visible.end() - 1, 0u), gpu::kHistogramBins);
 }
 
 // The LIC pass over the listed bricks against the full pass: the listed bricks' voxels equal, bit
