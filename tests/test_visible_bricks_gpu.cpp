@@ -60,13 +60,13 @@ std::vector<float> speedsOf(const VectorField& field) {
 }
 
 // Nothing removed: no clip, the whole box kept, opacity from the speed over [0, 1].
-VisibleBricksSetup openSetup(const FieldTexture& texture) {
+VisibleBricksSetup openSetup(const FieldTexture& texture, Dims dims = kGrid) {
   VisibleBricksSetup setup;
   gpu::VisibleBricksUniforms& u = setup.uniforms;
-  const glm::vec3 h = boxHalfExtent(kGrid, texture.geometry);
+  const glm::vec3 h = boxHalfExtent(dims, texture.geometry);
   u.roiFromTexture = glm::mat4(1.0f);
-  u.dims = glm::ivec4(kGrid, 1);
-  u.bricks = glm::ivec4(brickCounts(kGrid), 0);
+  u.dims = glm::ivec4(dims, 1);
+  u.bricks = glm::ivec4(brickCounts(dims), 0);
   u.halfExtent = glm::vec4(h, 0.0f);
   u.clipMin = glm::vec4(-h, 0.0f);
   u.clipMax = glm::vec4(h, 0.0f);
@@ -281,6 +281,47 @@ TEST_F(VisibleBricksTest, HistogramCountsTheVisibleBricksVoxelsOnly) {
   EXPECT_EQ(visible.back(), visibleVoxels);
   EXPECT_EQ(whole.back(), voxelCount(kGrid));
   EXPECT_EQ(std::count(visible.begin(), visible.end() - 1, 0u), gpu::kHistogramBins);
+}
+
+// Grids smaller than a brick, one brick exactly, and thin ones: margins reach past the grid.
+TEST_F(GpuTest, SmallGridsClassifyAsOnTheCpu) {
+  Result<VisibleBricksPass> pass = VisibleBricksPass::create(context());
+  ASSERT_TRUE(pass.ok());
+  for (const Dims dims : {Dims{1, 1, 1}, Dims{9, 2, 17}, Dims{8, 8, 8}}) {
+    VectorField field;
+    field.dims = dims;
+    field.vectors.resize(voxelCount(dims));
+    for (int k = 0; k < dims.z; ++k)
+      for (int j = 0; j < dims.y; ++j)
+        for (int i = 0; i < dims.x; ++i)
+          field.vectors[voxelIndex(dims, i, j, k)] =
+              glm::vec3(0.0f, 0.0f, (i + 2 * j + 3 * k) % 11 == 0 ? 1.0f : 0.02f);
+    Result<FieldTexture> texture =
+        uploadLicInputs(context(), field, makeWhiteNoise(dims, 3), FieldPrecision::Float);
+    ASSERT_TRUE(texture.ok()) << texture.error().message;
+    ASSERT_TRUE(pass->reserve(dims).ok());
+    VisibleBricksSetup threshold = openSetup(*texture, dims);
+    threshold.specialization.opacityRule = 2;
+    VisibleBricksSetup plane = openSetup(*texture, dims);
+    plane.specialization.clipPlane = 1;
+    plane.uniforms.clipPlane = glm::vec4(glm::normalize(glm::vec3(0.2f, 0.3f, -0.9f)), 0.37f);
+    // Kept where x >= 1.3 half extents: only what a margin carries past the grid's last voxel.
+    VisibleBricksSetup beyond = openSetup(*texture, dims);
+    beyond.specialization.clipPlane = 1;
+    beyond.uniforms.clipPlane = glm::vec4(-1.0f, 0.0f, 0.0f, -1.3f * beyond.uniforms.halfExtent.x);
+    for (const VisibleBricksSetup& setup : {threshold, plane, beyond}) {
+      ASSERT_TRUE(submitAndWait(
+                      context(),
+                      [&](VkCommandBuffer cmd) {
+                        EXPECT_TRUE(pass->record(cmd, *texture, setup).ok());
+                        pass->recordReadback(cmd);
+                      },
+                      "small grid")
+                      .ok());
+      EXPECT_EQ(pass->visibleFlags(), classifyBricksOnCpu(setup, dims, speedsOf(field)))
+          << gridText(dims);
+    }
+  }
 }
 
 // The LIC pass over the listed bricks against the full pass: the listed bricks' voxels equal, bit
