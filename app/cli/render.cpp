@@ -386,7 +386,8 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     std::optional<OutputGroup> together;
     if (plan->animation == Animation::None) together.emplace();
     RendererOptions rendererOptions{session.precision};
-    rendererOptions.visibleWork = batch.visibleWork == "on";
+    // The RGBA volume colours every voxel, clipped or not: it needs them all.
+    rendererOptions.visibleWork = batch.visibleWork == "on" && batch.rgbaVolume.empty();
     Result<LicRenderer> renderer = LicRenderer::create(context, rendererOptions);
     Result<void> done = renderer
                             ? renderFrames(global, options, batch, *plan, frameInputs, *renderer,

@@ -55,7 +55,7 @@ void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
                  "on: the LIC makes only the 8^3-voxel bricks the pictures can show (not "
                  "transparent by speed, not clipped, inside the region of interest) and the "
                  "contrast stretch follows their voxels; off: every voxel and the whole grid's "
-                 "statistics (docs/VISIBLE_WORK.md)")
+                 "statistics (docs/VISIBLE_WORK.md); off with --rgba-volume")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
 }

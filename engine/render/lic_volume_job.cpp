@@ -364,7 +364,7 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
                                   const ProgressCallback& progress,
                                   const VisibleBricksSetup* visible) {
   const bool licChanges = !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
-  if (visibleWork_ && visible) {
+  if (visibleWork(params) && visible) {
     if (!job_ && !licChanges && shownSetup_ && sameClassification(*shownSetup_, *visible))
       return false;
     const bool resume = job_ && job_->params == params && job_->visible &&

@@ -119,9 +119,14 @@ class LicVolumeJob {
   // statistics or made bricks are of another classification.
   bool needs(const LicParams& params, const VisibleBricksSetup& visible) const {
     return needs(params) ||
-           (visibleWork_ && (!shownSetup_ || !sameClassification(*shownSetup_, visible)));
+           (visibleWork(params) && (!shownSetup_ || !sameClassification(*shownSetup_, visible)));
   }
   bool visibleWork() const { return visibleWork_; }
+  // Whether a view makes only its visible bricks for `params`: not with a sparsity mask, whose
+  // hidden fraction (the run summary's) is counted over the whole grid.
+  bool visibleWork(const LicParams& params) const {
+    return visibleWork_ && params.sparsity.distribution == SparsityDistribution::None;
+  }
   const VisibleWorkCounts& visibleWorkCounts() const { return visibleCounts_; }
   LicStatus status(Dims dims) const;
   const Image& shownVolume() const { return volumes_[front_]; }
