@@ -151,7 +151,14 @@ INSTANTIATE_TEST_SUITE_P(
                    v.clipPlanePoint = glm::vec3(0.5f);
                    v.clipPlaneNormal = glm::vec3(0.0f, 0.0f, 1.0f);
                  }},
-        ViewCase{"Stereo", [](ViewParams& v) { v.stereo = StereoMode::SideBySide; }}),
+        ViewCase{"Stereo", [](ViewParams& v) { v.stereo = StereoMode::SideBySide; }},
+        ViewCase{"OcclusionWithClipPlane",
+                 [](ViewParams& v) {
+                   v.occlusion = 0.8f;
+                   v.clipPlane = true;
+                   v.clipPlanePoint = glm::vec3(0.5f, 0.55f, 0.5f);
+                   v.clipPlaneNormal = glm::vec3(0.0f, 1.0f, 0.3f);
+                 }}),
     [](const ::testing::TestParamInfo<ViewCase>& param) { return std::string(param.param.name); });
 
 // The bricks a view lists, by the CPU rule, and how many of them are not in `before`.
