@@ -37,6 +37,10 @@ layout(constant_id = kLicConstPacking) const uint PACKING = kLicDefaultPacking;
 // fewer registers. licLaunchFor keeps the default, 0, on every device type (by measurement:
 // docs/BENCHMARKS.md, "Launch shapes").
 layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = kLicDefaultInterleave;
+// 1: the voxels of the bricks visible_bricks.comp listed for one layer of bricks
+// (docs/VISIBLE_WORK.md), dispatched indirectly with workgroups of 8 x 8 x 1: workgroup (i, j)
+// makes slice j of the layer's i-th listed brick, and marks the brick made.
+layout(constant_id = kLicConstBrickList) const uint BRICK_LIST = kLicDefaultBrickList;
 
 // The field u in voxel units and the noise (engine/volume_textures.h): integrating u in voxel
 // coordinates follows the physical field on anisotropic grids.
@@ -48,6 +52,13 @@ layout(set = 0, binding = kLicBindingMask) uniform usampler3D sparsityMask;
 // own, so an exact RK2 sample costs three fetches (midpoint, end, noise) instead of two.
 layout(set = 0, binding = kLicBindingNoise) uniform sampler3D noiseTexture;
 #endif
+
+layout(set = 0, binding = kLicBindingBrickList, std430) readonly buffer BrickList {
+  uint brickList[];
+};
+layout(set = 0, binding = kLicBindingMadeBricks, std430) writeonly buffer MadeBricks {
+  uint madeBricks[];
+};
 
 layout(push_constant) uniform Push { LicPushConstants pc; };
 
@@ -195,8 +206,21 @@ void walk(inout Walker w, int i, int sign, inout float sum, inout float weights,
   }
 }
 
+// The voxel this invocation makes: of the slab, or of a listed brick.
+ivec3 voxelOfInvocation() {
+  if (BRICK_LIST == 0) return ivec3(gl_GlobalInvocationID) + ivec3(0, 0, pc.dims.w);
+  const int size = int(kVisibleBrickSize);
+  ivec3 bricks = (pc.dims.xyz + size - 1) / size;
+  int layer = pc.dims.w / size;
+  int index = int(brickList[layer * bricks.x * bricks.y + int(gl_WorkGroupID.x)]);
+  ivec3 brick = ivec3(index % bricks.x, (index / bricks.x) % bricks.y, layer);
+  // Read by the next classification only, after this dispatch.
+  if (gl_WorkGroupID.y == 0 && gl_LocalInvocationIndex == 0) madeBricks[index] = 1u;
+  return brick * size + ivec3(gl_LocalInvocationID.xy, gl_WorkGroupID.y);
+}
+
 void main() {
-  ivec3 voxel = ivec3(gl_GlobalInvocationID) + ivec3(0, 0, pc.dims.w);
+  ivec3 voxel = voxelOfInvocation();
   // Workgroups deeper than one slice overhang the dispatch's slab: the next slab's voxels are its.
   if (any(greaterThanEqual(voxel, pc.dims.xyz)) || voxel.z >= pc.zEnd) return;
 

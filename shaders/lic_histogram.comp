@@ -10,10 +10,25 @@
 
 layout(local_size_x = kHistogramLocalSize) in;
 
+// 1: only the voxels of visible bricks count (the others may never have been made), so that the
+// LIC over the visible bricks and the full LIC have the same statistics.
+layout(constant_id = kHistogramConstVisibleBricks) const uint VISIBLE_BRICKS =
+    kHistogramDefaultVisibleBricks;
+
 layout(set = 0, binding = kHistogramBindingVolume) uniform sampler3D licVolume;
 layout(set = 0, binding = kHistogramBindingCounts, std430) buffer Counts { uint counts[]; };
 layout(set = 0, binding = kHistogramBindingField) uniform sampler3D fieldTexture;
+layout(set = 0, binding = kHistogramBindingVisible, std430) readonly buffer Visible {
+  uint visibleBricks[];
+};
 layout(push_constant) uniform Push { HistogramPushConstants pc; };
+
+bool inVisibleBrick(ivec3 voxel) {
+  const int size = int(kVisibleBrickSize);
+  ivec3 bricks = (pc.dims.xyz + size - 1) / size;
+  ivec3 brick = voxel / size;
+  return visibleBricks[brick.x + bricks.x * (brick.y + bricks.y * brick.z)] != 0u;
+}
 
 shared uint localCounts[kHistogramBins];
 shared uint localMasked;
@@ -28,6 +43,7 @@ void main() {
   int sliceVoxels = pc.dims.x * pc.dims.y;
   for (int n = int(gl_LocalInvocationID.x); n < sliceVoxels; n += int(kHistogramLocalSize)) {
     ivec3 voxel = ivec3(n % pc.dims.x, n / pc.dims.x, z);
+    if (VISIBLE_BRICKS == 1 && !inVisibleBrick(voxel)) continue;
     vec2 texel = texelFetch(licVolume, voxel, 0).rg;
     if (texel.g < 0.5) {  // masked by sparsity: never drawn, so counted apart
       atomicAdd(localMasked, 1);

@@ -25,6 +25,8 @@ LIC3D_CONST kLicBindingField = 0;   // sampler3D: the packed field and noise (vo
 LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
 LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
 LIC3D_CONST kLicBindingNoise = 3;   // sampler3D r8: the noise alone (the benchmark's naive kernel)
+LIC3D_CONST kLicBindingBrickList = 4;   // buffer: the listed bricks (kVisibleBindingLists)
+LIC3D_CONST kLicBindingMadeBricks = 5;  // buffer: a uint per brick, set to 1 once made
 
 // Specialization constant ids of the LIC pipeline (see LicSpecialization in lic_pass.h).
 LIC3D_CONST kLicConstIntegrator = 0;
@@ -38,6 +40,7 @@ LIC3D_CONST kLicConstSparsity = 7;
 LIC3D_CONST kLicConstScheme = 8;       // 0 exact (RK2: 2 fetches per sample), 1 midpoint (1 fetch)
 LIC3D_CONST kLicConstPacking = 9;      // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
 LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop, 0: one after the other
+LIC3D_CONST kLicConstBrickList = 11;   // 0 every voxel of the slab, 1 the listed bricks' voxels
 // Their one default each, which lic.comp and LicSpecialization both take: LicParams' defaults
 // and the launch of CPU drivers (licLaunchFor).
 LIC3D_CONST kLicDefaultIntegrator = 1;   // rk2
@@ -51,9 +54,11 @@ LIC3D_CONST kLicDefaultSparsity = 0;
 LIC3D_CONST kLicDefaultScheme = 0;
 LIC3D_CONST kLicDefaultPacking = 0;
 LIC3D_CONST kLicDefaultInterleave = 0;  // one after the other everywhere (lic_pass.cpp says why)
+LIC3D_CONST kLicDefaultBrickList = 0;
 
 struct LicPushConstants {
-  ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch
+  ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch (with the brick
+                          // list: of the brick layer, a multiple of kVisibleBrickSize)
   vec4 invDims;           // xyz: 1 / dims (texture coordinates of voxel centres); w: unused
   int licLength;          // L
   int bias;               // Lb = L - bias backward, Lf = L + bias forward
@@ -73,9 +78,13 @@ struct LicPushConstants {
 };
 
 // ---- LIC histogram (auto contrast window) ------------------------------------------------------
-LIC3D_CONST kHistogramBindingVolume = 0;  // sampler3D: the LIC volume
-LIC3D_CONST kHistogramBindingCounts = 1;  // kHistogramBins uints, then the masked voxels
-LIC3D_CONST kHistogramBindingField = 2;   // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kHistogramBindingVolume = 0;   // sampler3D: the LIC volume
+LIC3D_CONST kHistogramBindingCounts = 1;   // kHistogramBins uints, then the masked voxels
+LIC3D_CONST kHistogramBindingField = 2;    // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kHistogramBindingVisible = 3;  // buffer: a uint per brick (kVisibleBindingVisible)
+// 0: every voxel of the grid; 1: the voxels of the visible bricks only (docs/VISIBLE_WORK.md)
+LIC3D_CONST kHistogramConstVisibleBricks = 0;
+LIC3D_CONST kHistogramDefaultVisibleBricks = 0;
 LIC3D_CONST kHistogramBins = 1024;
 LIC3D_CONST kHistogramLocalSize = 256;
 
@@ -83,6 +92,44 @@ struct HistogramPushConstants {
   ivec4 dims;            // xyz: the grid; w: the field texture's packing (kLicConstPacking)
   vec4 texelToPhysical;  // xyz: texelToPhysicalForShader's xyz (volume_textures.h); w: voxels
                          // with length(texel * xyz) below this are empty, not counted
+};
+
+// ---- Visible bricks (visible_bricks.comp, docs/VISIBLE_WORK.md) ---------------------------------
+// One workgroup per brick of kVisibleBrickSize^3 voxels: whether a fragment the slice pass can
+// draw with non-zero opacity reads one of its LIC voxels, and the list of the visible bricks not
+// made yet, one list and one VkDispatchIndirectCommand per layer of bricks along z.
+LIC3D_CONST kVisibleBrickSize = 8;
+LIC3D_CONST kVisibleLocalSize = 64;
+LIC3D_CONST kVisibleBindingField = 0;     // sampler3D: the field texture (volume_textures.h)
+LIC3D_CONST kVisibleBindingUniforms = 1;  // uniform VisibleBricksUniforms
+LIC3D_CONST kVisibleBindingVisible = 2;   // buffer: a uint per brick, 1 visible, 0 not
+LIC3D_CONST kVisibleBindingMade = 3;      // buffer: a uint per brick, 1 if its LIC is made
+LIC3D_CONST kVisibleBindingLists = 4;     // buffer: per brick layer, bricksX * bricksY indices
+LIC3D_CONST kVisibleBindingDispatch = 5;  // buffer: per brick layer, x = listed count, y, z
+// Specialization constant ids (see VisibleBricksSpecialization in visible_bricks_pass.h).
+LIC3D_CONST kVisibleConstOpacityRule = 0;  // 0 every voxel, 1 not NaN, 2 not NaN and o >= threshold
+LIC3D_CONST kVisibleConstPacking = 1;      // the field texture's packing (kLicConstPacking)
+LIC3D_CONST kVisibleConstClipPlane = 2;    // as kSliceConstClipPlane
+LIC3D_CONST kVisibleConstRoiShape = 3;     // as kSliceConstRoiShape
+LIC3D_CONST kVisibleConstRoiOutside = 4;   // as kSliceConstRoiOutside
+LIC3D_CONST kVisibleDefaultOpacityRule = 0;
+LIC3D_CONST kVisibleDefaultPacking = kLicDefaultPacking;
+LIC3D_CONST kVisibleDefaultClipPlane = 0;
+LIC3D_CONST kVisibleDefaultRoiShape = 0;
+LIC3D_CONST kVisibleDefaultRoiOutside = 0;
+
+struct VisibleBricksUniforms {
+  mat4 roiFromTexture;   // as SliceUniforms
+  ivec4 dims;            // xyz: the grid; w: the margin M in voxels
+  ivec4 bricks;          // xyz: bricks per axis; w: unused
+  vec4 halfExtent;       // xyz: as SliceUniforms; w: the jitter margin J in world units
+  vec4 clipMin;          // xyz: as SliceUniforms
+  vec4 clipMax;          // xyz: as SliceUniforms
+  vec4 clipPlane;        // as SliceUniforms
+  vec4 texelToPhysical;  // as SliceUniforms
+  vec4 opacity;          // x: low end of the opacity range, y: 1 / its width, z: the lowest o
+                         // that may be opaque (o below it is transparent); w: the
+                         // halo ring's radius in world units (widens the region test)
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------
@@ -293,6 +340,7 @@ static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(TimeBlendPushConstants) == 48);
 static_assert(sizeof(SliceUniforms) == 2 * 64 + 26 * 16);
 static_assert(sizeof(OcclusionPushConstants) == 16);
+static_assert(sizeof(VisibleBricksUniforms) == 64 + 8 * 16);
 }  // namespace lic3d::gpu
 #undef LIC3D_CONST
 #endif

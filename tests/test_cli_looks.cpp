@@ -113,6 +113,21 @@ TEST_F(LookTest, SparseAndSeedNoiseVolumesAreNeitherBlackNorOpaque) {
   }
 }
 
+// `render` classifies the bricks its picture can show (docs/VISIBLE_WORK.md) unless
+// --visible-work off; `compute` makes every voxel without classifying.
+TEST_F(CliTest, RenderClassifiesVisibleBricksUnlessTurnedOff) {
+  const std::string carotid = "'" + (test::dataFolder() / "carotid.vtk").string() + "'";
+  const auto classified = [&](const std::string& command) {
+    const CommandRun made = run(command + " --field " + carotid);
+    EXPECT_EQ(made.status, 0) << made.output;
+    return made.output.find("\"visible bricks\":") != std::string::npos;
+  };
+  EXPECT_TRUE(classified("render --width 32 --height 32 -o on.png"));
+  EXPECT_FALSE(classified("render --width 32 --height 32 --visible-work off -o off.png"));
+  EXPECT_FALSE(classified("compute -o c.nrrd"));
+  EXPECT_NE(run("render --visible-work maybe -o x.png").status, 0);
+}
+
 // The hidden fraction `render` reports (the GPU's count of masked voxels) is the one `compute`
 // counts in the volume it writes, on a field with empty space too.
 TEST_F(CliTest, RenderAndComputeReportTheSameHiddenFraction) {

@@ -20,6 +20,7 @@
 #include "time_blend_byte_comp_spv.h"
 #include "time_blend_comp_spv.h"
 #include "time_blend_half_comp_spv.h"
+#include "visible_bricks_comp_spv.h"
 #ifdef LIC3D_BENCH_RUNTIME_MODES
 #include "lic_naive_comp_spv.h"
 #include "slice_runtime_frag_spv.h"
@@ -31,6 +32,7 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
   switch (id) {
     case ShaderId::LicCompute: return lic_comp_spv;
     case ShaderId::LicHistogram: return lic_histogram_comp_spv;
+    case ShaderId::VisibleBricks: return visible_bricks_comp_spv;
     case ShaderId::SliceVertex: return slice_vert_spv;
     case ShaderId::SliceFragment: return slice_frag_spv;
     case ShaderId::SliceFragmentRuntimeModes:
@@ -71,6 +73,7 @@ const char* shaderName(ShaderId id) {
   switch (id) {
     case ShaderId::LicCompute: return "lic.comp";
     case ShaderId::LicHistogram: return "lic_histogram.comp";
+    case ShaderId::VisibleBricks: return "visible_bricks.comp";
     case ShaderId::SliceVertex: return "slice.vert";
     case ShaderId::SliceFragment: return "slice.frag";
     case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";

@@ -20,6 +20,7 @@ namespace lic3d {
 enum class ShaderId {
   LicCompute,
   LicHistogram,
+  VisibleBricks,  // the bricks of the LIC volume the slice pass can show
   SliceVertex,
   SliceFragment,
   SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES

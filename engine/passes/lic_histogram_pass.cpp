@@ -42,6 +42,7 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
       {gpu::kHistogramBindingVolume},
       {gpu::kHistogramBindingCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kHistogramBindingField},
+      {gpu::kHistogramBindingVisible, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
   };
   LIC3D_TRY_ASSIGN(pass.layout_,
                    PipelineLayout::create(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
@@ -49,6 +50,16 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
   LIC3D_TRY_ASSIGN(const ShaderModule shader, loadShader(context, ShaderId::LicHistogram));
   LIC3D_TRY_ASSIGN(pass.pipeline_,
                    createComputePipeline(context, shader, pass.layout_, nullptr, "lic histogram"));
+  struct VisibleOnly {
+    std::uint32_t visibleBricks = 1;
+  };
+  static_assert(gpu::kHistogramConstVisibleBricks == 0);
+  const Specialization<VisibleOnly> visibleOnly(VisibleOnly{});
+  LIC3D_TRY_ASSIGN(pass.visiblePipeline_,
+                   createComputePipeline(context, shader, pass.layout_, visibleOnly.info(),
+                                         "lic histogram of visible bricks"));
+  LIC3D_TRY_ASSIGN(pass.noBricks_, Buffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                  MemoryUse::DeviceLocal, "histogram no bricks"));
 
   LIC3D_TRY_ASSIGN(pass.sampler_, Sampler::create(context, VK_FILTER_NEAREST, "histogram sampler"));
   const VkDeviceSize bytes = (gpu::kHistogramBins + 1) * sizeof(std::uint32_t);
@@ -64,7 +75,7 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
 }
 
 void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
-                              double emptySpeed, std::uint32_t slot) {
+                              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks) {
   const Dims dims = field.dims;
   LIC3D_ASSERT(slot < kSlots);
   // The previous histogram's shader and copy must be done with the buffers before they are reused.
@@ -78,11 +89,13 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const Fi
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    visibleBricks ? visiblePipeline_.get() : pipeline_.get());
   DescriptorWrites()
       .sampledImage(gpu::kHistogramBindingVolume, sampler_, volume.view())
       .storageBuffer(gpu::kHistogramBindingCounts, counts_)
       .sampledImage(gpu::kHistogramBindingField, sampler_, field.image.view())
+      .storageBuffer(gpu::kHistogramBindingVisible, visibleBricks ? *visibleBricks : noBricks_)
       .push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
   const glm::vec4 toPhysical = texelToPhysicalForShader(field.texelToPhysical);
   const gpu::HistogramPushConstants push{

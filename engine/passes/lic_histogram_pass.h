@@ -44,9 +44,11 @@ class LicHistogramPass {
 
   // Records the histogram of `volume` (SHADER_READ_ONLY_OPTIMAL, its writes already made
   // visible to compute shaders) on `field`'s grid, leaving out the voxels slower than
-  // `emptySpeed` (physical |v|), and its copy to host-visible memory in `slot`.
+  // `emptySpeed` (physical |v|), and its copy to host-visible memory in `slot`. With
+  // `visibleBricks` (VisibleBricksPass::visible(), written before and visible to compute
+  // shaders), only the voxels of visible bricks count (docs/VISIBLE_WORK.md, "Statistics").
   void record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
-              double emptySpeed, std::uint32_t slot);
+              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks = nullptr);
   // The counts recorded into `slot`, once that command buffer completed.
   // The bins, then the count of masked voxels.
   std::vector<std::uint32_t> counts(std::uint32_t slot) const;
@@ -55,8 +57,10 @@ class LicHistogramPass {
   const Context* context_ = nullptr;
   PipelineLayout layout_;
   Pipeline pipeline_;
+  Pipeline visiblePipeline_;  // the visible bricks' voxels only
   Sampler sampler_;
-  Buffer counts_;  // of the pass being recorded
+  Buffer noBricks_;  // bound to the bricks' binding of the whole-grid variant, which never reads it
+  Buffer counts_;    // of the pass being recorded
   Buffer readback_;
 };
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "passes/lic_pass.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 
@@ -58,9 +59,11 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
       {gpu::kLicBindingField},
       {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
       {gpu::kLicBindingMask},
+      {gpu::kLicBindingBrickList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {gpu::kLicBindingMadeBricks, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingNoise},  // the naive kernel's own noise texture
   };
-  const std::span<const Binding> used(bindings, separateNoise ? 4 : 3);
+  const std::span<const Binding> used(bindings, separateNoise ? 6 : 5);
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, used, VK_SHADER_STAGE_COMPUTE_BIT,
                                                         sizeof(gpu::LicPushConstants), "lic"));
   LIC3D_TRY_ASSIGN(pass.shader_,
@@ -71,6 +74,8 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
   // Integer textures cannot be filtered linearly; the mask is only read with texelFetch.
   LIC3D_TRY_ASSIGN(pass.maskSampler_,
                    Sampler::create(context, VK_FILTER_NEAREST, "lic mask sampler"));
+  LIC3D_TRY_ASSIGN(pass.noBricks_, Buffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                  MemoryUse::DeviceLocal, "lic no bricks"));
   return pass;
 }
 
@@ -80,28 +85,31 @@ std::vector<std::pair<std::string, std::string>> LicPass::statistics(
                             pipelines_.find(licSpecialization(params, precision, launch_)));
 }
 
-Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
-                             const MaskBeyondGrid& beyond, const Image& output,
-                             const LicParams& params, int zBegin, int zEnd, const Image* noise) {
-  LIC3D_ASSERT(!separateNoise_ || noise);
-  const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
-  LIC3D_TRY_ASSIGN(
-      VkPipeline pipeline, pipelines_.get(specialization, [&](const LicSpecialization& key) {
-        const Specialization<LicSpecialization> constants(key);
-        const std::string name = licPipelineName(separateNoise_ ? "naive lic " : "lic ", key) +
-                                 (key.packing ? "/byte" : "") + (key.sparsity ? "/sparse" : "");
-        return createComputePipeline(*context_, shader_, layout_, constants.info(), name);
-      }));
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization) {
+  return pipelines_.get(specialization, [&](const LicSpecialization& key) {
+    const Specialization<LicSpecialization> constants(key);
+    const std::string name = licPipelineName(separateNoise_ ? "naive lic " : "lic ", key) +
+                             (key.packing ? "/byte" : "") + (key.sparsity ? "/sparse" : "") +
+                             (key.brickList ? "/bricks" : "");
+    return createComputePipeline(*context_, shader_, layout_, constants.info(), name);
+  });
+}
 
+void LicPass::pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                              const Image& output, const Image* noise, const Buffer& lists,
+                              const Buffer& made) {
   DescriptorWrites writes;
   writes.sampledImage(gpu::kLicBindingField, sampler_, field.image.view())
       .storageImage(gpu::kLicBindingOutput, output.view())
-      .sampledImage(gpu::kLicBindingMask, maskSampler_, mask.view());
+      .sampledImage(gpu::kLicBindingMask, maskSampler_, mask.view())
+      .storageBuffer(gpu::kLicBindingBrickList, lists)
+      .storageBuffer(gpu::kLicBindingMadeBricks, made);
   if (separateNoise_) writes.sampledImage(gpu::kLicBindingNoise, sampler_, noise->view());
   writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
+}
 
-  const Dims dims = field.dims;
+gpu::LicPushConstants LicPass::pushConstants(Dims dims, const MaskBeyondGrid& beyond,
+                                             const LicParams& params, int zBegin, int zEnd) const {
   gpu::LicPushConstants push{};
   push.dims = glm::ivec4(dims, zBegin);
   push.zEnd = zEnd;
@@ -109,11 +117,54 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
   setLicPushParams(push, params);
   push.maskBeyond = glm::uvec4(glm::uvec3(beyond.offset), beyond.threshold);
   push.maskSeed = beyond.seed;
+  return push;
+}
+
+Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                             const MaskBeyondGrid& beyond, const Image& output,
+                             const LicParams& params, int zBegin, int zEnd, const Image* noise) {
+  LIC3D_ASSERT(!separateNoise_ || noise);
+  const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
+  LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  pushDescriptors(cmd, field, mask, output, noise, noBricks_, noBricks_);
+
+  const Dims dims = field.dims;
+  const gpu::LicPushConstants push = pushConstants(dims, beyond, params, zBegin, zEnd);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 
   vkCmdDispatch(cmd, groupCount(dims.x, specialization.localSizeX),
                 groupCount(dims.y, specialization.localSizeY),
                 groupCount(zEnd - zBegin, specialization.localSizeZ));
+  return {};
+}
+
+Result<void> LicPass::recordBricks(VkCommandBuffer cmd, const FieldTexture& field,
+                                   const Image& mask, const MaskBeyondGrid& beyond,
+                                   const Image& output, const LicParams& params,
+                                   const VisibleBricksPass& bricks, int layerBegin, int layerEnd) {
+  LIC3D_ASSERT(!separateNoise_);
+  LIC3D_ASSERT(brickCounts(field.dims) == bricks.bricks());
+  LIC3D_ASSERT(0 <= layerBegin && layerBegin <= layerEnd && layerEnd <= bricks.bricks().z);
+  // A workgroup is a slice of a brick: the launch's shape does not apply.
+  LicSpecialization specialization = licSpecialization(
+      params, field.precision,
+      licLaunch(gpu::kVisibleBrickSize, gpu::kVisibleBrickSize, 1, launch_.interleave != 0));
+  specialization.brickList = 1;
+  LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  pushDescriptors(cmd, field, mask, output, nullptr, bricks.lists(), bricks.made());
+
+  const Dims dims = field.dims;
+  const int size = static_cast<int>(gpu::kVisibleBrickSize);
+  for (int layer = layerBegin; layer < layerEnd; ++layer) {
+    const int zBegin = layer * size;
+    const gpu::LicPushConstants push =
+        pushConstants(dims, beyond, params, zBegin, std::min(dims.z, zBegin + size));
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatchIndirect(cmd, bricks.dispatch().handle(),
+                          static_cast<VkDeviceSize>(layer) * 3 * sizeof(std::uint32_t));
+  }
   return {};
 }
 

@@ -18,6 +18,7 @@
 #include "gpu/resources.h"
 #include "gpu/vulkan_context.h"
 #include "lic/sparsity.h"
+#include "passes/visible_bricks_pass.h"
 #include "passes/volume_textures.h"
 #include "shared_layout.h"
 
@@ -40,10 +41,11 @@ struct LicSpecialization {
   std::uint32_t scheme = gpu::kLicDefaultScheme;
   std::uint32_t packing = gpu::kLicDefaultPacking;        // 1 for FieldPrecision::Byte
   std::uint32_t interleave = gpu::kLicDefaultInterleave;  // launch
+  std::uint32_t brickList = gpu::kLicDefaultBrickList;    // set by recordBricks
 
   bool operator==(const LicSpecialization&) const = default;
 };
-static_assert(sizeof(LicSpecialization) == 11 * 4);
+static_assert(sizeof(LicSpecialization) == 12 * 4);
 static_assert(offsetof(LicSpecialization, integrator) == 4 * gpu::kLicConstIntegrator);
 static_assert(offsetof(LicSpecialization, kernel) == 4 * gpu::kLicConstKernel);
 static_assert(offsetof(LicSpecialization, noiseFilter) == 4 * gpu::kLicConstNoiseFilter);
@@ -55,6 +57,7 @@ static_assert(offsetof(LicSpecialization, sparsity) == 4 * gpu::kLicConstSparsit
 static_assert(offsetof(LicSpecialization, scheme) == 4 * gpu::kLicConstScheme);
 static_assert(offsetof(LicSpecialization, packing) == 4 * gpu::kLicConstPacking);
 static_assert(offsetof(LicSpecialization, interleave) == 4 * gpu::kLicConstInterleave);
+static_assert(offsetof(LicSpecialization, brickList) == 4 * gpu::kLicConstBrickList);
 
 // The fields of `params` and the texture's packing; the launch fields are `launch`'s.
 LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision,
@@ -87,6 +90,14 @@ class LicPass {
   Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                       const MaskBeyondGrid& beyond, const Image& output, const LicParams& params,
                       int zBegin, int zEnd, const Image* noise = nullptr);
+  // The same for the bricks `bricks` listed in brick layers [layerBegin, layerEnd) (its record
+  // done, its writes visible to indirect dispatches and compute shaders): one indirect dispatch
+  // per layer, workgroups of 8 x 8 x 1 whatever the launch; each brick made is marked in
+  // bricks.made(). Voxels of unlisted bricks are not written. Not with separate noise.
+  Result<void> recordBricks(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                            const MaskBeyondGrid& beyond, const Image& output,
+                            const LicParams& params, const VisibleBricksPass& bricks,
+                            int layerBegin, int layerEnd);
 
   // The driver's statistics of the pipeline already made for these parameters and texture with
   // the current launch (pipelineStatistics); empty if none was made or none are captured.
@@ -108,6 +119,14 @@ class LicPass {
   bool separateNoise_ = false;
   LicSpecialization launch_;  // only its launch fields are used
   PipelineCache<LicSpecialization> pipelines_;
+  Buffer noBricks_;  // bound to the brick bindings of the slab variant, which never reads it
+
+  Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
+  void pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+                       const Image& output, const Image* noise, const Buffer& lists,
+                       const Buffer& made);
+  gpu::LicPushConstants pushConstants(Dims dims, const MaskBeyondGrid& beyond,
+                                      const LicParams& params, int zBegin, int zEnd) const;
 };
 
 }  // namespace lic3d
