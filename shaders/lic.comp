@@ -41,9 +41,6 @@ layout(constant_id = kLicConstInterleave) const uint INTERLEAVE = kLicDefaultInt
 // (docs/VISIBLE_WORK.md), dispatched indirectly with workgroups of 8 x 8 x 1: workgroup (i, j)
 // makes slice j of the layer's i-th listed brick, and marks the brick made.
 layout(constant_id = kLicConstBrickList) const uint BRICK_LIST = kLicDefaultBrickList;
-// How a texel between voxel centres is interpolated: 0 by the sampler's trilinear filter; 1 from
-// eight point fetches, interpolated here (the same edge-clamped trilinear field).
-layout(constant_id = kLicConstFetch) const uint FETCH = kLicDefaultFetch;
 
 // The field u in voxel units and the noise (engine/volume_textures.h): integrating u in voxel
 // coordinates follows the physical field on anisotropic grids.
@@ -63,51 +60,14 @@ layout(set = 0, binding = kLicBindingMadeBricks, std430) writeonly buffer MadeBr
   uint madeBricks[];
 };
 
-layout(set = 0, binding = kLicBindingFieldTexels, std430) readonly buffer FieldTexels {
-  vec4 fieldTexels[];
-};
-
-layout(set = 0, binding = kLicBindingFieldTexels, std430) readonly buffer FieldHalfTexels {
-  uvec2 fieldHalfTexels[];
-};
-
 layout(push_constant) uniform Push { LicPushConstants pc; };
-
-vec4 texelAt(ivec3 v) {
-  if (FETCH == 2) return fieldTexels[(v.z * pc.dims.y + v.y) * pc.dims.x + v.x];
-  if (FETCH == 3) {
-    uvec2 h = fieldHalfTexels[(v.z * pc.dims.y + v.y) * pc.dims.x + v.x];
-    return vec4(unpackHalf2x16(h.x), unpackHalf2x16(h.y));
-  }
-  return texelFetch(fieldTexture, v, 0);
-}
 
 // The texel at continuous voxel position x (voxel centres at integers): hardware trilinear
 // interpolation with clamp-to-edge is the edge-clamped trilinear field of the semantics. xyz is
 // still packed (directionOf decodes it); w is the noise, decoded (linear, so it commutes with
 // the interpolation).
-vec4 trilinearTexel(vec3 x) {
-  if (FETCH == 0) return textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0);
-  vec3 below = floor(x);
-  vec3 t = x - below;
-  ivec3 last = pc.dims.xyz - 1;
-  ivec3 a = clamp(ivec3(below), ivec3(0), last);
-  ivec3 b = clamp(ivec3(below) + 1, ivec3(0), last);
-  vec4 y0 = mix(mix(texelAt(ivec3(a.x, a.y, a.z)),
-                    texelAt(ivec3(b.x, a.y, a.z)), t.x),
-                mix(texelAt(ivec3(a.x, b.y, a.z)),
-                    texelAt(ivec3(b.x, b.y, a.z)), t.x),
-                t.y);
-  vec4 y1 = mix(mix(texelAt(ivec3(a.x, a.y, b.z)),
-                    texelAt(ivec3(b.x, a.y, b.z)), t.x),
-                mix(texelAt(ivec3(a.x, b.y, b.z)),
-                    texelAt(ivec3(b.x, b.y, b.z)), t.x),
-                t.y);
-  return mix(y0, y1, t.z);
-}
-
 vec4 fieldAndNoiseAt(vec3 x) {
-  vec4 texel = trilinearTexel(x);
+  vec4 texel = textureLod(fieldTexture, (x + 0.5) * pc.invDims.xyz, 0.0);
   if (PACKING == 1) texel.w = (127.0 * texel.w + 128.0) / 255.0;
   return texel;
 }

@@ -25,9 +25,8 @@ LIC3D_CONST kLicBindingField = 0;   // sampler3D: the packed field and noise (vo
 LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
 LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
 LIC3D_CONST kLicBindingNoise = 3;   // sampler3D r8: the noise alone (the benchmark's naive kernel)
-LIC3D_CONST kLicBindingBrickList = 4;    // buffer: the listed bricks (kVisibleBindingLists)
-LIC3D_CONST kLicBindingMadeBricks = 5;   // buffer: a uint per brick, set to 1 once made
-LIC3D_CONST kLicBindingFieldTexels = 6;  // buffer: the field texture's texels in x, y, z order
+LIC3D_CONST kLicBindingBrickList = 4;   // buffer: the listed bricks (kVisibleBindingLists)
+LIC3D_CONST kLicBindingMadeBricks = 5;  // buffer: a uint per brick, set to 1 once made
 
 // Specialization constant ids of the LIC pipeline (see LicSpecialization in lic_pass.h).
 LIC3D_CONST kLicConstIntegrator = 0;
@@ -42,7 +41,6 @@ LIC3D_CONST kLicConstScheme = 8;       // 0 exact (RK2: 2 fetches per sample), 1
 LIC3D_CONST kLicConstPacking = 9;      // 0 linear vector (RGBA16F/32F), 1 square-root RGBA8 SNORM
 LIC3D_CONST kLicConstInterleave = 10;  // 1: both directions in one loop, 0: one after the other
 LIC3D_CONST kLicConstBrickList = 11;   // 0 every voxel of the slab, 1 the listed bricks' voxels
-LIC3D_CONST kLicConstFetch = 12;       // 0 the sampler's trilinear filter, 1 eight point fetches
 // Their one default each, which lic.comp and LicSpecialization both take: LicParams' defaults
 // and the launch of CPU drivers (licLaunchFor).
 LIC3D_CONST kLicDefaultIntegrator = 1;   // rk2
@@ -57,7 +55,6 @@ LIC3D_CONST kLicDefaultScheme = 0;
 LIC3D_CONST kLicDefaultPacking = 0;
 LIC3D_CONST kLicDefaultInterleave = 0;  // one after the other everywhere (lic_pass.cpp says why)
 LIC3D_CONST kLicDefaultBrickList = 0;
-LIC3D_CONST kLicDefaultFetch = 0;
 
 struct LicPushConstants {
   ivec4 dims;             // xyz: grid size; w: first z slice of this dispatch (with the brick

@@ -4,7 +4,6 @@
 // same field and noise: ratios hold on machines whose absolute speed varies from run to run.
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
@@ -165,9 +164,6 @@ Result<void> kernelTable(const Context& context, const BenchOptions& options, do
   std::optional<ScalarVolume> naiveVolume, exactVolume;
   double naiveMs = 0.0, ceiling = 0.0;
   for (const KernelVariant& v : variants) {
-    if (const char* only = std::getenv("LIC3D_ONLY_PRECISION");  // EXPERIMENT
-        only && (v.naive || fieldTextureFormatName(v.precision) != std::string(only)))
-      continue;
     LicParams params;
     params.length = length;
     params.scheme = v.scheme;
@@ -350,7 +346,6 @@ Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOp
     for (const int length : lengths)
       LIC3D_TRY(
           kernelTable(context, options, budgetLeft, renderers, field, length, report["rows"]));
-    if (std::getenv("LIC3D_ONLY_PRECISION")) continue;  // EXPERIMENT
     LIC3D_TRY(maskTable(context, options, budgetLeft, renderers, field, lengths.back(),
                         report["masked"]));
     LIC3D_TRY(launchTable(context, options, budgetLeft, renderers, field, lengths.back(),

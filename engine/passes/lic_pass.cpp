@@ -6,7 +6,6 @@
 #include <cstdlib>
 
 #include "gpu/shader_library.h"
-#include "gpu/submit.h"
 #include "gpu/vk_check.h"
 #include "passes/lic_push.h"
 #include "shared_layout.h"
@@ -47,7 +46,6 @@ LicSpecialization licLaunchFor(VkPhysicalDeviceType type) {
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU) {
     launch.localSizeX = launch.localSizeY = launch.localSizeZ = 4;
   }
-  if (const char* e = std::getenv("LIC3D_FETCH")) launch.fetch = std::atoi(e);  // EXPERIMENT
   return launch;
 }
 
@@ -63,10 +61,9 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
       {gpu::kLicBindingMask},
       {gpu::kLicBindingBrickList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingMadeBricks, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-      {gpu::kLicBindingFieldTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingNoise},  // the naive kernel's own noise texture
   };
-  const std::span<const Binding> used(bindings, separateNoise ? 7 : 6);
+  const std::span<const Binding> used(bindings, separateNoise ? 6 : 5);
   LIC3D_TRY_ASSIGN(pass.layout_, PipelineLayout::create(context, used, VK_SHADER_STAGE_COMPUTE_BIT,
                                                         sizeof(gpu::LicPushConstants), "lic"));
   LIC3D_TRY_ASSIGN(pass.shader_,
@@ -106,8 +103,7 @@ void LicPass::pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, co
       .storageImage(gpu::kLicBindingOutput, output.view())
       .sampledImage(gpu::kLicBindingMask, maskSampler_, mask.view())
       .storageBuffer(gpu::kLicBindingBrickList, lists)
-      .storageBuffer(gpu::kLicBindingMadeBricks, made)
-      .storageBuffer(gpu::kLicBindingFieldTexels, texels_.size() ? texels_ : noBricks_);
+      .storageBuffer(gpu::kLicBindingMadeBricks, made);
   if (separateNoise_) writes.sampledImage(gpu::kLicBindingNoise, sampler_, noise->view());
   writes.push(*context_, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_);
 }
@@ -129,30 +125,6 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
                              const LicParams& params, int zBegin, int zEnd, const Image* noise) {
   LIC3D_ASSERT(!separateNoise_ || noise);
   const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
-  if (launch_.fetch >= 2) {  // EXPERIMENT
-    const VkDeviceSize bytes =
-        VkDeviceSize(voxelCount(field.dims)) * (field.precision == FieldPrecision::Float ? 16 : 8);
-    if (texels_.size() != bytes) {
-      LIC3D_TRY_ASSIGN(texels_, Buffer::create(*context_, bytes,
-                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                               MemoryUse::DeviceLocal, "lic texels"));
-    }
-    const VkPipelineStageFlags2 users = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    imageBarrier(cmd, field.image.handle(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, users, VK_ACCESS_2_MEMORY_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = field.image.extent();
-    vkCmdCopyImageToBuffer(cmd, field.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           texels_.handle(), 1, &region);
-    imageBarrier(cmd, field.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                 VK_ACCESS_2_NONE, users, VK_ACCESS_2_MEMORY_READ_BIT);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT);
-  }
   LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   pushDescriptors(cmd, field, mask, output, noise, noBricks_, noBricks_);
@@ -179,7 +151,6 @@ Result<void> LicPass::recordBricks(VkCommandBuffer cmd, const FieldTexture& fiel
       params, field.precision,
       licLaunch(gpu::kVisibleBrickSize, gpu::kVisibleBrickSize, 1, launch_.interleave != 0));
   specialization.brickList = 1;
-  specialization.fetch = launch_.fetch;
   LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   pushDescriptors(cmd, field, mask, output, nullptr, bricks.lists(), bricks.made());

@@ -42,11 +42,10 @@ struct LicSpecialization {
   std::uint32_t packing = gpu::kLicDefaultPacking;        // 1 for FieldPrecision::Byte
   std::uint32_t interleave = gpu::kLicDefaultInterleave;  // launch
   std::uint32_t brickList = gpu::kLicDefaultBrickList;    // set by recordBricks
-  std::uint32_t fetch = gpu::kLicDefaultFetch;            // launch
 
   bool operator==(const LicSpecialization&) const = default;
 };
-static_assert(sizeof(LicSpecialization) == 13 * 4);
+static_assert(sizeof(LicSpecialization) == 12 * 4);
 static_assert(offsetof(LicSpecialization, integrator) == 4 * gpu::kLicConstIntegrator);
 static_assert(offsetof(LicSpecialization, kernel) == 4 * gpu::kLicConstKernel);
 static_assert(offsetof(LicSpecialization, noiseFilter) == 4 * gpu::kLicConstNoiseFilter);
@@ -59,7 +58,6 @@ static_assert(offsetof(LicSpecialization, scheme) == 4 * gpu::kLicConstScheme);
 static_assert(offsetof(LicSpecialization, packing) == 4 * gpu::kLicConstPacking);
 static_assert(offsetof(LicSpecialization, interleave) == 4 * gpu::kLicConstInterleave);
 static_assert(offsetof(LicSpecialization, brickList) == 4 * gpu::kLicConstBrickList);
-static_assert(offsetof(LicSpecialization, fetch) == 4 * gpu::kLicConstFetch);
 
 // The fields of `params` and the texture's packing; the launch fields are `launch`'s.
 LicSpecialization licSpecialization(const LicParams& params, FieldPrecision precision,
@@ -121,7 +119,6 @@ class LicPass {
   bool separateNoise_ = false;
   LicSpecialization launch_;  // only its launch fields are used
   PipelineCache<LicSpecialization> pipelines_;
-  Buffer texels_;    // EXPERIMENT
   Buffer noBricks_;  // bound to the brick bindings of the slab variant, which never reads it
 
   Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
