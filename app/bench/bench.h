@@ -38,6 +38,9 @@ nlohmann::json newReport(const Context& context);
 // `bench --kernels`: the naive kernel and every shipped one, the masked pass, the launch shapes.
 Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOptions& options);
 
+// `bench --drag`: the app's frames while a LIC slider is dragged (bench/drag.cpp).
+Result<nlohmann::json> runDragBenchmarks(const Context& context, const BenchOptions& options);
+
 // `bench --fidelity`: each RK2 scheme's error against a converged LIC, on the CPU and the device.
 Result<nlohmann::json> runFidelityBenchmarks(const Context& context, const BenchOptions& options);
 

@@ -27,6 +27,10 @@ struct BenchOptions {
   bool fidelity = false;       // each scheme's error against a converged LIC
   std::string fidelityFiles;   // fields judged besides the analytic ones (comma-separated)
   int distributionVolume = 256;
+  bool drag = false;       // the app's frames while a LIC slider is dragged
+  int dragPicture = 1024;  // of --drag: the square picture's size
+  int dragSlices = 256;    // of --drag: the slices drawn
+  int dragFrames = 60;     // of --drag: frames timed
 };
 
 }  // namespace lic3d::cli
