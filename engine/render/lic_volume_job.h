@@ -8,9 +8,9 @@
 //
 // A job may also make a coarse volume (stride 2, 4 or 8): every stride-th voxel along each axis,
 // each the full LIC at that voxel (lic.comp's outputStride), written into a smaller image of its
-// own that the slices sample through the same normalized coordinates. It takes 1 / stride^3 of
-// the work: what the app shows while a LIC parameter is dragged (coarseLicStride), replaced by
-// the full volume when the drag ends.
+// own that the slices sample through the same normalized coordinates (the picture shifts by at
+// most about half a coarse voxel). It takes 1 / stride^3 of the work: what the app shows while a
+// LIC parameter is dragged (coarseLicStride), replaced by the full volume when the drag ends.
 
 #include <vulkan/vulkan.h>
 
