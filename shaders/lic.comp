@@ -232,11 +232,11 @@ ivec3 voxelOfInvocation() {
 }
 
 void main() {
-  ivec3 voxel = voxelOfInvocation();
+  ivec3 voxel = voxelOfInvocation();  // of the output; its streamline starts at voxel * stride
   // Workgroups deeper than one slice overhang the dispatch's slab: the next slab's voxels are its.
-  if (any(greaterThanEqual(voxel, pc.dims.xyz)) || voxel.z >= pc.zEnd) return;
+  if (any(greaterThanEqual(voxel * pc.outputStride, pc.dims.xyz)) || voxel.z >= pc.zEnd) return;
 
-  vec3 start = vec3(voxel);
+  vec3 start = vec3(voxel * pc.outputStride);
   vec4 startTexel = fieldAndNoiseAt(start);
   float w0 = weightOf(0);
   float sum = w0 * noiseAt(start, startTexel);

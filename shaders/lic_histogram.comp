@@ -49,7 +49,7 @@ void main() {
       atomicAdd(localMasked, 1);
       continue;
     }
-    vec3 v = texelFetch(fieldTexture, voxel, 0).xyz;
+    vec3 v = texelFetch(fieldTexture, voxel * pc.stride.x, 0).xyz;
     if (pc.dims.w == 1) v *= length(v);                                       // e |e| = u / max|u|
     if (length(v * pc.texelToPhysical.xyz) < pc.texelToPhysical.w) continue;  // empty space
     float value = clamp(texel.r, 0.0, 1.0);

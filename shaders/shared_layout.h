@@ -66,8 +66,10 @@ struct LicPushConstants {
   float criticalEpsilon;  // a texel's |xyz| at or below this stops a streamline
   float hannDenominator;  // L + |bias| + 1
   float gaussScale;       // 1 / (0.5 L), 0 when L = 0
-  int zEnd;               // one past the last z slice of this dispatch
-  float pad1;
+  int zEnd;               // one past the last z slice of this dispatch (of the output)
+  // Output voxel v holds the LIC of field voxel v * outputStride: 1 the full volume, 2, 4 or 8 a
+  // coarse one (render/lic_volume_job.h), whose voxels are the full volume's at those positions.
+  int outputStride;
   // The sparsity mask beyond the grid (lic_kernel.h): xyz the grid's offset in the whole grid
   // (a piece's; the bit patterns of signed ints), w the black threshold; maskSeed below.
   uvec4 maskBeyond;
@@ -89,9 +91,10 @@ LIC3D_CONST kHistogramBins = 1024;
 LIC3D_CONST kHistogramLocalSize = 256;
 
 struct HistogramPushConstants {
-  ivec4 dims;            // xyz: the grid; w: the field texture's packing (kLicConstPacking)
+  ivec4 dims;            // xyz: the LIC volume's grid; w: the field texture's packing
   vec4 texelToPhysical;  // xyz: texelToPhysicalForShader's xyz (volume_textures.h); w: voxels
                          // with length(texel * xyz) below this are empty, not counted
+  ivec4 stride;          // x: LIC voxel v lies at field voxel v * x (LicPushConstants)
 };
 
 // ---- Visible bricks (visible_bricks.comp, docs/VISIBLE_WORK.md) ---------------------------------

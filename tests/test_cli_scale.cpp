@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Fields larger than the device: --memory-budget caps the device memory, and compute makes a LIC
-// that does not fit in bricks with ghost layers, reported as "bricks" in the summary.
+// that does not fit in bricks with ghost layers, reported as "bricks" in the summary. And the
+// app's frames while a LIC slider is dragged, as `bench --drag` times them for large volumes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli_test_support.h"
 #include "io/nrrd.h"
+#include "render/lic_volume_job.h"
 
 namespace lic3d {
 namespace {
@@ -71,6 +74,31 @@ TEST_F(CliTest, ABudgetTooSmallOrNotBrickableIsRefused) {
   EXPECT_NE(bad.output.find("--memory-budget"), std::string::npos) << bad.output;
   EXPECT_FALSE(std::filesystem::exists(path("tiny.nrrd")));
   EXPECT_FALSE(std::filesystem::exists(path("seeded.nrrd")));
+}
+
+// `bench --drag` times the app's frames while a LIC slider is dragged: each size's row has the
+// stride the app would pick from the full LIC's time, its coarse grid, and the frame times with
+// their verdict against 60 frames per second, consistent with each other whatever the timings.
+TEST_F(CliTest, BenchDragTimesTheAppsFramesAtTheStrideItWouldPick) {
+  const CommandRun r =
+      run("bench --drag --sizes 12,20 --lengths 30 --drag-picture 64 --drag-slices 16 "
+          "--drag-frames 10 --warmup 1 --json drag.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("60 fps"), std::string::npos) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(test::readWhole(path("drag.json")));
+  ASSERT_EQ(report["drag"].size(), 2u) << report.dump();
+  for (const nlohmann::json& row : report["drag"]) {
+    const int n = row["n"], stride = row["stride"];
+    EXPECT_GT(row["full_lic_ms"].get<double>(), 0.0);
+    EXPECT_EQ(stride, coarseLicStride(row["full_lic_ms"].get<double>())) << row.dump();
+    for (int axis = 0; axis < 3; ++axis)
+      EXPECT_EQ(row["coarse_grid"][axis].get<int>(), (n + stride - 1) / stride) << row.dump();
+    const double median = row["frame_median_ms"], p95 = row["frame_p95_ms"];
+    EXPECT_GT(median, 0.0);
+    EXPECT_GE(p95, median);
+    EXPECT_GE(median, row["draw_median_ms"].get<double>()) << "a frame includes its draw";
+    EXPECT_EQ(row["fits_60_fps"].get<bool>(), p95 <= 1000.0 / 60.0) << row.dump();
+  }
 }
 
 }  // namespace

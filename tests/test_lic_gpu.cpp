@@ -465,5 +465,90 @@ TEST_F(GpuTest, FramePacedRecomputeShowsOnlyFinishedVolumes) {
   EXPECT_NEAR(renderer->intensityStatistics().mean, blocking->intensityStatistics().mean, 1e-6);
 }
 
+// While a LIC parameter is dragged the app shows a coarse volume: every stride-th voxel along each
+// axis, each the full LIC at that voxel, so the same picture, blurrier. Its voxels must equal the
+// full volume's at the same positions (the same streamlines, bit for bit), the sparsity mask's
+// hidden voxels included, on a grid that no stride divides; its histogram counts its own voxels,
+// empty space judged by the field at the same positions.
+TEST_F(GpuTest, CoarseVolumeHoldsTheFullVolumesVoxelsAtItsPositions) {
+  VectorField field = makeAnalyticField(AnalyticField::Abc, {33, 30, 29});
+  // Empty space (a zero field) for x < 12: the histogram leaves it out.
+  for (int k = 0; k < field.dims.z; ++k)
+    for (int j = 0; j < field.dims.y; ++j)
+      for (int i = 0; i < 12; ++i) field.vectors[voxelIndex(field.dims, i, j, k)] = glm::vec3(0.0f);
+  RendererOptions options;
+  options.doubleBuffered = true;
+  Result<LicRenderer> renderer = LicRenderer::create(context(), options);
+  ASSERT_TRUE(renderer.ok());
+  ASSERT_TRUE(renderer->setInputs(field, makeWhiteNoise(field.dims, 3)).ok());
+  LicParams params;
+  params.length = 7;
+  params.sparsity.distribution = SparsityDistribution::Checkerboard;
+  params.sparsity.ratio = 0.002f;
+  ASSERT_TRUE(renderer->updateLic(params).ok());
+  const ScalarVolume full = *renderer->readLicVolume();
+  const IntensityStatistics fullStatistics = renderer->intensityStatistics();
+  ASSERT_EQ(renderer->licJob().shownStride(), 1);
+
+  for (const int stride : {2, 4}) {
+    SCOPED_TRACE("stride " + std::to_string(stride));
+    Result<bool> ran =
+        renderer->licJob().update(params, renderer->fieldTextures(), {}, nullptr, stride);
+    ASSERT_TRUE(ran.ok()) << ran.error().message;
+    EXPECT_TRUE(*ran);
+    EXPECT_EQ(renderer->licJob().shownStride(), stride);
+    EXPECT_TRUE(renderer->needsLic(params)) << "a coarse volume is not the full one";
+    const ScalarVolume coarse = *renderer->readLicVolume();
+    ASSERT_EQ(coarse.dims, coarseDims(field.dims, stride));
+    EXPECT_EQ(coarse.geometry.spacing, field.geometry.spacing * static_cast<double>(stride));
+    const double emptySpeed = renderer->fieldTextures().emptySpeed();
+    int differing = 0, hidden = 0, drawnDiffering = 0;
+    std::uint64_t counted = 0;  // drawn, outside empty space
+    for (int k = 0; k < coarse.dims.z; ++k)
+      for (int j = 0; j < coarse.dims.y; ++j)
+        for (int i = 0; i < coarse.dims.x; ++i) {
+          const std::size_t c = voxelIndex(coarse.dims, i, j, k);
+          const std::size_t f = voxelIndex(full.dims, i * stride, j * stride, k * stride);
+          if (coarse.values[c] != full.values[f]) ++differing;
+          if (coarse.drawn[c] != full.drawn[f]) ++drawnDiffering;
+          if (!coarse.drawn[c]) ++hidden;
+          if (coarse.drawn[c] && glm::length(field.vectors[f]) >= emptySpeed) ++counted;
+        }
+    EXPECT_EQ(differing, 0);
+    EXPECT_EQ(drawnDiffering, 0);
+    ASSERT_GT(hidden, 0) << "the mask should hide some of the coarse voxels";
+    // The histogram is the coarse grid's: its masked count, and the hidden fraction of it.
+    const IntensityStatistics& statistics = renderer->intensityStatistics();
+    EXPECT_EQ(statistics.maskedVoxels, static_cast<std::uint64_t>(hidden));
+    EXPECT_EQ(statistics.voxels, counted);
+    EXPECT_NEAR(*renderer->hiddenFraction(),
+                static_cast<double>(hidden) / static_cast<double>(voxelCount(coarse.dims)), 1e-12);
+    // A sample of the full volume's voxels: its mean is the full volume's, within a few %.
+    EXPECT_NEAR(statistics.mean, fullStatistics.mean, 0.03);
+  }
+
+  // The full volume replaces the coarse one.
+  ASSERT_TRUE(renderer->updateLic(params).ok());
+  EXPECT_EQ(renderer->licJob().shownStride(), 1);
+  EXPECT_FALSE(renderer->needsLic(params));
+  EXPECT_EQ(compareVolumes(*renderer->readLicVolume(), full).max, 0.0);
+}
+
+TEST(CoarseLicStride, TheCoarseJobFitsTheDragBudget) {
+  EXPECT_EQ(coarseLicStride(0.0), 1) << "no full LIC timed yet";
+  EXPECT_EQ(coarseLicStride(3.0), 1);  // 256^3 on the H100: a full LIC per frame
+  EXPECT_EQ(coarseLicStride(8.0), 1);
+  EXPECT_EQ(coarseLicStride(23.0), 2);  // 512^3: 2.9 ms
+  EXPECT_EQ(coarseLicStride(64.0), 2);
+  EXPECT_EQ(coarseLicStride(190.0), 4);  // 1024^3: 3.0 ms
+  EXPECT_EQ(coarseLicStride(1e6), 8);
+  for (const double ms : {1.0, 9.0, 100.0, 600.0}) {
+    const int stride = coarseLicStride(ms);
+    EXPECT_TRUE(ms / (stride * stride * stride) <= kDragLicBudgetMs || stride == 8) << ms;
+    EXPECT_TRUE(stride == 1 || ms / ((stride / 2) * (stride / 2) * (stride / 2)) > kDragLicBudgetMs)
+        << ms << ": a smaller stride would fit";
+  }
+}
+
 }  // namespace
 }  // namespace lic3d

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/session.h"
 #include "io/session_file.h"
@@ -331,6 +333,49 @@ TEST_F(ViewerTest, SoakKeepsMemoryFlat) {
   EXPECT_GE(std::stoi(m[2]), 2) << r.output;
   EXPECT_GE(std::stoi(m[4]), 3) << r.output;
   EXPECT_GE(std::stoi(m[5]), 4) << r.output;
+}
+
+// A LIC slider dragged (viewer/drag.h, scripted by --drag-lic): while the length slider is held
+// the app shows coarse LIC volumes (every 2nd voxel, forced here: on lavapipe the measured time
+// would choose too), and the full one once it is let go; each volume's line of the panel, with its
+// GPU time, and the panel's frame times go to stderr as the panel shows them.
+TEST_F(ViewerTest, ADraggedLicSliderShowsCoarseVolumesThenTheFullOne) {
+  const CommandRun r = view(
+      "--grid 32 -L 6 --frames 4 --drag-lic 6 --drag-stride 2 --save-session out.json", "480x320");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::regex licLine(
+      "lic3d-view: panel: LIC ([0-9.]+) ms GPU, (coarse|full) (\\d+)x(\\d+)x(\\d+)");
+  std::vector<std::pair<std::string, int>> volumes;  // kind and grid x of each finished volume
+  for (auto it = std::sregex_iterator(r.output.begin(), r.output.end(), licLine);
+       it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    EXPECT_GT(std::stod(m[1]), 0.0) << m.str();
+    EXPECT_EQ(m[3], m[4]);
+    EXPECT_EQ(m[4], m[5]);
+    volumes.emplace_back(m[2], std::stoi(m[3]));
+  }
+  ASSERT_GE(volumes.size(), 4u) << r.output;
+  // The first volume, full; coarse ones while the slider is held; the full one at the end.
+  EXPECT_EQ(volumes.front(), std::make_pair(std::string("full"), 32)) << r.output;
+  EXPECT_EQ(volumes.back(), std::make_pair(std::string("full"), 32)) << r.output;
+  for (std::size_t i = 1; i + 1 < volumes.size(); ++i)
+    EXPECT_EQ(volumes[i], std::make_pair(std::string("coarse"), 16)) << r.output;
+  std::smatch frame;
+  ASSERT_TRUE(std::regex_search(
+      r.output, frame,
+      std::regex(
+          "lic3d-view: panel: frame ([0-9.]+) ms CPU, ([0-9.]+) ms GPU \\(median of (\\d+)\\)")))
+      << r.output;
+  EXPECT_GT(std::stod(frame[1]), 0.0);
+  EXPECT_GT(std::stod(frame[2]), 0.0);
+  EXPECT_GE(std::stoi(frame[3]), 6);
+  Result<Session> saved = readSession(path("out.json"));
+  ASSERT_TRUE(saved) << saved.error().message;
+  EXPECT_EQ(saved->lic.length, 6 + 6) << "the drag's last length is kept";
+
+  const CommandRun refused = runShell("'" + std::string(LIC3D_VIEWER) + "' --drag-lic 5");
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--drag-lic needs --frames"), std::string::npos) << refused.output;
 }
 
 // A soak without --frames cannot end: refused.

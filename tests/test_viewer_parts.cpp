@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The desktop app's parts that need no window (app/viewer/panel_logic.h, plane.h,
-// script_progress.h): how a long path is shortened, which control sets the opacity, the preset
-// file the panel names, the 2D picture's size for the view, and a scripted run's progress.
+// script_progress.h, drag.h): how a long path is shortened, which control sets the opacity, the
+// preset file the panel names, the 2D picture's size for the view, a scripted run's progress, and
+// which LIC a slider's drag asks for.
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/look.h"
 #include "core/view_params.h"
+#include "viewer/drag.h"
 #include "viewer/panel_logic.h"
 #include "viewer/plane.h"
 #include "viewer/script_progress.h"
@@ -182,6 +185,63 @@ TEST(ViewerParts, ALongScriptedRunReportsItsProgress) {
   EXPECT_EQ(shortRun.windowText(7, false), "scripted run: frame 7 of 99");
   EXPECT_FLOAT_EQ(ScriptProgress(50, false, false).fraction(10), 0.2f);
   EXPECT_FALSE(ScriptProgress().scripted());
+}
+
+// A LIC slider's drag: each change while it is held asks for the coarse volume, letting it go
+// for the full one (once), and changes without a drag for the full one.
+TEST(ViewerParts, ADragAsksForCoarseVolumesThenTheFullOneWhenLetGo) {
+  LicDrag drag;  // the stride from the last full LIC's time: 23 ms -> 2, 190 ms -> 4
+  EXPECT_EQ(drag.request(false, false, 23.0), std::nullopt) << "nothing changed";
+  EXPECT_EQ(drag.request(true, false, 23.0), 1) << "a change without a drag (a typed value)";
+  EXPECT_EQ(drag.request(false, true, 23.0), std::nullopt) << "held, not moved yet";
+  EXPECT_EQ(drag.request(true, true, 23.0), 2);
+  EXPECT_EQ(drag.request(false, true, 23.0), std::nullopt) << "held still: the coarse one stays";
+  EXPECT_EQ(drag.request(true, true, 190.0), 4);
+  EXPECT_EQ(drag.request(false, false, 190.0), 1) << "let go: the full volume";
+  EXPECT_EQ(drag.request(false, false, 190.0), std::nullopt) << "asked for once";
+  EXPECT_EQ(drag.request(true, true, 3.0), 1) << "a full LIC fits the frame: no coarse one";
+  EXPECT_EQ(drag.request(false, false, 3.0), std::nullopt);
+
+  LicDrag forced(2);
+  EXPECT_EQ(forced.request(true, true, 0.5), 2);
+  EXPECT_EQ(forced.request(false, false, 0.5), 1);
+  LicDrag never(1);
+  EXPECT_EQ(never.request(true, true, 500.0), 1);
+  EXPECT_EQ(never.request(false, false, 500.0), std::nullopt);
+}
+
+TEST(ViewerParts, TheScriptedDragHoldsTheLengthSliderThenLetsGo) {
+  ScriptedDrag drag(3);
+  LicParams lic;
+  lic.length = 10;
+  EXPECT_FALSE(drag.step(false, lic)) << "waits for the first volume";
+  EXPECT_EQ(lic.length, 10);
+  EXPECT_FALSE(drag.done());
+  for (int i = 1; i <= 3; ++i) {
+    EXPECT_TRUE(drag.step(i == 1, lic)) << i;  // held on, whatever is shown
+    EXPECT_EQ(lic.length, 10 + i);
+  }
+  EXPECT_TRUE(drag.done());
+  EXPECT_FALSE(drag.step(true, lic));
+  EXPECT_EQ(lic.length, 13);
+  EXPECT_TRUE(ScriptedDrag().done());
+}
+
+TEST(ViewerParts, ThePanelShowsTheMedianFrameTimesAndTheLastLicsTime) {
+  RecentMedian times;
+  EXPECT_EQ(times.median(), 0.0);
+  for (const double ms : {16.0, 40.0, 17.0}) times.add(ms);
+  EXPECT_EQ(times.median(), 17.0);
+  times.add(15.0);
+  EXPECT_EQ(times.median(), 16.5);
+  // Only the last kCapacity frames count.
+  for (std::size_t i = 0; i < RecentMedian::kCapacity; ++i) times.add(8.0);
+  EXPECT_EQ(times.size(), RecentMedian::kCapacity);
+  EXPECT_EQ(times.median(), 8.0);
+
+  EXPECT_EQ(frameTimeText(16.66, 9.123, 60), "frame 16.7 ms CPU, 9.12 ms GPU (median of 60)");
+  EXPECT_EQ(licTimeText(2.914, 2, {256, 256, 256}), "LIC 2.91 ms GPU, coarse 256x256x256");
+  EXPECT_EQ(licTimeText(23.1, 1, {512, 512, 512}), "LIC 23.10 ms GPU, full 512x512x512");
 }
 
 }  // namespace

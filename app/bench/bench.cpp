@@ -604,6 +604,7 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
       : options.kernels       ? runKernelBenchmarks(*context, options)
       : options.fidelity      ? runFidelityBenchmarks(*context, options)
       : options.visible       ? runVisibleBenchmarks(*context, options)
+      : options.drag          ? runDragBenchmarks(*context, options)
                               : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {

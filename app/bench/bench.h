@@ -40,6 +40,8 @@ Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOp
 
 // `bench --visible`: the full LIC pass against classification + LIC of the visible bricks.
 Result<nlohmann::json> runVisibleBenchmarks(const Context& context, const BenchOptions& options);
+// `bench --drag`: the app's frames while a LIC slider is dragged (bench/drag.cpp).
+Result<nlohmann::json> runDragBenchmarks(const Context& context, const BenchOptions& options);
 
 // `bench --fidelity`: each RK2 scheme's error against a converged LIC, on the CPU and the device.
 Result<nlohmann::json> runFidelityBenchmarks(const Context& context, const BenchOptions& options);

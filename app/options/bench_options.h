@@ -33,6 +33,10 @@ struct BenchOptions {
   bool visible = false;           // the full LIC pass against visible work
   std::string visibleFiles;       // fields --visible times instead of the analytic --field
   std::string resolution = "1x";  // of the --visible-files (as render's --resolution)
+  bool drag = false;              // the app's frames while a LIC slider is dragged
+  int dragPicture = 1024;         // of --drag: the square picture's size
+  int dragSlices = 256;           // of --drag: the slices drawn
+  int dragFrames = 60;            // of --drag: frames timed
 };
 
 }  // namespace lic3d::cli

@@ -157,6 +157,20 @@ std::unique_ptr<CommandLine> makeCommandLine() {
       ->add_option("--resolution", bench.resolution,
                    "Grid of the --visible-files, as render's --resolution (e.g. 2x)")
       ->capture_default_str();
+  benchCommand->add_flag("--drag", bench.drag,
+                         "Instead: the app's frames while a LIC slider is dragged, offscreen: per "
+                         "frame the LIC length one step on, the LIC job the app records (coarse "
+                         "at the stride it picks from the full LIC's time) and the slices; median "
+                         "and 95th percentile frame time for --sizes, at the first of --lengths");
+  benchCommand->add_option("--drag-picture", bench.dragPicture, "Square picture size of --drag")
+      ->check(rangeCheck(16, 16384))
+      ->capture_default_str();
+  benchCommand->add_option("--drag-slices", bench.dragSlices, "Slices drawn by --drag")
+      ->check(rangeCheck(1, 4096))
+      ->capture_default_str();
+  benchCommand->add_option("--drag-frames", bench.dragFrames, "Frames --drag times")
+      ->check(rangeCheck(10, 100000))
+      ->capture_default_str();
   benchCommand
       ->add_option("--distribution-volume", bench.distributionVolume,
                    "Volume size N (N^3) of --distributions")

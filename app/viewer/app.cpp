@@ -216,15 +216,24 @@ Result<void> App::collectFrame(FramePresenter::Frame& f, std::uint32_t slot) {
   if (f.timed) {
     LIC3D_TRY_ASSIGN(const double slabMs, f.timer.milliseconds(0));
     LIC3D_TRY_ASSIGN(stats_.frameMs, f.timer.milliseconds(1));
+    gpuFrameMs_.add(slabMs + stats_.frameMs);
+    if (f.licBegan) licSumMs_ = 0.0;  // a job dropped half-way is not part of this one
     if (f.licSlices > 0) {
       licSumMs_ += slabMs;
-      // Aim the next slabs at the LIC time budget, from this device's measured speed.
+      // Aim the next slabs at the LIC time budget, from this device's measured speed (of full
+      // slices: a coarse job is recorded whole).
       const double msPerSlice = std::max(slabMs / f.licSlices, 1e-3);
-      slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
-                                   std::max(1, renderer_->dims().z));
+      if (f.licStride == 1)
+        slicesPerFrame_ = std::clamp(static_cast<int>(kLicBudgetMs / msPerSlice), 1,
+                                     std::max(1, renderer_->dims().z));
     }
     if (f.finishedLic) {
-      stats_.licMs = licSumMs_;  // the whole volume, summed over its slabs
+      // The whole volume, summed over its slabs.
+      stats_.licTimes =
+          licTimeText(licSumMs_, f.licStride, coarseDims(renderer_->dims(), f.licStride));
+      if (f.licStride == 1) fullLicMs_ = licSumMs_;
+      if (scriptedDrag_.scripted() && !global_.quiet)
+        std::fprintf(stderr, "lic3d-view: panel: %s\n", stats_.licTimes.c_str());
       licSumMs_ = 0.0;
     }
   }
@@ -243,6 +252,7 @@ void App::updateStats() {
   stats_.computeFraction = status.fraction;
   stats_.waitingForMask = status.waitingForMask;
   stats_.volumeMiB = static_cast<double>(renderer_->volumeBytes()) / (1 << 20);
+  stats_.frameTimes = frameTimeText(cpuFrameMs_.median(), gpuFrameMs_.median(), gpuFrameMs_.size());
   const VolumeFacts facts = renderer_->volumeFacts();
   stats_.colorValues = facts.colorValues;
   stats_.opacityValues = facts.opacityValues;
@@ -297,8 +307,12 @@ Result<void> App::applySession() {
       LIC3D_TRY(startLoading(session_.field, session_.noise));
     LIC3D_TRY(updateTime());
     LIC3D_TRY(updateScalars());
-    if (!(session_.lic == drawnSession_.lic) && !stats_.loading) {
-      if (auto r = renderer_->requestLic(session_.lic); !r) {
+    // While a LIC slider is held, a coarse volume; the full one when it is let go.
+    const bool changed = !(session_.lic == drawnSession_.lic);
+    if (const std::optional<int> stride =
+            stats_.loading ? std::nullopt
+                           : licDrag_.request(changed, ui_.licDragging, fullLicMs_)) {
+      if (auto r = renderer_->requestLic(session_.lic, *stride); !r) {
         stats_.message = uiMessage(r.error());
         session_.lic = drawnSession_.lic;
       }
@@ -311,6 +325,7 @@ Result<void> App::applySession() {
 // Whether a scripted run may take its screenshot: the volume for the current parameters is
 // shown (stopped: at once, showing the error).
 bool App::readyForShot() const {
+  if (!stopped_ && !scriptedDrag_.done()) return false;
   return stopped_ ||
          (session_.twoD
               ? planeView_ && planeView_->hasPicture() && planeView_->tried(session_, pictureArea_)
@@ -324,6 +339,7 @@ Result<bool> App::frame() {
   const auto now = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(now - lastTime_).count();
   lastTime_ = now;
+  cpuFrameMs_.add(1000.0 * seconds);
   stats_.fps = static_cast<float>(0.9 * stats_.fps + 0.1 * (seconds > 0.0 ? 1.0 / seconds : 0.0));
 
   const Input in = input_.take();
@@ -378,6 +394,11 @@ Result<bool> App::frame() {
     LIC3D_TRY(handleActions(actions));
   }
   if (options_.soak && !stopped_) stepSoak();
+  if (scriptedDrag_.scripted() && !stopped_) {
+    const bool volumeShown =
+        !stats_.loading && renderer_->hasVolume() && !renderer_->licStatus().pending;
+    ui_.licDragging = scriptedDrag_.step(volumeShown, session_.lic) || ui_.licDragging;
+  }
   LIC3D_TRY(applySession());
 
   const bool ready = readyForShot();
@@ -412,10 +433,14 @@ Result<void> App::recordPicture(FramePresenter::Frame& f, std::uint32_t slot,
     f.timer.reset(cmd, 1);
     f.timer.begin(cmd, 0);
   }
-  LIC3D_TRY_ASSIGN(const LicWork work, renderer_->recordLicWork(cmd, slicesPerFrame_, slot));
+  // A coarse job is recorded whole: its stride was chosen so that it fits the frame.
+  const int slices = renderer_->licStatus().stride > 1 ? renderer_->dims().z : slicesPerFrame_;
+  LIC3D_TRY_ASSIGN(const LicWork work, renderer_->recordLicWork(cmd, slices, slot));
   if (f.timed) f.timer.end(cmd, 0);
   f.finishedLic = work.finished;
   f.licSlices = work.slicesRecorded;
+  f.licStride = work.stride;
+  f.licBegan = work.began;
 
   const VkExtent2D extent = presenter_->extent();
   const Image& offscreen = presenter_->offscreen();
@@ -474,6 +499,8 @@ int App::run() {
   }
   if (!context_) return exitStatus_;  // the device was lost and could not be made again
   std::fputs(progress_.finish().c_str(), stderr);
+  if (scriptedDrag_.scripted() && !global_.quiet)
+    std::fprintf(stderr, "lic3d-view: panel: %s\n", stats_.frameTimes.c_str());
   // Let the last screenshot's frame finish (a scripted run quits right after recording it).
   vkDeviceWaitIdle(context_->device());
   for (std::uint64_t i = 0; i < FramePresenter::kFramesInFlight; ++i) {

@@ -19,6 +19,7 @@
 #include "loading/session_inputs.h"
 #include "options/session_options.h"
 #include "render/lic_renderer.h"
+#include "viewer/drag.h"
 #include "viewer/frames.h"
 #include "viewer/input.h"
 #include "viewer/loading.h"
@@ -110,7 +111,12 @@ class App {
   bool imguiVulkanReady_ = false;  // its Vulkan backend, made again with the device
   std::uint64_t frameNumber_ = 0;
   int slicesPerFrame_ = 4;
-  double licSumMs_ = 0.0;  // GPU time of the LIC slabs of the volume being computed
+  double licSumMs_ = 0.0;   // GPU time of the LIC slabs of the volume being computed
+  double fullLicMs_ = 0.0;  // GPU time of the last full LIC volume (the drag's stride)
+  LicDrag licDrag_{options_.dragStride};
+  ScriptedDrag scriptedDrag_{options_.dragLic};
+  RecentMedian cpuFrameMs_;  // the time between frames
+  RecentMedian gpuFrameMs_;  // the frames' LIC work and volume draw
   double biasPhase_ = 0.0;
   int screenshots_ = 0;
   FieldLoader loader_;

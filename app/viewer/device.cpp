@@ -363,7 +363,7 @@ void App::updatePlane() {
   stats_.picture2D = true;
   stats_.minMagnitude = planeView_->minMagnitude();
   stats_.maxMagnitude = planeView_->maxMagnitude();
-  stats_.licMs = planeView_->licMilliseconds();
+  stats_.licTimes = licTimeText(planeView_->licMilliseconds(), 1, stats_.dims);
 }
 
 // An error the app cannot carry on from (out of device memory while it runs, a device lost

@@ -38,7 +38,9 @@ class FramePresenter {
     // What the frame's submission did, for when its fence has signalled.
     bool timed = false;
     bool finishedLic = false;
-    int licSlices = 0;  // z slices of LIC work recorded
+    int licSlices = 0;      // z slices of LIC work recorded
+    int licStride = 1;      // of the LIC job they belong to (> 1: coarse)
+    bool licBegan = false;  // they began that job
     bool screenshot = false;
     bool scriptedShot = false;  // the screenshot asked for by --screenshot
   };

@@ -68,6 +68,19 @@ int main(int argc, char** argv) {
       "--soak", options.soak,
       "Scripted endurance run (needs --frames): a LIC or view change every 10 frames, a "
       "resize for 10 frames every 250; fails if RSS or device memory grows after the warm-up");
+  app.add_option("--drag-stride", options.dragStride,
+                 "The LIC while a LIC slider is dragged: every Nth voxel along each axis, the "
+                 "full LIC once it is let go. auto: 1, 2, 4 or 8, the smallest whose LIC fits "
+                 "8 ms of the frame, from the last full LIC's GPU time; 1: always the full LIC")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, int>{
+                                              {"auto", 0}, {"1", 1}, {"2", 2}, {"4", 4}, {"8", 8}})
+                      .description(""))
+      ->default_str("auto");
+  app.add_option("--drag-lic", options.dragLic,
+                 "Scripted run (needs --frames): once the volume is shown, hold the LIC length "
+                 "slider for N frames, one step longer each, then let go; the panel's LIC line "
+                 "of each volume and the frame times go to stderr")
+      ->check(CLI::Range(1, 100000));
   app.add_option("--save-session", options.saveSession,
                  "Save every parameter as a session JSON file on quit (for `lic3d render "
                  "--session`)");
@@ -89,6 +102,10 @@ int main(int argc, char** argv) {
       return kExitBadInput;
     }
     if (auto r = checkOutputPath(options.screenshot, ".png"); !r) return reportError(r.error());
+  }
+  if (options.dragLic > 0 && options.frames == 0) {
+    std::fprintf(stderr, "lic3d-view: error: --drag-lic needs --frames\n");
+    return kExitBadInput;
   }
   if (options.soak && options.frames == 0) {
     std::fprintf(stderr, "lic3d-view: error: --soak needs --frames\n");

@@ -218,14 +218,20 @@ void timePanel(Session& session, UiState& ui, const Stats& stats) {
   ImGui::SliderFloat("seconds per cycle", &ui.timeSeconds, 1.0f, 120.0f, "%.0f s");
 }
 
-void licPanel(Session& s) {
+// Whether the widget just drawn is held: its drag shows a coarse LIC (viewer/drag.h).
+void noteDrag(UiState& ui) { ui.licDragging = ui.licDragging || ImGui::IsItemActive(); }
+
+void licPanel(Session& s, UiState& ui) {
   if (!ImGui::CollapsingHeader("LIC", ImGuiTreeNodeFlags_DefaultOpen)) return;
   LicParams& l = s.lic;
   slider("length L", l.length, ranges::kLength);
+  noteDrag(ui);
   tip("Streamline steps each way: longer streaks, more blur (thesis 4.4.3)");
   slider("step h", l.step, ranges::kStep, "%.2f voxels");
+  noteDrag(ui);
   tip("Step length in voxels");
   ImGui::SliderInt("bias", &l.bias, -l.length, l.length);
+  noteDrag(ui);
   nameWidget("lic.bias", "bias");
   l.bias = std::clamp(l.bias, -l.length, l.length);
   tip("L - bias steps backward, L + bias forward: moving it animates the flow (thesis 3.3.3)");
@@ -243,13 +249,14 @@ void licPanel(Session& s) {
         "8-bit direction and noise, a quarter of the memory of float");
 }
 
-void sparsityPanel(Session& s, const Stats& stats) {
+void sparsityPanel(Session& s, UiState& ui, const Stats& stats) {
   if (!ImGui::CollapsingHeader("Sparsity")) return;
   SparsityParams& p = s.lic.sparsity;
   combo("distribution", p.distribution,
         "Black points of the mask (thesis 5.1.4): a voxel whose streamline touches one is not "
         "drawn");
   slider("amount", p.amount, ranges::kSparsityAmount, "%.2f");
+  noteDrag(ui);
   tip("The fraction of voxels to hide, mapped to the distribution's points, radius or ratio "
       "(0: the distribution's own parameters below)");
   if (stats.hiddenFraction >= 0.0)
@@ -259,8 +266,10 @@ void sparsityPanel(Session& s, const Stats& stats) {
   p.points = std::max(p.points, 0);
   tip("Black points for poisson, poisson-approx, halton, hammersley (0: automatic)");
   slider("radius", p.radius, ranges::kSparsityRadius, "%.2f voxels");
+  noteDrag(ui);
   tip("Minimum distance between black points for poisson and jitter (0: automatic)");
   slider("ratio", p.ratio, ranges::kSparsityRatio);
+  noteDrag(ui);
   tip("Fraction of black voxels of the checkerboard");
   int seed = static_cast<int>(p.seed);
   if (ImGui::InputInt("mask seed", &seed)) p.seed = static_cast<std::uint64_t>(std::max(seed, 0));
@@ -479,8 +488,12 @@ void filesPanel(UiState& ui, Actions& actions) {
 // The app's state at the top of the panel: speed, the volume, the device, work in progress and
 // the last message.
 void statusSection(const Stats& stats) {
-  ImGui::Text("%.1f fps   LIC %.2f ms   frame %.2f ms (GPU)", static_cast<double>(stats.fps),
-              stats.licMs, stats.frameMs);
+  ImGui::Text("%.1f fps   draw %.2f ms (GPU)", static_cast<double>(stats.fps), stats.frameMs);
+  ImGui::TextUnformatted(stats.frameTimes.c_str());
+  tip("CPU: the time between frames; GPU: the frame's LIC work and volume draw (timestamps)");
+  if (!stats.licTimes.empty()) ImGui::TextUnformatted(stats.licTimes.c_str());
+  tip("GPU time of the last LIC volume, summed over its frames; coarse while a LIC slider is "
+      "dragged (every 2nd, 4th or 8th voxel), full when it is let go");
   if (stats.picture2D)
     ImGui::Text("%dx%d picture", stats.dims.x, stats.dims.y);
   else
@@ -606,6 +619,7 @@ void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background) 
 
 Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
   Actions actions;
+  ui.licDragging = false;
   alertDialog(stats, actions);
   if (!ui.visible) return actions;
   helpPanel(ui);
@@ -622,8 +636,8 @@ Actions drawUi(Session& session, UiState& ui, const Stats& stats) {
     if (!session.twoD) lookPanel(session, ui, actions);
     fieldPanel(session, ui, actions);
     timePanel(session, ui, stats);
-    licPanel(session);
-    if (!session.twoD) sparsityPanel(session, stats);
+    licPanel(session, ui);
+    if (!session.twoD) sparsityPanel(session, ui, stats);
     colourPanel(session.view, ui, stats);
     if (!session.twoD) transferFunctionPanel(session.view, ui, stats);
     if (!session.twoD) {

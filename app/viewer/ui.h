@@ -22,8 +22,9 @@ namespace lic3d::viewer {
 // What the panels show besides the session.
 struct Stats {
   float fps = 0.0f;
-  double licMs = 0.0;    // GPU time of the last LIC volume, summed over its slabs (timestamps)
-  double frameMs = 0.0;  // GPU time of the last frame's volume draw
+  double frameMs = 0.0;    // GPU time of the last frame's volume draw
+  std::string frameTimes;  // frameTimeText (viewer/drag.h)
+  std::string licTimes;    // licTimeText of the last LIC volume; empty before the first
   std::string device;
   Dims dims{0};
   double volumeMiB = 0.0;
@@ -81,6 +82,7 @@ struct UiState {
   int selectedColorPoint = -1;                       // of the transfer function editor
   std::string transferMessage;                       // the preset last loaded or saved
   float lastOpticalDepth = 0.0f;  // restored when the optical depth sets the opacity again
+  bool licDragging = false;       // a LIC slider is held this frame (a coarse LIC is shown)
 };
 
 // The panels are docked at the right, the full height of the window; the picture takes the

@@ -24,6 +24,13 @@ struct ViewerOptions {
   // With `frames`: change a LIC or a view parameter every 10 frames and resize the window every
   // 250 (for 10 frames), sample RSS and device memory, and fail if they grow after the warm-up.
   bool soak = false;
+  // The stride of the LIC while a LIC slider is dragged: 0 from the last full LIC's GPU time
+  // (coarseLicStride), 1 always the full LIC, 2, 4 or 8 that stride.
+  int dragStride = 0;
+  // With `frames`: once the first volume is shown, hold the LIC length slider for this many
+  // frames, one step longer each, then let go; each LIC volume's line of the panel and, at the
+  // end, the frame times go to stderr.
+  int dragLic = 0;
 };
 
 // Runs the app until the window closes; returns the process exit status.

@@ -20,6 +20,9 @@ inline std::size_t voxelCount(Dims dims) {
   return static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y) *
          static_cast<std::size_t>(dims.z);
 }
+// The grid of every `stride`-th voxel of `dims` along each axis (stride >= 1): voxel v of it is
+// voxel v * stride of the grid, so its extent rounds up.
+inline Dims coarseDims(Dims dims, int stride) { return (dims + stride - 1) / stride; }
 
 inline std::size_t voxelIndex(Dims dims, int i, int j, int k) {
   return static_cast<std::size_t>(i) +

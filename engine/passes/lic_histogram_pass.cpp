@@ -75,8 +75,10 @@ Result<LicHistogramPass> LicHistogramPass::create(const Context& context) {
 }
 
 void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
-                              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks) {
-  const Dims dims = field.dims;
+                              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks,
+                              int stride) {
+  LIC3D_ASSERT(stride >= 1 && (stride == 1 || !visibleBricks));
+  const Dims dims = coarseDims(field.dims, stride);
   LIC3D_ASSERT(slot < kSlots);
   // The previous histogram's shader and copy must be done with the buffers before they are reused.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -100,7 +102,8 @@ void LicHistogramPass::record(VkCommandBuffer cmd, const Image& volume, const Fi
   const glm::vec4 toPhysical = texelToPhysicalForShader(field.texelToPhysical);
   const gpu::HistogramPushConstants push{
       glm::ivec4(dims, field.precision == FieldPrecision::Byte ? 1 : 0),
-      glm::vec4(glm::vec3(toPhysical), static_cast<float>(emptySpeed / toPhysical.w))};
+      glm::vec4(glm::vec3(toPhysical), static_cast<float>(emptySpeed / toPhysical.w)),
+      glm::ivec4(stride, 0, 0, 0)};
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, static_cast<std::uint32_t>(dims.z), 1, 1);
 

@@ -47,8 +47,11 @@ class LicHistogramPass {
   // `emptySpeed` (physical |v|), and its copy to host-visible memory in `slot`. With
   // `visibleBricks` (VisibleBricksPass::visible(), written before and visible to compute
   // shaders), only the voxels of visible bricks count (docs/VISIBLE_WORK.md, "Statistics").
+  // `stride` > 1: `volume` is a coarse LIC volume on coarseDims(field.dims, stride), voxel v of it
+  // at field voxel v * stride; not with `visibleBricks`.
   void record(VkCommandBuffer cmd, const Image& volume, const FieldTexture& field,
-              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks = nullptr);
+              double emptySpeed, std::uint32_t slot, const Buffer* visibleBricks = nullptr,
+              int stride = 1);
   // The counts recorded into `slot`, once that command buffer completed.
   // The bins, then the count of masked voxels.
   std::vector<std::uint32_t> counts(std::uint32_t slot) const;

@@ -109,10 +109,12 @@ void LicPass::pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, co
 }
 
 gpu::LicPushConstants LicPass::pushConstants(Dims dims, const MaskBeyondGrid& beyond,
-                                             const LicParams& params, int zBegin, int zEnd) const {
+                                             const LicParams& params, int zBegin, int zEnd,
+                                             int stride) const {
   gpu::LicPushConstants push{};
   push.dims = glm::ivec4(dims, zBegin);
   push.zEnd = zEnd;
+  push.outputStride = stride;
   push.invDims = glm::vec4(1.0f / glm::vec3(dims), 0.0f);
   setLicPushParams(push, params);
   push.maskBeyond = glm::uvec4(glm::uvec3(beyond.offset), beyond.threshold);
@@ -122,17 +124,20 @@ gpu::LicPushConstants LicPass::pushConstants(Dims dims, const MaskBeyondGrid& be
 
 Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                              const MaskBeyondGrid& beyond, const Image& output,
-                             const LicParams& params, int zBegin, int zEnd, const Image* noise) {
+                             const LicParams& params, int zBegin, int zEnd, const Image* noise,
+                             int stride) {
   LIC3D_ASSERT(!separateNoise_ || noise);
+  LIC3D_ASSERT(stride >= 1);
   const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
   LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   pushDescriptors(cmd, field, mask, output, noise, noBricks_, noBricks_);
 
-  const Dims dims = field.dims;
-  const gpu::LicPushConstants push = pushConstants(dims, beyond, params, zBegin, zEnd);
+  const gpu::LicPushConstants push =
+      pushConstants(field.dims, beyond, params, zBegin, zEnd, stride);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 
+  const Dims dims = coarseDims(field.dims, stride);
   vkCmdDispatch(cmd, groupCount(dims.x, specialization.localSizeX),
                 groupCount(dims.y, specialization.localSizeY),
                 groupCount(zEnd - zBegin, specialization.localSizeZ));

@@ -83,13 +83,15 @@ class LicPass {
   static Result<LicPass> create(const Context& context, bool separateNoise = false,
                                 std::optional<LicSpecialization> launch = std::nullopt);
 
-  // Records the dispatch for z slices [zBegin, zEnd). `field`, `mask` and `noise` must be in
-  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`
-  // is read only when params.sparsity has a distribution (any image will do otherwise); `noise`
-  // only by a separate-noise pass.
+  // Records the dispatch for z slices [zBegin, zEnd) of `output`. `field`, `mask` and `noise`
+  // must be in SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the
+  // caller's. `mask` is read only when params.sparsity has a distribution (any image will do
+  // otherwise); `noise` only by a separate-noise pass. With `stride` > 1, `output` is a coarse
+  // volume on coarseDims(field.dims, stride): its voxel v is the LIC of field voxel v * stride,
+  // the full volume's value there, for 1 / stride^3 of the work.
   Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
                       const MaskBeyondGrid& beyond, const Image& output, const LicParams& params,
-                      int zBegin, int zEnd, const Image* noise = nullptr);
+                      int zBegin, int zEnd, const Image* noise = nullptr, int stride = 1);
   // The same for the bricks `bricks` listed in brick layers [layerBegin, layerEnd) (its record
   // done, its writes visible to indirect dispatches and compute shaders): one indirect dispatch
   // per layer, workgroups of 8 x 8 x 1 whatever the launch; each brick made is marked in
@@ -126,7 +128,8 @@ class LicPass {
                        const Image& output, const Image* noise, const Buffer& lists,
                        const Buffer& made);
   gpu::LicPushConstants pushConstants(Dims dims, const MaskBeyondGrid& beyond,
-                                      const LicParams& params, int zBegin, int zEnd) const;
+                                      const LicParams& params, int zBegin, int zEnd,
+                                      int stride = 1) const;
 };
 
 }  // namespace lic3d

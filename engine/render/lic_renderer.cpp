@@ -145,7 +145,7 @@ VolumeFacts LicRenderer::volumeFacts() const {
     facts.colorUnit = scalars.colorUnit;
   }
   if (scalars.opacity) facts.opacityValues = scalars.opacityValues;
-  const std::size_t voxels = voxelCount(field.dims);
+  const std::size_t voxels = voxelCount(job_.shownDims(field.dims));  // the histogram's grid
   facts.drawnFraction =
       statistics.histogram && voxels > 0
           ? static_cast<float>(static_cast<double>(statistics.voxels) / static_cast<double>(voxels))

@@ -109,8 +109,11 @@ class LicRenderer {
 
   // Asks for the volume of `params`. Nothing changes if the shown volume or the pending job
   // already has them; otherwise the pending job is dropped and a new one starts. A new sparsity
-  // mask is made on a worker thread.
-  Result<void> requestLic(const LicParams& params) { return job_.request(params, textures_); }
+  // mask is made on a worker thread. `stride` > 1 asks for a coarse volume instead
+  // (render/lic_volume_job.h): what a LIC slider's drag shows.
+  Result<void> requestLic(const LicParams& params, int stride = 1) {
+    return job_.request(params, textures_, stride);
+  }
   // Records `maxSlices` z slices of the pending job (LicVolumeJob::record); call
   // collectStatistics(slot) once `cmd` has completed.
   Result<LicWork> recordLicWork(VkCommandBuffer cmd, int maxSlices, std::uint32_t slot) {

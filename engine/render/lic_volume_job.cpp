@@ -33,6 +33,12 @@ constexpr VkPipelineStageFlags2 kVolumeReaders =
 
 }  // namespace
 
+int coarseLicStride(double fullLicMs, double budgetMs) {
+  int stride = 1;
+  while (stride < 8 && fullLicMs / (stride * stride * stride) > budgetMs) stride *= 2;
+  return stride;
+}
+
 Result<LicVolumeJob> LicVolumeJob::create(const Context& context, bool doubleBuffered,
                                           bool naiveKernel, std::optional<LicSpecialization> launch,
                                           bool visibleWork, double fullPassShare) {
@@ -72,26 +78,39 @@ void LicVolumeJob::dropField(bool newGrid, const std::optional<FieldPiece>& piec
   if (newGrid) {
     maskParams_.reset();  // the mask and the volumes live on the field's grid
     mask_ = Image();
-    volumes_[0] = Image();
-    volumes_[1] = Image();
+    for (Image& volume : volumes_) volume = Image();
   }
+  front_ = 0;
+  shownStride_ = 1;
   fieldChanged_ = false;
 }
 
-Result<void> LicVolumeJob::ensureVolumes(const FieldTextures& textures) {
-  const FieldTexture& field = textures.field();
-  if (!field.image) return inputError("no vector field and noise were set");
-  for (int i = 0; i < (doubleBuffered_ ? 2 : 1); ++i) {
-    if (volumes_[i]) continue;
-    ImageDesc desc;
-    desc.format = kLicVolumeFormat;
-    desc.extent = extentOf(field.dims);
-    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    desc.name = i == 0 ? "lic volume A" : "lic volume B";
-    LIC3D_TRY_ASSIGN(volumes_[i], Image::create(*context_, desc));
-  }
+Result<void> LicVolumeJob::ensureVolume(int index, Dims dims) {
+  const VkExtent3D extent = extentOf(dims);
+  Image& volume = volumes_[index];
+  if (volume && volume.extent().width == extent.width && volume.extent().height == extent.height &&
+      volume.extent().depth == extent.depth)
+    return {};
+  // A coarse volume of another stride: frames still in flight may read the old one.
+  if (volume) vkQueueWaitIdle(context_->queue());
+  volume = Image();
+  ImageDesc desc;
+  desc.format = kLicVolumeFormat;
+  desc.extent = extent;
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  static constexpr const char* kNames[] = {"lic volume A", "lic volume B", "coarse lic volume A",
+                                           "coarse lic volume B"};
+  desc.name = kNames[index];
+  LIC3D_TRY_ASSIGN(volume, Image::create(*context_, desc));
   return {};
+}
+
+int LicVolumeJob::backIndex(int stride) const {
+  // Coarse volumes are small: always two, so a drag never shows a half-written one.
+  if (stride > 1) return front_ == 2 ? 3 : 2;
+  if (!doubleBuffered_) return 0;
+  return front_ == 0 ? 1 : 0;
 }
 
 Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams& params,
@@ -99,8 +118,9 @@ Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams
   const FieldTexture& field = textures.field();
   if (!field.image || volume.dims != field.dims)
     return inputError("the LIC volume's grid does not match the field's");
-  LIC3D_TRY(ensureVolumes(textures));
   job_.reset();
+  if (front_ >= 2) front_ = 0;  // a full volume replaces a coarse one
+  LIC3D_TRY(ensureVolume(front_, field.dims));
   // RG16: the value, and whether the voxel is drawn.
   std::vector<std::uint16_t> texels(2 * volume.values.size());
   for (std::size_t i = 0; i < volume.values.size(); ++i) {
@@ -128,6 +148,7 @@ Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams
   finished_.reset();
   statistics_ = intensityStatistics(histogramPass_.counts(0));
   shownParams_ = params;
+  shownStride_ = 1;
   return {};
 }
 
@@ -139,7 +160,7 @@ std::optional<double> LicVolumeJob::hiddenFraction(Dims dims) const {
   if (!shownParams_ || shownParams_->sparsity.distribution == SparsityDistribution::None)
     return std::nullopt;
   return static_cast<double>(statistics_.maskedVoxels) /
-         static_cast<double>(std::max<std::size_t>(voxelCount(dims), 1));
+         static_cast<double>(std::max<std::size_t>(voxelCount(shownDims(dims)), 1));
 }
 
 std::uint64_t LicVolumeJob::bytes() const {
@@ -155,24 +176,29 @@ LicStatus LicVolumeJob::status(Dims dims) const {
     return status;
   }
   status.pending = true;
-  status.fraction = dims.z > 0 ? static_cast<double>(job_->nextZ) / dims.z : 0.0;
+  status.stride = job_->stride;
+  const int slices = coarseDims(dims, job_->stride).z;
+  status.fraction = slices > 0 ? static_cast<double>(job_->nextZ) / slices : 0.0;
   status.waitingForMask = job_->needsMask;
   return status;
 }
 
 // ---- Jobs --------------------------------------------------------------------------------------
 
-Result<void> LicVolumeJob::start(const LicParams& params, const FieldTextures& textures,
-                                 bool force) {
+Result<void> LicVolumeJob::start(const LicParams& params, const FieldTextures& textures, bool force,
+                                 int stride) {
   LIC3D_TRY(validate(params));
+  if (stride != 1 && stride != 2 && stride != 4 && stride != 8)
+    return inputError("the LIC stride must be 1, 2, 4 or 8, got " + std::to_string(stride));
   const Dims dims = textures.field().dims;
   if (!textures.field().image) return inputError("no vector field and noise were set");
   const SparsityParams sparsity = maskParams(params);
   LIC3D_TRY(validate(sparsity, piece_ ? piece_->wholeDims : dims));
-  if (!force && job_ && job_->params == params) return {};
+  if (!force && job_ && job_->params == params && job_->stride == stride) return {};
   fieldChanged_ = false;  // the job reads the field texture as it is now
   Job job;
   job.params = params;
+  job.stride = stride;
   job.needsMask = sparsity.distribution != SparsityDistribution::None &&
                   !(maskParams_ && *maskParams_ == sparsity);
   if (job.needsMask && job_ && job_->needsMask && maskParams(job_->params) == sparsity) {
@@ -190,10 +216,12 @@ Result<void> LicVolumeJob::start(const LicParams& params, const FieldTextures& t
   return {};
 }
 
-Result<void> LicVolumeJob::request(const LicParams& params, const FieldTextures& textures) {
+Result<void> LicVolumeJob::request(const LicParams& params, const FieldTextures& textures,
+                                   int stride) {
   const std::optional<LicParams>& latest = finished_ ? finished_->params : shownParams_;
-  if (!job_ && latest && *latest == params && !fieldChanged_) return {};
-  return start(params, textures, fieldChanged_);
+  const int latestStride = finished_ ? finished_->stride : shownStride_;
+  if (!job_ && latest && *latest == params && latestStride == stride && !fieldChanged_) return {};
+  return start(params, textures, fieldChanged_, stride);
 }
 
 Result<void> LicVolumeJob::uploadMask(const SparsityMask& mask, Dims dims) {
@@ -250,18 +278,23 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
     work.waitingForMask = true;
     return work;
   }
-  LIC3D_TRY(ensureVolumes(textures));
-  Image& back = backVolume();
+  const int stride = job_->stride;
+  const Dims grid = coarseDims(dims, stride);
+  const int index = backIndex(stride);
+  LIC3D_TRY(ensureVolume(index, grid));
+  Image& back = volumes_[index];
+  work.stride = stride;
   if (!job_->nothingListed) {
     const int zBegin = job_->nextZ;
+    work.began = zBegin == 0;
     // Whole workgroups (whole brick layers): a slab thinner than a workgroup is deep would leave
     // invocations idle.
     const int depth = job_->overBricks ? kBrick : licPass_.launchDepth();
     const int slices = (std::max(1, maxSlices) + depth - 1) / depth * depth;
-    const int zEnd = std::min(dims.z, zBegin + slices);
+    const int zEnd = std::min(grid.z, zBegin + slices);
     if (zBegin == 0 && job_->forget) {
       // The old contents are discarded; earlier frames and histograms must be done reading.
-      if (!doubleBuffered_) shownParams_.reset();
+      if (index == front_) shownParams_.reset();
       imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                    kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -279,7 +312,7 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
     LIC3D_TRY(recordSlab(cmd, textures, back, zBegin, zEnd));
     work.slicesRecorded = zEnd - zBegin;
     job_->nextZ = zEnd;
-    if (zEnd < dims.z) return work;
+    if (zEnd < grid.z) return work;
     // The full pass made every brick.
     if (visibleWork_ && !job_->overBricks && bricks_.bricks() == brickCounts(dims))
       bricks_.recordAllMade(cmd);
@@ -291,10 +324,11 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   }
   histogramPass_.record(cmd, back, field, textures.emptySpeed(), slot,
-                        job_->visible ? &bricks_.visible() : nullptr);
+                        job_->visible ? &bricks_.visible() : nullptr, stride);
   // Shown once its statistics are read back: a frame never draws a volume with another's
-  // contrast stretch.
-  finished_ = Finished{job_->params, slot, job_->visible};
+  // contrast stretch. A coarse volume's histogram samples the full one's voxels evenly, so its
+  // contrast stretch is close to the full volume's.
+  finished_ = Finished{job_->params, slot, job_->visible, index, stride};
   job_.reset();
   ++licDispatches_;
   work.finished = true;
@@ -304,9 +338,10 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
 void LicVolumeJob::collectStatistics(std::uint32_t slot) {
   if (!finished_ || finished_->slot != slot) return;
   statistics_ = intensityStatistics(histogramPass_.counts(slot));
-  if (doubleBuffered_) front_ = 1 - front_;
+  front_ = finished_->volume;
   shownParams_ = finished_->params;
   shownSetup_ = finished_->visible;
+  shownStride_ = finished_->stride;
   finished_.reset();
 }
 
@@ -315,7 +350,7 @@ Result<void> LicVolumeJob::recordSlab(VkCommandBuffer cmd, const FieldTextures& 
   const FieldTexture& field = textures.field();
   if (!job_->overBricks)
     return licPass_.record(cmd, field, maskFor(job_->params), maskBeyond_, back, job_->params,
-                           zBegin, zEnd, textures.separateNoise());
+                           zBegin, zEnd, textures.separateNoise(), job_->stride);
   return licPass_.recordBricks(cmd, field, maskFor(job_->params), maskBeyond_, back, job_->params,
                                bricks_, zBegin / kBrick, (zEnd + kBrick - 1) / kBrick);
 }
@@ -362,9 +397,10 @@ Result<void> LicVolumeJob::classify(const FieldTextures& textures) {
 
 Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& textures,
                                   const ProgressCallback& progress,
-                                  const VisibleBricksSetup* visible) {
-  const bool licChanges = !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
-  if (visibleWork(params) && visible) {
+                                  const VisibleBricksSetup* visible, int stride) {
+  const bool licChanges =
+      !shownParams_ || !(*shownParams_ == params) || shownStride_ != stride || fieldChanged_;
+  if (visibleWork(params) && visible && stride == 1) {
     if (!job_ && !licChanges && shownSetup_ && sameClassification(*shownSetup_, *visible))
       return false;
     const bool resume = job_ && job_->params == params && job_->visible &&
@@ -376,9 +412,9 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
     }
   } else {
     if (!job_ && !licChanges) return false;
-    LIC3D_TRY(start(params, textures, fieldChanged_));
+    LIC3D_TRY(start(params, textures, fieldChanged_, stride));
   }
-  const Dims dims = textures.field().dims;
+  const Dims dims = coarseDims(textures.field().dims, stride);
   if (visibleWork_) LIC3D_TRY(bricks_.reserve(dims));
   const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
   while (job_) {
@@ -413,9 +449,10 @@ Result<ScalarVolume> LicVolumeJob::read(const FieldTextures& textures) const {
   const StageTimer timer("volume read-back");
   const FieldTexture& field = textures.field();
   ScalarVolume volume;
-  volume.dims = field.dims;
+  volume.dims = shownDims(field.dims);
   volume.geometry = field.geometry;
-  resizeLarge(volume.values, voxelCount(field.dims));
+  volume.geometry.spacing *= static_cast<double>(shownStride_);
+  resizeLarge(volume.values, voxelCount(volume.dims));
   const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
   if (sparse) resizeLarge(volume.drawn, volume.values.size());
   // Converted straight from the read-back buffer: RG16, the value and whether it is drawn.

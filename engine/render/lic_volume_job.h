@@ -5,6 +5,12 @@
 // command buffer or many), then the volume's intensity histogram, whose statistics make it the
 // shown volume. With doubleBuffered, the job writes a second volume, so a recompute spread over
 // many frames never shows a half-written volume.
+//
+// A job may also make a coarse volume (stride 2, 4 or 8): every stride-th voxel along each axis,
+// each the full LIC at that voxel (lic.comp's outputStride), written into a smaller image of its
+// own that the slices sample through the same normalized coordinates (the picture shifts by at
+// most about half a coarse voxel). It takes 1 / stride^3 of the work: what the app shows while a
+// LIC parameter is dragged (coarseLicStride), replaced by the full volume when the drag ends.
 
 #include <vulkan/vulkan.h>
 
@@ -32,8 +38,10 @@ namespace lic3d {
 
 // What one record() call did.
 struct LicWork {
-  int slicesRecorded = 0;
-  bool finished = false;        // the job's last slice was recorded: the new volume is shown
+  int slicesRecorded = 0;  // z slices of the job's volume (of the coarse grid for a coarse job)
+  int stride = 1;          // of the job recorded: 1 the full volume, > 1 a coarse one
+  bool began = false;      // the job's first slice was recorded
+  bool finished = false;   // the job's last slice was recorded: the new volume is shown
   bool waitingForMask = false;  // the sparsity mask is still being made on a worker thread
 };
 
@@ -54,7 +62,17 @@ struct LicStatus {
   bool pending = false;   // a requested volume is not finished yet
   double fraction = 1.0;  // of the pending job's slices recorded
   bool waitingForMask = false;
+  int stride = 1;  // of the pending job
 };
+
+// The LIC time a coarse job may take while a LIC parameter is dragged: what a 60 Hz frame
+// (16.7 ms) leaves beside the slices' draw (7.7 ms for 256 slices at 1024^2 on the H100,
+// docs/BENCHMARKS.md), rounded down.
+inline constexpr double kDragLicBudgetMs = 8.0;
+// The stride of the LIC while a LIC parameter is dragged: the smallest of 1, 2, 4 and 8 whose
+// job, 1 / stride^3 of the work of a full LIC that took `fullLicMs`, fits in `budgetMs`
+// (1 when no full LIC was timed: fullLicMs <= 0).
+int coarseLicStride(double fullLicMs, double budgetMs = kDragLicBudgetMs);
 
 class LicVolumeJob {
  public:
@@ -85,15 +103,18 @@ class LicVolumeJob {
   Result<void> setVolume(const ScalarVolume& volume, const LicParams& params,
                          const FieldTextures& textures);
 
-  // Starts a job for `params` unless the pending one has them (`force`: always); a new mask is
-  // made on a worker thread.
-  Result<void> start(const LicParams& params, const FieldTextures& textures, bool force);
-  // start() unless the shown or finished volume already has `params` for the current field.
-  Result<void> request(const LicParams& params, const FieldTextures& textures);
+  // Starts a job for `params` at `stride` (1: the full volume; 2, 4, 8: a coarse one) unless
+  // the pending one is that (`force`: always); a new mask is made on a worker thread.
+  Result<void> start(const LicParams& params, const FieldTextures& textures, bool force,
+                     int stride = 1);
+  // start() unless the shown or finished volume already has `params` at `stride` for the
+  // current field.
+  Result<void> request(const LicParams& params, const FieldTextures& textures, int stride = 1);
   // Waits for the pending job's sparsity mask and uploads it, so that record() records at once.
   Result<void> waitForMask(const FieldTextures& textures);
-  // Records `maxSlices` z slices of the pending job, rounded up to whole workgroups of the LIC
-  // pass; when it records the last one, the volume's histogram goes to `slot`
+  // Records `maxSlices` z slices of the pending job (of its coarse grid for a coarse one), rounded
+  // up to whole workgroups of the LIC pass; when it records the last one, the volume's histogram
+  // goes to `slot`
   // (< LicHistogramPass::kSlots): call collectStatistics(slot) once `cmd` has completed. Until
   // then no further work is recorded.
   Result<LicWork> record(VkCommandBuffer cmd, const FieldTextures& textures, int maxSlices,
@@ -106,14 +127,16 @@ class LicVolumeJob {
   // `visible` lists that are not made yet (all of them after a change of `params` or the field;
   // in slabs of brick layers) and the statistics become those of its visible bricks.
   Result<bool> update(const LicParams& params, const FieldTextures& textures,
-                      const ProgressCallback& progress,
-                      const VisibleBricksSetup* visible = nullptr);
-  // The shown volume read back on the field's grid.
+                      const ProgressCallback& progress, const VisibleBricksSetup* visible = nullptr,
+                      int stride = 1);
+  // The shown volume read back on its grid: the field's, or the coarse grid of a coarse volume
+  // (coarseDims, its spacing `stride` times the field's).
   Result<ScalarVolume> read(const FieldTextures& textures) const;
 
-  // Whether update(params) would run the pass: no volume of `params` for the current field.
+  // Whether update(params) would run the pass: no full volume of `params` for the current field.
   bool needs(const LicParams& params) const {
-    return job_ || !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
+    return job_ || !shownParams_ || !(*shownParams_ == params) || fieldChanged_ ||
+           shownStride_ != 1;
   }
   // The same with visible work for the classification `visible`: also when the shown volume's
   // statistics or made bricks are of another classification.
@@ -131,6 +154,9 @@ class LicVolumeJob {
   LicStatus status(Dims dims) const;
   const Image& shownVolume() const { return volumes_[front_]; }
   const std::optional<LicParams>& shownParams() const { return shownParams_; }
+  // 1 when the shown volume is the full one, else its stride; its grid for a field of `dims`.
+  int shownStride() const { return shownStride_; }
+  Dims shownDims(Dims dims) const { return coarseDims(dims, shownStride_); }
   const IntensityStatistics& statistics() const { return statistics_; }
   // The fraction of the voxels the shown volume's sparsity mask hid; nullopt without a mask.
   std::optional<double> hiddenFraction(Dims dims) const;
@@ -152,7 +178,8 @@ class LicVolumeJob {
   // The computation of one LIC volume, possibly spread over many command buffers.
   struct Job {
     LicParams params;
-    int nextZ = 0;
+    int stride = 1;
+    int nextZ = 0;  // of the job's grid
     bool needsMask = false;
     std::shared_future<Result<SparsityMask>> mask;
     // Visible work: the classification; whether the made flags are cleared first (the LIC
@@ -168,13 +195,17 @@ class LicVolumeJob {
     LicParams params;
     std::uint32_t slot = 0;                     // of the histogram to read
     std::optional<VisibleBricksSetup> visible;  // whose visible bricks the histogram counts
+    int volume = 0;                             // which of volumes_ holds it
+    int stride = 1;
   };
 
-  Result<void> ensureVolumes(const FieldTextures& textures);
+  // volumes_[index] on a grid of `dims`, made (again) if it has another extent.
+  Result<void> ensureVolume(int index, Dims dims);
+  // Which of volumes_ a job of `stride` writes.
+  int backIndex(int stride) const;
   Result<bool> prepareMask(Dims dims);
   Result<void> uploadMask(const SparsityMask& mask, Dims dims);
   const Image& maskFor(const LicParams& params) const;
-  Image& backVolume() { return volumes_[doubleBuffered_ ? 1 - front_ : front_]; }
   Result<void> classify(const FieldTextures& textures);
   Result<void> recordSlab(VkCommandBuffer cmd, const FieldTextures& textures, Image& back,
                           int zBegin, int zEnd);
@@ -183,9 +214,12 @@ class LicVolumeJob {
   LicPass licPass_;
   LicHistogramPass histogramPass_;
   bool doubleBuffered_ = false;
-  Image volumes_[2];  // the shown one is volumes_[front_]; the other is written by jobs
+  // Full volumes in 0 and 1 (1 only doubleBuffered), coarse ones in 2 and 3: the shown one is
+  // volumes_[front_], jobs write another.
+  Image volumes_[4];
   int front_ = 0;
   std::optional<LicParams> shownParams_;  // what the shown volume holds; empty when none
+  int shownStride_ = 1;
   std::optional<Job> job_;
   std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
   IntensityStatistics statistics_;
