@@ -335,15 +335,6 @@ class BrickLicTest : public VisibleBricksTest {
     Result<LicPass> lic = LicPass::create(context());
     ASSERT_TRUE(lic.ok()) << lic.error().message;
     lic_.emplace(std::move(*lic));
-    ImageDesc maskDesc;
-    maskDesc.format = kSparsityMaskFormat;
-    maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    maskDesc.name = "test mask";
-    Result<Image> mask = Image::create(context(), maskDesc);
-    ASSERT_TRUE(mask.ok());
-    mask_ = std::move(*mask);
-    const std::uint8_t white = 0;
-    ASSERT_TRUE(uploadImage(context(), mask_, &white, 1).ok());
     for (Image* image : {&full_, &bricks_}) {
       ImageDesc desc;
       desc.format = kLicVolumeFormat;
@@ -371,14 +362,13 @@ class BrickLicTest : public VisibleBricksTest {
           memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-          EXPECT_TRUE(lic_->record(cmd, texture_, mask_, {}, full_, params_, 0, kGrid.z).ok());
+          EXPECT_TRUE(lic_->record(cmd, texture_, nullptr, {}, full_, params_, 0, kGrid.z).ok());
         },
         "brick lic test setup");
     ASSERT_TRUE(ran.ok()) << ran.error().message;
   }
   void TearDown() override {
     lic_.reset();
-    mask_ = Image();
     full_ = Image();
     bricks_ = Image();
     VisibleBricksTest::TearDown();
@@ -391,7 +381,7 @@ class BrickLicTest : public VisibleBricksTest {
         [&](VkCommandBuffer cmd) {
           EXPECT_TRUE(pass_->record(cmd, texture_, setup).ok());
           pass_->recordReadback(cmd);
-          EXPECT_TRUE(lic_->recordBricks(cmd, texture_, mask_, {}, bricks_, params_, *pass_, 0,
+          EXPECT_TRUE(lic_->recordBricks(cmd, texture_, nullptr, {}, bricks_, params_, *pass_, 0,
                                          brickCounts(kGrid).z)
                           .ok());
         },
@@ -438,7 +428,6 @@ class BrickLicTest : public VisibleBricksTest {
 
   std::optional<LicPass> lic_;
   LicParams params_;
-  Image mask_;
   Image full_;
   Image bricks_;
 };
@@ -504,14 +493,6 @@ void measureVisibleWork(const Context& context, const VectorField& field, const 
   ASSERT_TRUE(lic.ok());
   Result<GpuTimer> timer = GpuTimer::create(context, 2, "visible bricks timer");
   ASSERT_TRUE(timer.ok());
-  ImageDesc maskDesc;
-  maskDesc.format = kSparsityMaskFormat;
-  maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  maskDesc.name = "test mask";
-  Result<Image> mask = Image::create(context, maskDesc);
-  ASSERT_TRUE(mask.ok());
-  const std::uint8_t white = 0;
-  ASSERT_TRUE(uploadImage(context, *mask, &white, 1).ok());
   ImageDesc desc;
   desc.format = kLicVolumeFormat;
   desc.extent = {static_cast<std::uint32_t>(dims.x), static_cast<std::uint32_t>(dims.y),
@@ -529,7 +510,7 @@ void measureVisibleWork(const Context& context, const VectorField& field, const 
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         timer->reset(cmd, 0);
         timer->begin(cmd, 0);
-        ASSERT_TRUE(lic->record(cmd, texture, *mask, {}, *output, session.lic, 0, dims.z).ok());
+        ASSERT_TRUE(lic->record(cmd, texture, nullptr, {}, *output, session.lic, 0, dims.z).ok());
         timer->end(cmd, 0);
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -537,7 +518,7 @@ void measureVisibleWork(const Context& context, const VectorField& field, const 
         timer->reset(cmd, 1);
         timer->begin(cmd, 1);
         ASSERT_TRUE(bricks->record(cmd, texture, setup).ok());
-        ASSERT_TRUE(lic->recordBricks(cmd, texture, *mask, {}, *output, session.lic, *bricks, 0,
+        ASSERT_TRUE(lic->recordBricks(cmd, texture, nullptr, {}, *output, session.lic, *bricks, 0,
                                       bricks->bricks().z)
                         .ok());
         timer->end(cmd, 1);

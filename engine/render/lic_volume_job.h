@@ -26,6 +26,7 @@
 #include "passes/lic_histogram_pass.h"
 #include "passes/lic_pass.h"
 #include "render/field_textures.h"
+#include "render/sparsity_mask_store.h"
 
 namespace lic3d {
 
@@ -99,7 +100,9 @@ class LicVolumeJob {
   // The fraction of the voxels the shown volume's sparsity mask hid; nullopt without a mask.
   std::optional<double> hiddenFraction(Dims dims) const;
   std::uint64_t dispatchCount() const { return licDispatches_; }
-  std::uint64_t maskBuildCount() const { return maskBuilds_; }
+  std::uint64_t maskBuildCount() const { return masks_.builds(); }
+  // Of those, the masks taken from the cache of CPU-made masks (SparsityMaskStore).
+  std::uint64_t maskCacheHits() const { return masks_.cacheHits(); }
   // Bytes of device memory the LIC volumes and the mask hold.
   std::uint64_t bytes() const;
 
@@ -118,7 +121,6 @@ class LicVolumeJob {
     LicParams params;
     int nextZ = 0;
     bool needsMask = false;
-    std::shared_future<Result<SparsityMask>> mask;
   };
   struct Finished {
     LicParams params;
@@ -126,9 +128,8 @@ class LicVolumeJob {
   };
 
   Result<void> ensureVolumes(const FieldTextures& textures);
-  Result<bool> prepareMask(Dims dims);
-  Result<void> uploadMask(const SparsityMask& mask, Dims dims);
-  const Image& maskFor(const LicParams& params) const;
+  Result<bool> prepareMask(bool wait);
+  const Buffer* maskFor(const LicParams& params) const;
   Image& backVolume() { return volumes_[doubleBuffered_ ? 1 - front_ : front_]; }
 
   const Context* context_ = nullptr;
@@ -142,13 +143,9 @@ class LicVolumeJob {
   std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
   IntensityStatistics statistics_;
   std::uint64_t licDispatches_ = 0;
-  Image mask_;       // the sparsity mask of maskParams_ on the field's grid
-  Image emptyMask_;  // 1x1x1, bound when sparsity is off
-  std::optional<SparsityParams> maskParams_;
-  MaskBeyondGrid maskBeyond_;        // of mask_
+  SparsityMaskStore masks_;          // the sparsity mask on the field's grid
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
-  std::uint64_t maskBuilds_ = 0;
-  bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
+  bool fieldChanged_ = false;        // the field texture changed under the shown LIC volume
 };
 
 // GPU milliseconds of one LIC dispatch over the whole volume of `params` (always dispatched;
