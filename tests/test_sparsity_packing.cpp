@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <glm/vec3.hpp>
 
 #include "lic/point_sets.h"
 #include "lic/sparsity.h"
@@ -62,6 +63,30 @@ TEST(SparsityPacking, LowDiscrepancyVoxelsAreExactFloors) {
   const std::vector<glm::vec3> points = haltonPoints({1, 256, 1}, 612353);
   EXPECT_EQ(static_cast<int>(points.back().y), 199);
   EXPECT_EQ(glsl::licScaledRadicalInverse(3, radicalInversePower(3, 612353), 612353, 256), 198u);
+  EXPECT_EQ(lowDiscrepancyVoxels({1, 256, 1}, 612353, true).back().y, 198);
+}
+
+// The CPU's incremental voxels (what makeSparsityMask blackens) are the shared formula's.
+TEST(SparsityPacking, MaskVoxelsOfHaltonAndHammersleyFollowTheSharedFormula) {
+  const Dims dims{256, 243, 125};
+  const std::uint32_t count = 150000;
+  for (const bool halton : {true, false}) {
+    const std::vector<glm::ivec3> voxels = lowDiscrepancyVoxels(dims, count, halton);
+    ASSERT_EQ(voxels.size(), count);
+    const std::uint32_t p2 = radicalInversePower(2, count), p3 = radicalInversePower(3, count),
+                        p5 = radicalInversePower(5, count);
+    for (std::uint32_t i = 1; i <= count; ++i) {
+      const glm::ivec3 v = voxels[i - 1];
+      const glm::uvec3 expected =
+          halton ? glm::uvec3(glsl::licScaledRadicalInverse(2, p2, i, 256),
+                              glsl::licScaledRadicalInverse(3, p3, i, 243),
+                              glsl::licScaledRadicalInverse(5, p5, i, 125))
+                 : glm::uvec3(std::min(glsl::licMulDivFloor(i, 256, count), 255u),
+                              glsl::licScaledRadicalInverse(2, p2, i, 243),
+                              glsl::licScaledRadicalInverse(3, p3, i, 125));
+      ASSERT_EQ(glm::uvec3(v), expected) << (halton ? "halton" : "hammersley") << " point " << i;
+    }
+  }
 }
 
 TEST(SparsityPacking, CheckerboardRuleIsThePatterns) {

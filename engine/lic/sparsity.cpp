@@ -180,27 +180,15 @@ Result<SparsityMask> makeWholeMask(const SparsityParams& params, Dims dims) {
       points = jitteredPoints(dims, resolved.radius, params.seed);
       break;
     case SparsityDistribution::Halton:
-    case SparsityDistribution::Hammersley: {
+    case SparsityDistribution::Hammersley:
       // The exact voxels sparsity_mask.comp blackens (see makeSparsityMask in the header).
-      const bool halton = params.distribution == SparsityDistribution::Halton;
-      const auto count = static_cast<std::uint32_t>(resolved.points);
-      const std::uint32_t p2 = radicalInversePower(2, count), p3 = radicalInversePower(3, count),
-                          p5 = radicalInversePower(5, count);
-      const auto n = [&](int a) { return static_cast<std::uint32_t>(dims[a]); };
-      for (std::uint32_t i = 1; i <= count; ++i) {
-        const std::uint32_t x = halton ? glsl::licScaledRadicalInverse(2, p2, i, n(0))
-                                       : std::min(glsl::licMulDivFloor(i, n(0), count), n(0) - 1);
-        const std::uint32_t y =
-            glsl::licScaledRadicalInverse(halton ? 3 : 2, halton ? p3 : p2, i, n(1));
-        const std::uint32_t z =
-            glsl::licScaledRadicalInverse(halton ? 5 : 3, halton ? p5 : p3, i, n(2));
-        std::uint8_t& voxel = mask.black[voxelIndex(dims, static_cast<int>(x), static_cast<int>(y),
-                                                    static_cast<int>(z))];
+      for (const glm::ivec3& v : lowDiscrepancyVoxels(
+               dims, resolved.points, params.distribution == SparsityDistribution::Halton)) {
+        std::uint8_t& voxel = mask.black[voxelIndex(dims, v.x, v.y, v.z)];
         mask.blackCount += voxel == 0;
         voxel = 1;
       }
       return mask;
-    }
   }
   for (const glm::vec3& p : points) {
     std::uint8_t& voxel = mask.black[voxelOf(dims, p)];
