@@ -100,13 +100,15 @@ float noiseAt(vec3 x, vec4 texel) {
   return texel.w;
 }
 
-// Whether the sample at x, inside the grid, lies in a black voxel of the mask (the voxel nearest
-// to x). Samples are inside by construction (walk() ends a streamline at its first outside
-// point), so the sample loop carries no test for the grid's bounds.
+// The mask's bit of voxel v, which must lie inside the grid (no bounds test on the buffer).
 bool maskBitAt(uvec3 v) {
   uint word = licMaskWord(v.x, v.y, v.z, licMaskBlocksX(pc.dims.x), licMaskBlocksY(pc.dims.y));
   return ((sparsityMask[word] >> licMaskBit(v.x, v.y, v.z)) & 1u) != 0u;
 }
+
+// Whether the sample at x, inside the grid, lies in a black voxel of the mask (the voxel nearest
+// to x). Samples are inside by construction (walk() ends a streamline at its first outside
+// point), so the sample loop carries no test for the grid's bounds.
 bool touchesBlackInside(vec3 x) {
   if (SPARSITY == 0) return false;
   return maskBitAt(uvec3(floor(x + 0.5)));
