@@ -148,7 +148,8 @@ struct VisibleBricksUniforms {
   vec4 clipPlane;        // as SliceUniforms
   vec4 texelToPhysical;  // as SliceUniforms
   vec4 opacity;          // x: low end of the opacity range, y: 1 / its width, z: the lowest o
-                         // that may be opaque (o below it is transparent); w: unused
+                         // that may be opaque (o below it is transparent); w: the
+                         // halo ring's radius in world units (widens the region test)
 };
 
 // ---- Slice rendering pass ----------------------------------------------------------------------

@@ -56,8 +56,10 @@ bool keptBox(vec3 lo, vec3 hi) {
     if (dot(n, lowest) > u.clipPlane.w) return false;
   }
   if (ROI_SHAPE != 0) {
-    // The region is tested at the (jittered) sample's texture coordinate: no jitter margin.
-    vec3 tLo = textureAt(lo), tHi = textureAt(hi);
+    // The region is tested at the (jittered) sample's texture coordinate: no jitter margin; but
+    // a halo's ring samples, read around a kept sample, are not tested.
+    vec3 ring = u.opacity.w / (2.0 * u.halfExtent.xyz);
+    vec3 tLo = textureAt(lo) - ring, tHi = textureAt(hi) + ring;
     vec3 corners[8];
     for (int k = 0; k < 8; ++k) {
       vec3 t = mix(tLo, tHi, bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0));

@@ -13,7 +13,6 @@
 #include "core/session.h"
 #include "core/slice_geometry.h"
 #include "gpu/submit.h"
-#include "gpu/timer.h"
 #include "gpu_test_support.h"
 #include "io/field_io.h"
 #include "lic/analytic_fields.h"
@@ -461,14 +460,11 @@ TEST_F(BrickLicTest, ListedBricksEqualTheFullPassAndAreMadeOnce) {
   EXPECT_EQ(classifyAndMake(tube), first);
 }
 
-// The default look's visible bricks of `field` (the session's LIC parameters and view), and the
-// GPU times of the full LIC pass and of the classification with the LIC over the listed bricks
-// (recorded as properties full_ms and bricks_ms: informative, never a bound). The bricks' voxels
-// are written over the full pass' in one image.
+// The default look's visible bricks of `field` (the session's LIC parameters and view): the
+// fraction of the grid's voxels they hold. (Their GPU time against the full pass is measured by
+// `lic3d bench --visible`, not by tests.)
 struct VisibleWork {
   double fraction = 0.0;  // of the grid's voxels, in visible bricks
-  double fullMs = 0.0;
-  double bricksMs = 0.0;
 };
 
 void measureVisibleWork(const Context& context, const VectorField& field, const Session& session,
@@ -489,45 +485,13 @@ void measureVisibleWork(const Context& context, const VectorField& field, const 
   Result<VisibleBricksPass> bricks = VisibleBricksPass::create(context);
   ASSERT_TRUE(bricks.ok());
   ASSERT_TRUE(bricks->reserve(dims).ok());
-  Result<LicPass> lic = LicPass::create(context);
-  ASSERT_TRUE(lic.ok());
-  Result<GpuTimer> timer = GpuTimer::create(context, 2, "visible bricks timer");
-  ASSERT_TRUE(timer.ok());
-  ImageDesc desc;
-  desc.format = kLicVolumeFormat;
-  desc.extent = {static_cast<std::uint32_t>(dims.x), static_cast<std::uint32_t>(dims.y),
-                 static_cast<std::uint32_t>(dims.z)};
-  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  desc.name = "test lic volume";
-  Result<Image> output = Image::create(context, desc);
-  ASSERT_TRUE(output.ok());
-
   const Result<void> ran = submitAndWait(
       context,
       [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, output->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        timer->reset(cmd, 0);
-        timer->begin(cmd, 0);
-        ASSERT_TRUE(lic->record(cmd, texture, nullptr, {}, *output, session.lic, 0, dims.z).ok());
-        timer->end(cmd, 0);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        timer->reset(cmd, 1);
-        timer->begin(cmd, 1);
         ASSERT_TRUE(bricks->record(cmd, texture, setup).ok());
-        ASSERT_TRUE(lic->recordBricks(cmd, texture, nullptr, {}, *output, session.lic, *bricks, 0,
-                                      bricks->bricks().z)
-                        .ok());
-        timer->end(cmd, 1);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
         bricks->recordReadback(cmd);
       },
-      "carotid bricks");
+      "visible bricks");
   ASSERT_TRUE(ran.ok()) << ran.error().message;
 
   const std::vector<std::uint32_t> flags = bricks->visibleFlags();
@@ -542,14 +506,8 @@ void measureVisibleWork(const Context& context, const VectorField& field, const 
         visibleVoxels += static_cast<std::size_t>(size.x) * size.y * size.z;
       }
   work.fraction = static_cast<double>(visibleVoxels) / static_cast<double>(voxelCount(dims));
-  const Result<double> fullMs = timer->milliseconds(0), bricksMs = timer->milliseconds(1);
-  ASSERT_TRUE(fullMs.ok() && bricksMs.ok());
-  work.fullMs = *fullMs;
-  work.bricksMs = *bricksMs;
   ::testing::Test::RecordProperty("grid", gridText(dims));
   ::testing::Test::RecordProperty("visible_voxel_fraction", std::to_string(work.fraction));
-  ::testing::Test::RecordProperty("full_ms", std::to_string(work.fullMs));
-  ::testing::Test::RecordProperty("bricks_ms", std::to_string(work.bricksMs));
 }
 
 // The carotid at twice its resolution under the default look is mostly empty space: its visible

@@ -634,6 +634,7 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
       : options.distributions ? runDistributions(*context, options)
       : options.kernels       ? runKernelBenchmarks(*context, options)
       : options.fidelity      ? runFidelityBenchmarks(*context, options)
+      : options.visible       ? runVisibleBenchmarks(*context, options)
                               : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {

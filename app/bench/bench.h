@@ -38,6 +38,9 @@ nlohmann::json newReport(const Context& context);
 // `bench --kernels`: the naive kernel and every shipped one, the masked pass, the launch shapes.
 Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOptions& options);
 
+// `bench --visible`: the full LIC pass against classification + LIC of the visible bricks.
+Result<nlohmann::json> runVisibleBenchmarks(const Context& context, const BenchOptions& options);
+
 // `bench --fidelity`: each RK2 scheme's error against a converged LIC, on the CPU and the device.
 Result<nlohmann::json> runFidelityBenchmarks(const Context& context, const BenchOptions& options);
 

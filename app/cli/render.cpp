@@ -33,19 +33,22 @@
 
 namespace lic3d::cli {
 namespace {
-// Makes the renderer's LIC volume the one of `lic`, on the GPU or (with --cpu) the CPU, unless it
-// already is.
+// Makes the renderer's LIC volume the one of `lic` for pictures of `view`, on the GPU or (with
+// --cpu) the CPU, unless it already is.
 Result<void> makeLicVolume(const ComputeOptions& options, const SessionInputs& inputs,
-                           const LicParams& lic, LicRenderer& renderer, bool quiet) {
-  if (!renderer.needsLic(lic)) return {};
+                           const LicParams& lic, const ViewParams& view, LicRenderer& renderer,
+                           bool quiet) {
   if (options.cpu) {
+    if (!renderer.needsLic(lic)) return {};
     LIC3D_TRY_ASSIGN(const ScalarVolume volume, computeOnCpu(inputs, lic, quiet));
     return renderer.setLicVolume(volume, lic);
   }
   // Named by the device: "on the GPU" would be wrong on a CPU driver such as llvmpipe.
   Progress progress("LIC " + gridText(inputs.field.dims) + " on " + renderer.deviceName(), quiet);
+  LIC3D_TRY_ASSIGN(const bool needed, renderer.needsLic(lic, view));
+  if (!needed) return {};
   LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran,
-                   renderer.updateLic(lic, [&](double f) { progress.update(f); }));
+                   renderer.updateLic(lic, view, [&](double f) { progress.update(f); }));
   return {};
 }
 
@@ -205,7 +208,7 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
     LIC3D_TRY(renderer.setLicVolume(given->volume, session.lic));
   } else if (!makeNothing && plan.animation != Animation::Bias &&
              plan.animation != Animation::Time) {
-    LIC3D_TRY(makeLicVolume(options, inputs, session.lic, renderer, global.quiet));
+    LIC3D_TRY(makeLicVolume(options, inputs, session.lic, session.view, renderer, global.quiet));
   }
 
   LIC3D_TRY_ASSIGN(ViewScalars scalars, loadViewScalars(session, inputs));
@@ -244,7 +247,8 @@ Result<void> renderFrames(const GlobalOptions& global, const ComputeOptions& opt
       LIC3D_TRY_ASSIGN(scalars, loadViewScalars(session, inputs));
       LIC3D_TRY(setViewScalars(renderer, scalars));
     }
-    const Result<void> made = makeLicVolume(options, inputs, frameParams.lic, renderer, true);
+    const Result<void> made =
+        makeLicVolume(options, inputs, frameParams.lic, frameParams.view, renderer, true);
     Result<RgbaImage> image =
         made ? renderer.render(frameParams.lic, frameParams.view) : Result<RgbaImage>(made.error());
     Result<PngText> text =
@@ -381,7 +385,10 @@ int runRender(const GlobalOptions& global, const ComputeOptions& options,
     // half way keeps them.
     std::optional<OutputGroup> together;
     if (plan->animation == Animation::None) together.emplace();
-    Result<LicRenderer> renderer = LicRenderer::create(context, {session.precision});
+    RendererOptions rendererOptions{session.precision};
+    // The RGBA volume colours every voxel, clipped or not: it needs them all.
+    rendererOptions.visibleWork = batch.visibleWork == "on" && batch.rgbaVolume.empty();
+    Result<LicRenderer> renderer = LicRenderer::create(context, rendererOptions);
     Result<void> done = renderer
                             ? renderFrames(global, options, batch, *plan, frameInputs, *renderer,
                                            summary.outputs, given ? &*given : nullptr)

@@ -51,6 +51,13 @@ void addRenderBatchOptions(CLI::App& app, BatchOptions& options) {
   app.add_option("--rgba-volume", options.rgbaVolume,
                  "Also write the colour-mapped volume as 8-bit RGBA (.vti or .nrrd): grey or "
                  "colour and the opacity per voxel, as the slices draw it (docs/BATCH.md)");
+  app.add_option("--visible-work", options.visibleWork,
+                 "on: the LIC makes only the 8^3-voxel bricks the pictures can show (not "
+                 "transparent by speed, not clipped, inside the region of interest) and the "
+                 "contrast stretch follows their voxels; off: every voxel and the whole grid's "
+                 "statistics (docs/VISIBLE_WORK.md); off with --rgba-volume")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
 }
 
 void addImageBatchOptions(CLI::App& app, BatchOptions& options) {

@@ -18,13 +18,14 @@ struct BatchOptions {
   TextOption frames;     // A:B, frames A..B-1 of the animation
   std::string video;     // .mp4 or .webm made by ffmpeg from the frames
   double fps = 30.0;
-  bool skipExisting = false;  // frames whose PNG is whole already are left as they are
-  std::string rgbaVolume;     // render: the colour-mapped volume, .vti or .nrrd
-  TextOption slice;           // compute: AXIS[:INDEX], the LIC slice written as PNG
+  bool skipExisting = false;       // frames whose PNG is whole already are left as they are
+  std::string rgbaVolume;          // render: the colour-mapped volume, .vti or .nrrd
+  std::string visibleWork = "on";  // render: on, LIC of the bricks the pictures show; off, all
+  TextOption slice;                // compute: AXIS[:INDEX], the LIC slice written as PNG
 };
 
 // --turntable, --animate-bias, --animate-time, --time-range, --frames, --video, --fps,
-// --rgba-volume.
+// --rgba-volume, --visible-work.
 void addRenderBatchOptions(CLI::App& app, BatchOptions& options);
 // render2d's: --animate-bias, --animate-time, --time-range, --frames, --video, --fps.
 void addImageBatchOptions(CLI::App& app, BatchOptions& options);

@@ -27,6 +27,9 @@ struct BenchOptions {
   bool fidelity = false;       // each scheme's error against a converged LIC
   std::string fidelityFiles;   // fields judged besides the analytic ones (comma-separated)
   int distributionVolume = 256;
+  bool visible = false;           // the full LIC pass against visible work
+  std::string visibleFiles;       // fields --visible times instead of the analytic --field
+  std::string resolution = "1x";  // of the --visible-files (as render's --resolution)
 };
 
 }  // namespace lic3d::cli

@@ -132,6 +132,17 @@ std::unique_ptr<CommandLine> makeCommandLine() {
                          "--fidelity-files, for the CPU reference and each field texture");
   benchCommand->add_option("--fidelity-files", bench.fidelityFiles,
                            "Comma-separated field files that --fidelity judges too");
+  benchCommand->add_flag(
+      "--visible", bench.visible,
+      "Instead: the full LIC pass against visible work (classification of the bricks the view "
+      "can show + LIC over them, docs/VISIBLE_WORK.md) for the default look and a clip plane "
+      "removing half the box: the analytic --field at each of --sizes, or --visible-files");
+  benchCommand->add_option("--visible-files", bench.visibleFiles,
+                           "Comma-separated field files that --visible times instead");
+  benchCommand
+      ->add_option("--resolution", bench.resolution,
+                   "Grid of the --visible-files, as render's --resolution (e.g. 2x)")
+      ->capture_default_str();
   benchCommand
       ->add_option("--distribution-volume", bench.distributionVolume,
                    "Volume size N (N^3) of --distributions")

@@ -7,7 +7,9 @@
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 
+#include "core/colormap.h"
 #include "gpu/shader_library.h"
 #include "gpu/submit.h"
 #include "gpu/vk_check.h"
@@ -58,6 +60,66 @@ VisibleBricksSetup visibleBricksSetup(const gpu::SliceUniforms& u, const SliceSp
   return setup;
 }
 
+bool sameClassification(const VisibleBricksSetup& a, const VisibleBricksSetup& b) {
+  return a.specialization == b.specialization &&
+         std::memcmp(&a.uniforms, &b.uniforms, sizeof(a.uniforms)) == 0;
+}
+
+float sampleReach(const SliceFrame& frame) {
+  const SliceSpecialization& s = frame.specialization;
+  const gpu::SliceUniforms& u = frame.uniforms;
+  float reach = 0.0f;
+  if (s.jitter == 1) {
+    // slice.frag moves a sample by up to half the plane spacing over |cos| of the angle between
+    // its ray and the plane normal; the rays of a perspective view lie in the cone of the
+    // frustum's corner rays, whose smallest |cos| is at a corner (or 0 when the cone holds a
+    // direction in the plane).
+    const glm::vec3 normal(u.planeNormal);
+    float lowest = std::abs(glm::dot(glm::vec3(u.toViewer), normal));
+    if (s.orthographic == 0) {
+      const glm::mat4 inverse = glm::inverse(frame.camera.viewProjection);
+      float cosines[4];
+      for (int k = 0; k < 4; ++k) {
+        const glm::vec4 p =
+            inverse * glm::vec4((k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f, 0.5f, 1.0f);
+        const glm::vec3 ray = glm::normalize(glm::vec3(p) / p.w - frame.camera.eye);
+        cosines[k] = glm::dot(ray, normal);
+        lowest = std::min(lowest, std::abs(cosines[k]));
+      }
+      for (int k = 1; k < 4; ++k)
+        if ((cosines[k] < 0.0f) != (cosines[0] < 0.0f)) lowest = 0.0f;
+    }
+    reach += 0.5f * u.eyePosition.w / std::max(lowest, 1e-3f);
+  }
+  // A halo's ring samples lie the ring's radius from the (jittered) sample.
+  if (s.halo == 1) reach += u.screenRight.w;
+  return reach;
+}
+
+VisibleBricksSetup visibleBricksSetup(const SliceFrame& frame, Dims dims,
+                                      std::span<const std::uint8_t> table) {
+  float tableOpaqueFrom = 0.0f;
+  if (frame.specialization.opacityTable == 1) {
+    std::vector<float> alphas(kColormapWidth);
+    for (int i = 0; i < kColormapWidth; ++i)
+      alphas[i] = static_cast<float>(table[4 * (kCustomColormapRow * kColormapWidth + i) + 3]);
+    tableOpaqueFrom = opaqueFromTable(alphas);
+  }
+  VisibleBricksSetup setup = visibleBricksSetup(frame.uniforms, frame.specialization, dims,
+                                                tableOpaqueFrom, sampleReach(frame));
+  // The ring samples of a halo are read around a kept sample without the region test.
+  if (frame.specialization.halo == 1) setup.uniforms.opacity.w = frame.uniforms.screenRight.w;
+  return setup;
+}
+
+VisibleBricksSetup unionOf(const VisibleBricksSetup& a, const VisibleBricksSetup& b) {
+  VisibleBricksSetup both = a;
+  both.uniforms.dims.w = std::max(a.uniforms.dims.w, b.uniforms.dims.w);
+  both.uniforms.halfExtent.w = std::max(a.uniforms.halfExtent.w, b.uniforms.halfExtent.w);
+  both.uniforms.opacity.w = std::max(a.uniforms.opacity.w, b.uniforms.opacity.w);
+  return both;
+}
+
 float opaqueFromTable(std::span<const float> alphas) {
   const std::size_t n = alphas.size();
   for (std::size_t i = 0; i < n; ++i)
@@ -98,7 +160,8 @@ struct CpuRule {
       if (glm::dot(n, lowest) > u.clipPlane.w) return false;
     }
     if (s.roiShape != 0) {
-      const glm::vec3 tLo = textureAt(lo), tHi = textureAt(hi);
+      const glm::vec3 ring = u.opacity.w / (2.0f * glm::vec3(u.halfExtent));
+      const glm::vec3 tLo = textureAt(lo) - ring, tHi = textureAt(hi) + ring;
       std::array<glm::vec3, 8> corners;
       for (int k = 0; k < 8; ++k) {
         const glm::vec3 t((k & 1) ? tHi.x : tLo.x, (k & 2) ? tHi.y : tLo.y,
@@ -221,12 +284,16 @@ Result<void> VisibleBricksPass::reserve(Dims dims) {
       *context_, [&](VkCommandBuffer cmd) { recordForget(cmd); }, "visible bricks reset");
 }
 
-void VisibleBricksPass::recordForget(VkCommandBuffer cmd) {
+void VisibleBricksPass::recordForget(VkCommandBuffer cmd) { recordFillMade(cmd, 0); }
+
+void VisibleBricksPass::recordAllMade(VkCommandBuffer cmd) { recordFillMade(cmd, 1); }
+
+void VisibleBricksPass::recordFillMade(VkCommandBuffer cmd, std::uint32_t value) {
   // The last classification reads the flags; the LIC pass' brick variant writes them.
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-  vkCmdFillBuffer(cmd, made_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, made_.handle(), 0, VK_WHOLE_SIZE, value);
   memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);

@@ -47,6 +47,9 @@ struct VisibleBricksSetup {
   gpu::VisibleBricksUniforms uniforms{};
 };
 
+// Whether two classifications list the same bricks (their variant and numbers are equal).
+bool sameClassification(const VisibleBricksSetup& a, const VisibleBricksSetup& b);
+
 // Bricks per axis of a grid.
 glm::ivec3 brickCounts(Dims dims);
 
@@ -61,6 +64,18 @@ inline constexpr float kOpacityThresholdMargin = 1e-5f;
 VisibleBricksSetup visibleBricksSetup(const gpu::SliceUniforms& uniforms,
                                       const SliceSpecialization& slice, Dims dims,
                                       float tableOpaqueFrom, float jitterMargin);
+// The classification of the slice draw `frame` (makeSliceFrame), `table` the colour table it
+// samples (colormapTable): the jitter margin is sampleReach(frame), and with halos the region
+// test is widened by the ring's radius.
+VisibleBricksSetup visibleBricksSetup(const SliceFrame& frame, Dims dims,
+                                      std::span<const std::uint8_t> table);
+// How far (world units) a sample slice.frag shades, or reads for a halo, may lie from the slice
+// point its clip plane tests: half the slice spacing along the ray (jitter), over the smallest
+// cosine between the view's rays and the slice normal, plus the halo ring's radius.
+float sampleReach(const SliceFrame& frame);
+// The classification that lists the bricks either lists (stereo: both eyes). The eyes of one view
+// differ at most in the margin, the jitter margin and the ring radius, of which the larger is kept.
+VisibleBricksSetup unionOf(const VisibleBricksSetup& a, const VisibleBricksSetup& b);
 // The lowest o in [0, 1] at which a table of `alphas` (entries at i / (n - 1), read with linear
 // filtering) may be non-zero; 2 when it is zero everywhere.
 float opaqueFromTable(std::span<const float> alphas);
@@ -80,6 +95,8 @@ class VisibleBricksPass {
   Result<void> reserve(Dims dims);
   // Marks every brick not made (the LIC values changed).
   void recordForget(VkCommandBuffer cmd);
+  // Marks every brick made (the full pass wrote the whole grid).
+  void recordAllMade(VkCommandBuffer cmd);
   // Classifies the bricks of `field` (SHADER_READ_ONLY_OPTIMAL) and lists the visible bricks not
   // made: after it, dispatch() holds per brick layer {listed, kVisibleBrickSize, 1} and lists()
   // the listed bricks' indices, layer z from z * bricksX * bricksY on.
@@ -111,6 +128,8 @@ class VisibleBricksPass {
   Buffer lists_;
   Buffer dispatch_;
   Buffer readback_;  // the flags, the dispatch commands, the lists
+
+  void recordFillMade(VkCommandBuffer cmd, std::uint32_t value);
 };
 
 }  // namespace lic3d

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "core/colormap.h"
 #include "core/stage_times.h"
 #include "gpu/submit.h"
 #include "lic/annotation.h"
@@ -15,8 +16,10 @@ Result<LicRenderer> LicRenderer::create(const Context& context, const RendererOp
   renderer.context_ = &context;
   renderer.textures_ = FieldTextures(context, options.fieldPrecision, options.naiveLicKernel);
   LIC3D_TRY_ASSIGN(renderer.target_, OffscreenTarget::create(context, options.framePrecision));
-  LIC3D_TRY_ASSIGN(renderer.job_, LicVolumeJob::create(context, options.doubleBuffered,
-                                                       options.naiveLicKernel, options.licLaunch));
+  LIC3D_TRY_ASSIGN(
+      renderer.job_,
+      LicVolumeJob::create(context, options.doubleBuffered, options.naiveLicKernel,
+                           options.licLaunch, options.visibleWork, options.visibleFullPassShare));
   LIC3D_TRY_ASSIGN(renderer.slicePass_, SlicePass::create(context, options.runtimeModes));
   return renderer;
 }
@@ -78,6 +81,36 @@ Result<void> LicRenderer::blendTime(int first, int second, double weight) {
 
 Result<bool> LicRenderer::updateLic(const LicParams& params, const ProgressCallback& progress) {
   return job_.update(params, textures_, progress);
+}
+
+Result<bool> LicRenderer::updateLic(const LicParams& params, const ViewParams& view,
+                                    const ProgressCallback& progress) {
+  LIC3D_TRY_ASSIGN(const std::optional<VisibleBricksSetup> visible, visibleBricksFor(view));
+  return job_.update(params, textures_, progress, visible ? &*visible : nullptr);
+}
+
+Result<bool> LicRenderer::needsLic(const LicParams& params, const ViewParams& view) const {
+  LIC3D_TRY_ASSIGN(const std::optional<VisibleBricksSetup> visible, visibleBricksFor(view));
+  return visible ? job_.needs(params, *visible) : job_.needs(params);
+}
+
+Result<std::optional<VisibleBricksSetup>> LicRenderer::visibleBricksFor(
+    const ViewParams& given) const {
+  const FieldTexture& field = textures_.field();
+  if (!job_.visibleWork() || !field.image) return std::optional<VisibleBricksSetup>();
+  LIC3D_TRY(validate(given));
+  // The slices as drawn (shownDraws), in the picture's part of the frame (recordFrame).
+  const ViewParams view = shownView(given, volumeFacts().transfer());
+  const glm::ivec4 p = pictureLayoutFor(given).picture;
+  const VkRect2D area{{p.x, p.y},
+                      {static_cast<std::uint32_t>(p.z), static_cast<std::uint32_t>(p.w)}};
+  const std::vector<std::uint8_t> table = colormapTable(view.transfer, view.colormap);
+  std::optional<VisibleBricksSetup> visible;
+  for (const EyeDraw& draw : eyeDraws(area, view)) {
+    const VisibleBricksSetup eye = visibleBricksSetup(draw.frame, field.dims, table);
+    visible = visible ? unionOf(*visible, eye) : eye;
+  }
+  return visible;
 }
 
 // ---- Drawing -----------------------------------------------------------------------------------
@@ -184,7 +217,7 @@ Result<void> LicRenderer::recordFrame(VkCommandBuffer cmd, const OffscreenTarget
 
 Result<RgbaImage> LicRenderer::render(const LicParams& params, const ViewParams& view) {
   LIC3D_TRY(validate(view));
-  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool recomputed, updateLic(params));
+  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool recomputed, updateLic(params, view));
   const int width = view.stereo == StereoMode::SideBySide ? 2 * view.width : view.width;
   LIC3D_TRY(target_.resize(width, view.height));
   Result<void> status;

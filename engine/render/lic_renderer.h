@@ -42,6 +42,13 @@ struct RendererOptions {
   bool naiveLicKernel = false;
   // Replaces the device type's workgroup shape and walk of the LIC pass (licLaunchFor).
   std::optional<LicSpecialization> licLaunch;
+  // Visible work (docs/VISIBLE_WORK.md): a LIC update given a view makes only the bricks it can
+  // show, and the contrast stretch follows their voxels. Pictures only: a LIC volume that is
+  // written out (`compute`) needs every voxel. Not with doubleBuffered or naiveLicKernel.
+  bool visibleWork = false;
+  // The share of the grid's voxels in visible bricks from which the full pass is taken instead
+  // (0: always, with the visible bricks' statistics; above 1: never).
+  double visibleFullPassShare = kVisibleFullPassShare;
 };
 
 class LicRenderer {
@@ -74,6 +81,11 @@ class LicRenderer {
   // for, so long computations report progress (and hold the GPU in shorter pieces).
   // Returns whether the pass ran.
   Result<bool> updateLic(const LicParams& params, const ProgressCallback& progress = {});
+  // The same for pictures of `view`: with visible work, only the bricks `view` can show that are
+  // not made yet are made (every visible brick after a change of `params`, the field or the
+  // noise), and the statistics are those of the visible bricks; without, updateLic(params).
+  Result<bool> updateLic(const LicParams& params, const ViewParams& view,
+                         const ProgressCallback& progress = {});
 
   // updateLic, then one frame into an offscreen image read back as 8-bit RGBA. Side-by-side
   // stereo gives an image twice as wide (left eye | right eye); with a legend requested, the
@@ -118,6 +130,13 @@ class LicRenderer {
   bool hasVolume() const { return job_.shownParams().has_value(); }
   // Whether updateLic(params) would run the pass: no volume of `params` for the current field.
   bool needsLic(const LicParams& params) const { return job_.needs(params); }
+  // Whether updateLic(params, view) would run a pass (LIC, classification or statistics).
+  Result<bool> needsLic(const LicParams& params, const ViewParams& view) const;
+  // The classification of the bricks `view` can show (both eyes of a stereo view); nullopt
+  // without visible work or before a field is set.
+  Result<std::optional<VisibleBricksSetup>> visibleBricksFor(const ViewParams& view) const;
+  // What the last update with visible work made and left out.
+  const VisibleWorkCounts& visibleWorkCounts() const { return job_.visibleWorkCounts(); }
   LicStatus licStatus() const { return job_.status(textures_.field().dims); }
 
   // ---- Unsteady fields (docs/TIME.md) -----------------------------------------------------------

@@ -16,17 +16,35 @@ namespace {
 // With progress reporting the pass is split into this many slabs along z (at most).
 constexpr int kProgressSlabs = 16;
 
+constexpr int kBrick = static_cast<int>(gpu::kVisibleBrickSize);
+
+// Voxels of brick `index` (x fastest) of a grid of `dims`: the last bricks are cut by the grid.
+std::uint64_t brickVoxels(std::uint32_t index, glm::ivec3 bricks, Dims dims) {
+  const glm::ivec3 brick(static_cast<int>(index % bricks.x),
+                         static_cast<int>(index / bricks.x % bricks.y),
+                         static_cast<int>(index / (bricks.x * bricks.y)));
+  const glm::ivec3 first = brick * kBrick;
+  const glm::ivec3 size = glm::min(first + kBrick, glm::ivec3(dims)) - first;
+  return static_cast<std::uint64_t>(size.x) * size.y * size.z;
+}
+
 constexpr VkPipelineStageFlags2 kVolumeReaders =
     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 
 }  // namespace
 
 Result<LicVolumeJob> LicVolumeJob::create(const Context& context, bool doubleBuffered,
-                                          bool naiveKernel,
-                                          std::optional<LicSpecialization> launch) {
+                                          bool naiveKernel, std::optional<LicSpecialization> launch,
+                                          bool visibleWork, double fullPassShare) {
   LicVolumeJob job;
   job.context_ = &context;
   job.doubleBuffered_ = doubleBuffered;
+  // The made flags belong to one volume; the brick variant reads the noise from the field.
+  job.visibleWork_ = visibleWork && !doubleBuffered && !naiveKernel;
+  job.fullPassShare_ = fullPassShare;
+  if (job.visibleWork_) {
+    LIC3D_TRY_ASSIGN(job.bricks_, VisibleBricksPass::create(context));
+  }
   LIC3D_TRY_ASSIGN(job.licPass_, LicPass::create(context, naiveKernel, launch));
   LIC3D_TRY_ASSIGN(job.histogramPass_, LicHistogramPass::create(context));
   LIC3D_TRY_ASSIGN(job.masks_, SparsityMaskStore::create(context));
@@ -42,6 +60,7 @@ void LicVolumeJob::dropField(bool newGrid, const std::optional<FieldPiece>& piec
   job_.reset();
   finished_.reset();
   shownParams_.reset();
+  shownSetup_.reset();
   piece_ = piece;  // a piece's mask is cut from the whole one: the store tells them apart
   if (newGrid) {
     masks_.release();  // the mask and the volumes live on the field's grid
@@ -90,6 +109,13 @@ Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams
         histogramPass_.record(cmd, shownVolume(), field, textures.emptySpeed(), 0);
       },
       "lic histogram"));
+  // The whole volume is made: a view change makes no brick.
+  if (visibleWork_) {
+    LIC3D_TRY(bricks_.reserve(field.dims));
+    LIC3D_TRY(submitAndWait(
+        *context_, [&](VkCommandBuffer cmd) { bricks_.recordAllMade(cmd); }, "bricks made"));
+  }
+  shownSetup_.reset();
   // No job finished here: the statistics are this volume's histogram, taken directly.
   finished_.reset();
   statistics_ = intensityStatistics(histogramPass_.counts(0));
@@ -187,35 +213,49 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
   }
   LIC3D_TRY(ensureVolumes(textures));
   Image& back = backVolume();
-  const int zBegin = job_->nextZ;
-  // Whole workgroups: a slab thinner than a workgroup is deep would leave invocations idle.
-  const int depth = licPass_.launchDepth();
-  const int slices = (std::max(1, maxSlices) + depth - 1) / depth * depth;
-  const int zEnd = std::min(dims.z, zBegin + slices);
-  if (zBegin == 0) {
-    // The old contents are discarded; earlier frames and histograms must be done reading.
-    if (!doubleBuffered_) shownParams_.reset();
-    imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                 kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
-                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  } else {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  }
-  LIC3D_TRY(licPass_.record(cmd, field, maskFor(job_->params), masks_.beyond(), back, job_->params,
-                            zBegin, zEnd, textures.separateNoise()));
-  work.slicesRecorded = zEnd - zBegin;
-  job_->nextZ = zEnd;
-  if (zEnd < dims.z) return work;
+  if (!job_->nothingListed) {
+    const int zBegin = job_->nextZ;
+    // Whole workgroups (whole brick layers): a slab thinner than a workgroup is deep would leave
+    // invocations idle.
+    const int depth = job_->overBricks ? kBrick : licPass_.launchDepth();
+    const int slices = (std::max(1, maxSlices) + depth - 1) / depth * depth;
+    const int zEnd = std::min(dims.z, zBegin + slices);
+    if (zBegin == 0 && job_->forget) {
+      // The old contents are discarded; earlier frames and histograms must be done reading.
+      if (!doubleBuffered_) shownParams_.reset();
+      imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                   kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    } else if (zBegin == 0) {
+      // Bricks that became visible join those made before, which stay.
+      imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                   VK_IMAGE_LAYOUT_GENERAL, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+                   VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    } else {
+      memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    }
+    LIC3D_TRY(recordSlab(cmd, textures, back, zBegin, zEnd));
+    work.slicesRecorded = zEnd - zBegin;
+    job_->nextZ = zEnd;
+    if (zEnd < dims.z) return work;
+    // The full pass made every brick.
+    if (visibleWork_ && !job_->overBricks && bricks_.bricks() == brickCounts(dims))
+      bricks_.recordAllMade(cmd);
 
-  imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL,
-               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
-               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-  histogramPass_.record(cmd, back, field, textures.emptySpeed(), slot);
+    imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                 kVolumeReaders | VK_PIPELINE_STAGE_2_COPY_BIT,
+                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  histogramPass_.record(cmd, back, field, textures.emptySpeed(), slot,
+                        job_->visible ? &bricks_.visible() : nullptr);
   // Shown once its statistics are read back: a frame never draws a volume with another's
   // contrast stretch.
-  finished_ = Finished{job_->params, slot};
+  finished_ = Finished{job_->params, slot, job_->visible};
   job_.reset();
   ++licDispatches_;
   work.finished = true;
@@ -227,14 +267,81 @@ void LicVolumeJob::collectStatistics(std::uint32_t slot) {
   statistics_ = intensityStatistics(histogramPass_.counts(slot));
   if (doubleBuffered_) front_ = 1 - front_;
   shownParams_ = finished_->params;
+  shownSetup_ = finished_->visible;
   finished_.reset();
 }
 
+Result<void> LicVolumeJob::recordSlab(VkCommandBuffer cmd, const FieldTextures& textures,
+                                      Image& back, int zBegin, int zEnd) {
+  const FieldTexture& field = textures.field();
+  if (!job_->overBricks)
+    return licPass_.record(cmd, field, maskFor(job_->params), masks_.beyond(), back, job_->params,
+                           zBegin, zEnd, textures.separateNoise());
+  return licPass_.recordBricks(cmd, field, maskFor(job_->params), masks_.beyond(), back,
+                               job_->params, bricks_, zBegin / kBrick,
+                               (zEnd + kBrick - 1) / kBrick);
+}
+
+Result<void> LicVolumeJob::classify(const FieldTextures& textures) {
+  const FieldTexture& field = textures.field();
+  const Dims dims = field.dims;
+  LIC3D_TRY(bricks_.reserve(dims));
+  Result<void> recorded;
+  LIC3D_TRY(submitAndWait(
+      *context_,
+      [&](VkCommandBuffer cmd) {
+        if (job_->forget) bricks_.recordForget(cmd);
+        recorded = bricks_.record(cmd, field, *job_->visible);
+        bricks_.recordReadback(cmd);
+      },
+      "visible bricks"));
+  LIC3D_TRY(std::move(recorded));
+  // Whether the listed bricks are so many that the full pass costs less (read back here: the
+  // blocking path waits anyway).
+  const glm::ivec3 bricks = bricks_.bricks();
+  VisibleWorkCounts counts;
+  counts.bricks = static_cast<std::uint64_t>(bricks.x) * bricks.y * bricks.z;
+  for (const std::uint32_t flag : bricks_.visibleFlags()) counts.visible += flag;
+  std::uint64_t listedVoxels = 0;
+  for (const std::vector<std::uint32_t>& layer : bricks_.listedBricks()) {
+    counts.made += layer.size();
+    for (const std::uint32_t index : layer) listedVoxels += brickVoxels(index, bricks, dims);
+  }
+  job_->classified = true;
+  if (job_->forget &&
+      static_cast<double>(listedVoxels) >= fullPassShare_ * static_cast<double>(voxelCount(dims))) {
+    counts.fullPass = true;
+    counts.made = counts.bricks;
+    job_->overBricks = false;
+  } else {
+    job_->overBricks = true;
+    // The volume stays as it is; only its statistics are of the new classification.
+    job_->nothingListed = counts.made == 0 && !job_->forget;
+  }
+  visibleCounts_ = counts;
+  return {};
+}
+
 Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& textures,
-                                  const ProgressCallback& progress) {
-  if (!job_ && shownParams_ && *shownParams_ == params && !fieldChanged_) return false;
-  LIC3D_TRY(start(params, textures, fieldChanged_));
+                                  const ProgressCallback& progress,
+                                  const VisibleBricksSetup* visible) {
+  const bool licChanges = !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
+  if (visibleWork(params) && visible) {
+    if (!job_ && !licChanges && shownSetup_ && sameClassification(*shownSetup_, *visible))
+      return false;
+    const bool resume = job_ && job_->params == params && job_->visible &&
+                        sameClassification(*job_->visible, *visible) && !fieldChanged_;
+    if (!resume) {
+      LIC3D_TRY(start(params, textures, true));
+      job_->visible = *visible;
+      job_->forget = licChanges;
+    }
+  } else {
+    if (!job_ && !licChanges) return false;
+    LIC3D_TRY(start(params, textures, fieldChanged_));
+  }
   const Dims dims = textures.field().dims;
+  if (visibleWork_) LIC3D_TRY(bricks_.reserve(dims));
   const int slab = progress ? (dims.z + kProgressSlabs - 1) / kProgressSlabs : dims.z;
   while (job_) {
     // Stopped before a slab starts (also before the first: a stop asked for during what came
@@ -242,6 +349,11 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
     // called again.
     if (progress.stopRequested()) return cancelledError();
     LIC3D_TRY(waitForMask(textures));
+    if (job_->visible && !job_->classified) {
+      const StageTimer timer("visible bricks");
+      LIC3D_TRY(classify(textures));
+      continue;  // a stop asked for meanwhile is seen before the LIC starts
+    }
     Result<LicWork> work = LicWork{};
     const StageTimer timer("LIC");
     LIC3D_TRY(submitAndWait(

@@ -25,6 +25,7 @@
 #include "lic/sparsity.h"
 #include "passes/lic_histogram_pass.h"
 #include "passes/lic_pass.h"
+#include "passes/visible_bricks_pass.h"
 #include "render/field_textures.h"
 #include "render/sparsity_mask_store.h"
 
@@ -35,6 +36,19 @@ struct LicWork {
   int slicesRecorded = 0;
   bool finished = false;        // the job's last slice was recorded: the new volume is shown
   bool waitingForMask = false;  // the sparsity mask is still being made on a worker thread
+};
+
+// Visible work takes the full pass when the bricks to make hold at least this share of the grid:
+// the brick variant's launch (a brick slice per workgroup, the classification before it) then
+// costs more than the voxels it leaves out (docs/VISIBLE_WORK.md, "Fallback").
+inline constexpr double kVisibleFullPassShare = 0.9;
+
+// What the last update with visible work did (docs/VISIBLE_WORK.md), in bricks of the grid.
+struct VisibleWorkCounts {
+  std::uint64_t bricks = 0;   // of the grid
+  std::uint64_t visible = 0;  // by the last classification
+  std::uint64_t made = 0;     // by the last update's LIC (0 when nothing new became visible)
+  bool fullPass = false;      // the last LIC was the full pass (nearly every brick visible)
 };
 
 struct LicStatus {
@@ -49,9 +63,15 @@ class LicVolumeJob {
   // `context` must outlive the job. `naiveKernel` (benchmark builds only): the LIC pass reads the
   // noise from a texture of its own (FieldTextures' separateNoise). `launch` replaces the device
   // type's launch fields (licLaunchFor).
+  // With `visibleWork` (single-buffered only), update() given a classification makes only the
+  // visible bricks not made yet and takes the statistics of the visible bricks' voxels
+  // (docs/VISIBLE_WORK.md); where the bricks to make after a change of the LIC hold at least
+  // `fullPassShare` of the grid's voxels, it takes the full pass instead.
   static Result<LicVolumeJob> create(const Context& context, bool doubleBuffered,
                                      bool naiveKernel = false,
-                                     std::optional<LicSpecialization> launch = std::nullopt);
+                                     std::optional<LicSpecialization> launch = std::nullopt,
+                                     bool visibleWork = false,
+                                     double fullPassShare = kVisibleFullPassShare);
 
   // A new field: the job and the shown volume are dropped, and with `newGrid` the mask and the
   // volumes too; `piece` is the field's place in the whole grid the mask is cut from. The caller
@@ -83,9 +103,12 @@ class LicVolumeJob {
   // statistics are shown from then on.
   void collectStatistics(std::uint32_t slot);
   // Blocking: runs the pending or needed job to its end, in slabs with a progress callback.
-  // Returns whether the LIC pass ran.
+  // Returns whether the LIC pass ran. With visible work and `visible`, the job makes the bricks
+  // `visible` lists that are not made yet (all of them after a change of `params` or the field;
+  // in slabs of brick layers) and the statistics become those of its visible bricks.
   Result<bool> update(const LicParams& params, const FieldTextures& textures,
-                      const ProgressCallback& progress);
+                      const ProgressCallback& progress,
+                      const VisibleBricksSetup* visible = nullptr);
   // The shown volume read back on the field's grid.
   Result<ScalarVolume> read(const FieldTextures& textures) const;
 
@@ -93,6 +116,19 @@ class LicVolumeJob {
   bool needs(const LicParams& params) const {
     return job_ || !shownParams_ || !(*shownParams_ == params) || fieldChanged_;
   }
+  // The same with visible work for the classification `visible`: also when the shown volume's
+  // statistics or made bricks are of another classification.
+  bool needs(const LicParams& params, const VisibleBricksSetup& visible) const {
+    return needs(params) ||
+           (visibleWork(params) && (!shownSetup_ || !sameClassification(*shownSetup_, visible)));
+  }
+  bool visibleWork() const { return visibleWork_; }
+  // Whether a view makes only its visible bricks for `params`: not with a sparsity mask, whose
+  // hidden fraction (the run summary's) is counted over the whole grid.
+  bool visibleWork(const LicParams& params) const {
+    return visibleWork_ && params.sparsity.distribution == SparsityDistribution::None;
+  }
+  const VisibleWorkCounts& visibleWorkCounts() const { return visibleCounts_; }
   LicStatus status(Dims dims) const;
   const Image& shownVolume() const { return volumes_[front_]; }
   const std::optional<LicParams>& shownParams() const { return shownParams_; }
@@ -121,16 +157,28 @@ class LicVolumeJob {
     LicParams params;
     int nextZ = 0;
     bool needsMask = false;
+    // Visible work: the classification; whether the made flags are cleared first (the LIC
+    // values change); whether it ran; whether the LIC is over the listed bricks (nextZ then
+    // steps by brick layers) or the full pass.
+    std::optional<VisibleBricksSetup> visible;
+    bool forget = true;
+    bool classified = false;
+    bool overBricks = false;
+    bool nothingListed = false;
   };
   struct Finished {
     LicParams params;
-    std::uint32_t slot = 0;  // of the histogram to read
+    std::uint32_t slot = 0;                     // of the histogram to read
+    std::optional<VisibleBricksSetup> visible;  // whose visible bricks the histogram counts
   };
 
   Result<void> ensureVolumes(const FieldTextures& textures);
   Result<bool> prepareMask(bool wait);
   const Buffer* maskFor(const LicParams& params) const;
   Image& backVolume() { return volumes_[doubleBuffered_ ? 1 - front_ : front_]; }
+  Result<void> classify(const FieldTextures& textures);
+  Result<void> recordSlab(VkCommandBuffer cmd, const FieldTextures& textures, Image& back,
+                          int zBegin, int zEnd);
 
   const Context* context_ = nullptr;
   LicPass licPass_;
@@ -146,6 +194,13 @@ class LicVolumeJob {
   SparsityMaskStore masks_;          // the sparsity mask on the field's grid
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
   bool fieldChanged_ = false;        // the field texture changed under the shown LIC volume
+  bool visibleWork_ = false;
+  double fullPassShare_ = kVisibleFullPassShare;
+  VisibleBricksPass bricks_;  // the made flags of volumes_[0] (visible work is single-buffered)
+  // The classification of the shown volume's statistics; empty: the whole grid's (and the whole
+  // volume made).
+  std::optional<VisibleBricksSetup> shownSetup_;
+  VisibleWorkCounts visibleCounts_;
 };
 
 // GPU milliseconds of one LIC dispatch over the whole volume of `params` (always dispatched;
