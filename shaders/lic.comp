@@ -7,6 +7,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "lic_kernel.h"
 #include "shared_layout.h"
+#include "sparsity_mask.h"
 
 layout(local_size_x = kLicDefaultLocalSizeX, local_size_x_id = kLicConstLocalSizeX,
        local_size_y = kLicDefaultLocalSizeY, local_size_y_id = kLicConstLocalSizeY,
@@ -46,7 +47,9 @@ layout(constant_id = kLicConstBrickList) const uint BRICK_LIST = kLicDefaultBric
 // coordinates follows the physical field on anisotropic grids.
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kLicBindingOutput, rg16) uniform writeonly image3D licImage;
-layout(set = 0, binding = kLicBindingMask) uniform usampler3D sparsityMask;
+layout(set = 0, binding = kLicBindingMask, std430) readonly buffer SparsityMask {
+  uint sparsityMask[];  // one bit per voxel (sparsity_mask.h)
+};
 #ifdef LIC3D_SEPARATE_NOISE
 // Built only for `lic3d bench`: the naive reference kernel, with the noise in a texture of its
 // own, so an exact RK2 sample costs three fetches (midpoint, end, noise) instead of two.
@@ -97,19 +100,25 @@ float noiseAt(vec3 x, vec4 texel) {
   return texel.w;
 }
 
+// The mask's bit of voxel v, which must lie inside the grid (no bounds test on the buffer).
+bool maskBitAt(uvec3 v) {
+  uint word = licMaskWord(v.x, v.y, v.z, licMaskBlocksX(pc.dims.x), licMaskBlocksY(pc.dims.y));
+  return ((sparsityMask[word] >> licMaskBit(v.x, v.y, v.z)) & 1u) != 0u;
+}
+
 // Whether the sample at x, inside the grid, lies in a black voxel of the mask (the voxel nearest
 // to x). Samples are inside by construction (walk() ends a streamline at its first outside
 // point), so the sample loop carries no test for the grid's bounds.
 bool touchesBlackInside(vec3 x) {
   if (SPARSITY == 0) return false;
-  return texelFetch(sparsityMask, ivec3(floor(x + 0.5)), 0).r != 0u;
+  return maskBitAt(uvec3(floor(x + 0.5)));
 }
 
 // touchesBlackInside anywhere: beyond the grid, the mask's random continuation (lic_kernel.h).
 bool touchesBlack(vec3 x) {
   ivec3 v = ivec3(floor(x + 0.5));
   if (all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, pc.dims.xyz)))
-    return texelFetch(sparsityMask, v, 0).r != 0u;
+    return maskBitAt(uvec3(v));
   uvec3 w = uvec3(v) + pc.maskBeyond.xyz;
   return licBlackBeyondGrid(w.x, w.y, w.z, pc.maskSeed, pc.maskBeyond.w);
 }

@@ -23,7 +23,7 @@ using mat4 = glm::mat4;
 // ---- LIC compute pass -------------------------------------------------------------------------
 LIC3D_CONST kLicBindingField = 0;   // sampler3D: the packed field and noise (volume_textures.h)
 LIC3D_CONST kLicBindingOutput = 1;  // image3D rg16: r = LIC value, g = 1 if drawn, 0 if masked
-LIC3D_CONST kLicBindingMask = 2;    // usampler3D r8ui: the sparsity mask, 1 = black voxel
+LIC3D_CONST kLicBindingMask = 2;    // buffer: the sparsity mask, a bit per voxel (sparsity_mask.h)
 LIC3D_CONST kLicBindingNoise = 3;   // sampler3D r8: the noise alone (the benchmark's naive kernel)
 LIC3D_CONST kLicBindingBrickList = 4;   // buffer: the listed bricks (kVisibleBindingLists)
 LIC3D_CONST kLicBindingMadeBricks = 5;  // buffer: a uint per brick, set to 1 once made
@@ -77,6 +77,26 @@ struct LicPushConstants {
   uint pad2;
   uint pad3;
   uint pad4;
+};
+
+// ---- Sparsity mask on the GPU (sparsity_mask.comp) ---------------------------------------------
+LIC3D_CONST kMaskBindingBits = 0;   // buffer: the mask's words (sparsity_mask.h)
+LIC3D_CONST kMaskBindingCount = 1;  // buffer: one uint, the black voxels made (added to)
+LIC3D_CONST kMaskConstDistribution = 0;
+// The distributions it makes, by their SparsityDistribution values (lic_params.h).
+LIC3D_CONST kMaskCheckerboard = 1;
+LIC3D_CONST kMaskHalton = 5;
+LIC3D_CONST kMaskHammersley = 6;
+LIC3D_CONST kMaskDefaultDistribution = kMaskCheckerboard;
+LIC3D_CONST kMaskLocalSize = 64;
+// Workgroups per row of the 2D dispatch: larger masks and point counts exceed the 65535 groups
+// of one dimension.
+LIC3D_CONST kMaskGroupsPerRow = 32768;
+
+struct SparsityMaskPushConstants {
+  ivec4 dims;     // xyz: the grid; w: unused
+  uvec4 pattern;  // checkerboard: x black, y period (CheckerboardPattern); points: x the count
+  uvec4 powers;   // x, y, z: radicalInversePower of bases 2, 3, 5 for the count; w: the words
 };
 
 // ---- LIC histogram (auto contrast window) ------------------------------------------------------
@@ -341,6 +361,7 @@ static_assert(sizeof(AnalyticPushConstants) == 112);
 static_assert(sizeof(LicPushConstants) == 96);
 static_assert(sizeof(Lic2DPushConstants) == 64);
 static_assert(sizeof(TimeBlendPushConstants) == 48);
+static_assert(sizeof(SparsityMaskPushConstants) == 48);
 static_assert(sizeof(SliceUniforms) == 2 * 64 + 26 * 16);
 static_assert(sizeof(OcclusionPushConstants) == 16);
 static_assert(sizeof(VisibleBricksUniforms) == 64 + 8 * 16);

@@ -27,7 +27,8 @@ TEST(MemoryBudget, EstimateCountsEveryResidentVolume) {
   r.sparsity = true;
   r.doubleBuffered = true;
   e = estimateMemory(r);
-  EXPECT_EQ(e.deviceBytes, 1'000'000u * (16 + 4 + 4 + 1));
+  // The sparsity mask: a bit per voxel.
+  EXPECT_EQ(e.deviceBytes, 1'000'000u * (16 + 4 + 4) + 125'000u);
   EXPECT_EQ(e.largestImage, 1'000'000u * 16);
 
   r.frameWidth = 1000;

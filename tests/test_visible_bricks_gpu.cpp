@@ -334,15 +334,6 @@ class BrickLicTest : public VisibleBricksTest {
     Result<LicPass> lic = LicPass::create(context());
     ASSERT_TRUE(lic.ok()) << lic.error().message;
     lic_.emplace(std::move(*lic));
-    ImageDesc maskDesc;
-    maskDesc.format = kSparsityMaskFormat;
-    maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    maskDesc.name = "test mask";
-    Result<Image> mask = Image::create(context(), maskDesc);
-    ASSERT_TRUE(mask.ok());
-    mask_ = std::move(*mask);
-    const std::uint8_t white = 0;
-    ASSERT_TRUE(uploadImage(context(), mask_, &white, 1).ok());
     for (Image* image : {&full_, &bricks_}) {
       ImageDesc desc;
       desc.format = kLicVolumeFormat;
@@ -370,14 +361,13 @@ class BrickLicTest : public VisibleBricksTest {
           memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-          EXPECT_TRUE(lic_->record(cmd, texture_, mask_, {}, full_, params_, 0, kGrid.z).ok());
+          EXPECT_TRUE(lic_->record(cmd, texture_, nullptr, {}, full_, params_, 0, kGrid.z).ok());
         },
         "brick lic test setup");
     ASSERT_TRUE(ran.ok()) << ran.error().message;
   }
   void TearDown() override {
     lic_.reset();
-    mask_ = Image();
     full_ = Image();
     bricks_ = Image();
     VisibleBricksTest::TearDown();
@@ -390,7 +380,7 @@ class BrickLicTest : public VisibleBricksTest {
         [&](VkCommandBuffer cmd) {
           EXPECT_TRUE(pass_->record(cmd, texture_, setup).ok());
           pass_->recordReadback(cmd);
-          EXPECT_TRUE(lic_->recordBricks(cmd, texture_, mask_, {}, bricks_, params_, *pass_, 0,
+          EXPECT_TRUE(lic_->recordBricks(cmd, texture_, nullptr, {}, bricks_, params_, *pass_, 0,
                                          brickCounts(kGrid).z)
                           .ok());
         },
@@ -437,7 +427,6 @@ class BrickLicTest : public VisibleBricksTest {
 
   std::optional<LicPass> lic_;
   LicParams params_;
-  Image mask_;
   Image full_;
   Image bricks_;
 };

@@ -125,8 +125,12 @@ MemoryEstimate estimateMemory(const MemoryRequest& r) {
   add("LIC volume (RG16)", voxels * 4, device);
   if (r.doubleBuffered) add("second LIC volume (RG16)", voxels * 4, device);
   if (r.sparsity) {
-    add("sparsity mask (R8)", voxels, device);
-    add("sparsity mask (host)", voxels, host);
+    // A bit per voxel on the device (shaders/sparsity_mask.h); a mask made on the CPU is a byte
+    // per voxel there, then packed and uploaded.
+    const std::uint64_t bits = (voxels + 7) / 8;
+    add("sparsity mask (1 bit per voxel)", bits, device);
+    add("sparsity mask (host)", voxels + bits, host);
+    add("sparsity mask upload staging", bits, staging);
   }
   if (r.scalars) {
     add("colour and opacity scalars (RG16F)", voxels * 4, device);

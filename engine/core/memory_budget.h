@@ -17,7 +17,7 @@ namespace lic3d {
 struct MemoryRequest {
   Dims dims{0};
   FieldPrecision precision = FieldPrecision::Half;  // resolved: not Auto
-  bool sparsity = false;                            // a mask volume (R8) besides the field
+  bool sparsity = false;                            // a sparsity mask (a bit per voxel) too
   bool scalars = false;         // colour or opacity by a scalar other than speed (ScalarTexture)
   bool doubleBuffered = false;  // two LIC volumes (the desktop app recomputes into the second)
   bool volumeReadback = false;  // the LIC volume is read back to the host (`lic3d compute`)

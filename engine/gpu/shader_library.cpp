@@ -17,6 +17,7 @@
 #include "occlusion_composite_frag_spv.h"
 #include "slice_frag_spv.h"
 #include "slice_vert_spv.h"
+#include "sparsity_mask_comp_spv.h"
 #include "time_blend_byte_comp_spv.h"
 #include "time_blend_comp_spv.h"
 #include "time_blend_half_comp_spv.h"
@@ -33,6 +34,7 @@ std::span<const std::uint32_t> spirv(ShaderId id) {
     case ShaderId::LicCompute: return lic_comp_spv;
     case ShaderId::LicHistogram: return lic_histogram_comp_spv;
     case ShaderId::VisibleBricks: return visible_bricks_comp_spv;
+    case ShaderId::SparsityMask: return sparsity_mask_comp_spv;
     case ShaderId::SliceVertex: return slice_vert_spv;
     case ShaderId::SliceFragment: return slice_frag_spv;
     case ShaderId::SliceFragmentRuntimeModes:
@@ -74,6 +76,7 @@ const char* shaderName(ShaderId id) {
     case ShaderId::LicCompute: return "lic.comp";
     case ShaderId::LicHistogram: return "lic_histogram.comp";
     case ShaderId::VisibleBricks: return "visible_bricks.comp";
+    case ShaderId::SparsityMask: return "sparsity_mask.comp";
     case ShaderId::SliceVertex: return "slice.vert";
     case ShaderId::SliceFragment: return "slice.frag";
     case ShaderId::SliceFragmentRuntimeModes: return "slice.frag (runtime modes)";

@@ -21,6 +21,7 @@ enum class ShaderId {
   LicCompute,
   LicHistogram,
   VisibleBricks,  // the bricks of the LIC volume the slice pass can show
+  SparsityMask,   // the sparsity masks of the distributions the GPU makes
   SliceVertex,
   SliceFragment,
   SliceFragmentRuntimeModes,  // only in builds with LIC3D_BENCH_RUNTIME_MODES

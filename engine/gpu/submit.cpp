@@ -195,6 +195,25 @@ Result<void> uploadImageFilled(const Context& context, const Image& image, std::
       "image upload");
 }
 
+Result<void> uploadBuffer(const Context& context, const Buffer& buffer, const void* data,
+                          std::size_t bytes) {
+  LIC3D_TRY_ASSIGN(Buffer staging, Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                                  MemoryUse::Upload, "upload staging"));
+  parallelCopy(staging.mapped(), data, bytes);
+  return submitAndWait(
+      context,
+      [&](VkCommandBuffer cmd) {
+        // Earlier shader reads of the buffer finish before the copy overwrites it.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const VkBufferCopy region{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      },
+      "buffer upload");
+}
+
 Result<std::vector<std::byte>> readImage(const Context& context, const Image& image,
                                          VkImageLayout layout, std::size_t bytesPerTexel) {
   std::vector<std::byte> out;

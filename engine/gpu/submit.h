@@ -51,6 +51,11 @@ Result<void> uploadImage(const Context& context, const Image& image, const void*
 Result<void> uploadImageFilled(const Context& context, const Image& image, std::size_t bytes,
                                const std::function<void(void*)>& fill);
 
+// Copies `bytes` into the start of `buffer` (with TRANSFER_DST usage) through a staging buffer,
+// visible to compute shaders' storage reads afterwards.
+Result<void> uploadBuffer(const Context& context, const Buffer& buffer, const void* data,
+                          std::size_t bytes);
+
 // Reads the whole of `image`, which must be in `layout` after work that `srcStage`/`srcAccess`
 // describe, back into tightly packed texels of `bytesPerTexel`. The image returns to `layout`.
 Result<std::vector<std::byte>> readImage(const Context& context, const Image& image,

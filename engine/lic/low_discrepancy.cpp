@@ -55,15 +55,14 @@ class MirroredCounter {
   }
 
   double next() {
-    for (std::size_t j = 0; j < static_cast<std::size_t>(digits_); ++j) {
-      if (++indexDigits_[j] < base_) {
-        mirrored_ += weights_[j];
-        break;
-      }
-      indexDigits_[j] = 0;
-      mirrored_ -= (base_ - 1) * weights_[j];
-    }
+    step();
     return static_cast<double>(mirrored_) / static_cast<double>(denominator_);
+  }
+  // floor(n phi_b(i)) of the next index, exactly: the mirrored digits times n stay below 2^64
+  // for every count and axis size validate() allows (b^K <= 5 * 2^25, n <= 2^14).
+  std::uint32_t nextVoxel(std::uint64_t n) {
+    step();
+    return static_cast<std::uint32_t>(mirrored_ * n / denominator_);
   }
 
  private:
@@ -74,6 +73,17 @@ class MirroredCounter {
   int digits_ = 0;
   std::array<std::uint64_t, kMaxDigits> weights_{};
   std::array<std::uint64_t, kMaxDigits> indexDigits_{};
+
+  void step() {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(digits_); ++j) {
+      if (++indexDigits_[j] < base_) {
+        mirrored_ += weights_[j];
+        break;
+      }
+      indexDigits_[j] = 0;
+      mirrored_ -= (base_ - 1) * weights_[j];
+    }
+  }
 };
 
 // A coordinate t * n with t in [0, 1], moved inside [0, n) if rounding (or t = 1) put it on the
@@ -120,6 +130,21 @@ std::vector<glm::vec3> hammersleyPoints(Dims dims, std::size_t count) {
     points.emplace_back(insideAxis(static_cast<double>(i) / static_cast<double>(count), dims.x),
                         insideAxis(phi2.next(), dims.y), insideAxis(phi3.next(), dims.z));
   return points;
+}
+
+std::vector<glm::ivec3> lowDiscrepancyVoxels(Dims dims, std::size_t count, bool halton) {
+  std::vector<glm::ivec3> voxels;
+  if (!validDims(dims)) return voxels;
+  voxels.reserve(count);
+  MirroredCounter first(2, count), second(halton ? 3 : 2, count), third(halton ? 5 : 3, count);
+  const auto n = [&](int a) { return static_cast<std::uint64_t>(dims[a]); };
+  for (std::size_t i = 1; i <= count; ++i) {
+    // Hammersley's x = floor(n i / count), the last one kept inside.
+    const std::uint64_t x = halton ? first.nextVoxel(n(0)) : std::min(i * n(0) / count, n(0) - 1);
+    voxels.emplace_back(static_cast<int>(x), static_cast<int>(second.nextVoxel(n(1))),
+                        static_cast<int>(third.nextVoxel(n(2))));
+  }
+  return voxels;
 }
 
 }  // namespace lic3d

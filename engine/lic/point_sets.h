@@ -64,6 +64,11 @@ std::vector<glm::vec3> haltonPoints(Dims dims, std::size_t count);
 // i = 1..count: (i / count, phi_2(i), phi_3(i)) * dims; the thesis' first point is
 // (1/N, 0.5, 1/3). The last, i / count = 1, is kept inside, in the last voxel layer of x.
 std::vector<glm::vec3> hammersleyPoints(Dims dims, std::size_t count);
+// The voxels of haltonPoints (halton) or hammersleyPoints, exactly: floor(n * coordinate) of the
+// exact rational coordinate, which the float points can round up into the next voxel where it lies
+// within a float's precision below a voxel face. What sparsity masks blacken; the GPU's
+// licScaledRadicalInverse (shaders/sparsity_mask.h) gives the same voxels.
+std::vector<glm::ivec3> lowDiscrepancyVoxels(Dims dims, std::size_t count, bool halton);
 // Exact Poisson disk sampling (Bridson 2007, "Fast Poisson disk sampling in arbitrary
 // dimensions"), O(n): background grid of cell r / sqrt(3), k = kPoissonAttempts candidates in the
 // annulus [r, 2r] around an active sample. Every pair is at least `radius` apart, and the set is

@@ -9,6 +9,7 @@
 #include "lic/fixed_point.h"
 #include "lic/sparsity_automatic.h"
 #include "lic_kernel.h"
+#include "sparsity_mask.h"
 
 namespace lic3d {
 using namespace points;
@@ -100,25 +101,48 @@ bool isBlack(const SparsityMask& mask, glm::ivec3 v) {
 
 namespace {
 
-// The threshold of licBlackBeyondGrid for a mask's black fraction, and a 32-bit seed.
-MaskBeyondGrid beyondOf(const SparsityParams& params, const SparsityMask& mask) {
-  MaskBeyondGrid beyond;
-  const double fraction =
-      static_cast<double>(mask.blackCount) / static_cast<double>(voxelCount(mask.dims));
-  beyond.threshold =
-      static_cast<std::uint32_t>(std::min(std::floor(fraction * 4294967296.0), 4294967295.0));
-  beyond.seed = static_cast<std::uint32_t>(params.seed ^ (params.seed >> 32));
-  return beyond;
-}
-
 Result<SparsityMask> makeWholeMask(const SparsityParams& params, Dims dims);
 
 }  // namespace
 
 Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims) {
   LIC3D_TRY_ASSIGN(SparsityMask mask, makeWholeMask(params, dims));
-  mask.beyond = beyondOf(params, mask);
+  mask.beyond = maskBeyondGrid(params, mask.blackCount, dims);
   return mask;
+}
+
+// The threshold of licBlackBeyondGrid for a mask's black fraction, and a 32-bit seed.
+MaskBeyondGrid maskBeyondGrid(const SparsityParams& params, std::size_t blackCount, Dims dims) {
+  MaskBeyondGrid beyond;
+  const double fraction = static_cast<double>(blackCount) / static_cast<double>(voxelCount(dims));
+  beyond.threshold =
+      static_cast<std::uint32_t>(std::min(std::floor(fraction * 4294967296.0), 4294967295.0));
+  beyond.seed = static_cast<std::uint32_t>(params.seed ^ (params.seed >> 32));
+  return beyond;
+}
+
+std::uint32_t radicalInversePower(std::uint32_t base, std::size_t count) {
+  std::uint64_t power = 1;
+  while (power * base <= count) power *= base;
+  return static_cast<std::uint32_t>(power);
+}
+
+std::size_t sparsityMaskWords(Dims dims) {
+  return std::size_t{glsl::licMaskBlocksX(dims.x)} * glsl::licMaskBlocksY(dims.y) *
+         glsl::licMaskBlocksZ(dims.z);
+}
+
+std::vector<std::uint32_t> packSparsityMask(const SparsityMask& mask) {
+  const Dims d = mask.dims;
+  std::vector<std::uint32_t> words(sparsityMaskWords(d), 0u);
+  const std::uint32_t blocksX = glsl::licMaskBlocksX(d.x), blocksY = glsl::licMaskBlocksY(d.y);
+  std::size_t index = 0;
+  for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(d.z); ++k)
+    for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(d.y); ++j)
+      for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(d.x); ++i, ++index)
+        if (mask.black[index])
+          words[glsl::licMaskWord(i, j, k, blocksX, blocksY)] |= 1u << glsl::licMaskBit(i, j, k);
+  return words;
 }
 
 namespace {
@@ -155,8 +179,16 @@ Result<SparsityMask> makeWholeMask(const SparsityParams& params, Dims dims) {
     case SparsityDistribution::Jitter:
       points = jitteredPoints(dims, resolved.radius, params.seed);
       break;
-    case SparsityDistribution::Halton: points = haltonPoints(dims, resolved.points); break;
-    case SparsityDistribution::Hammersley: points = hammersleyPoints(dims, resolved.points); break;
+    case SparsityDistribution::Halton:
+    case SparsityDistribution::Hammersley:
+      // The exact voxels sparsity_mask.comp blackens (see makeSparsityMask in the header).
+      for (const glm::ivec3& v : lowDiscrepancyVoxels(
+               dims, resolved.points, params.distribution == SparsityDistribution::Halton)) {
+        std::uint8_t& voxel = mask.black[voxelIndex(dims, v.x, v.y, v.z)];
+        mask.blackCount += voxel == 0;
+        voxel = 1;
+      }
+      return mask;
   }
   for (const glm::vec3& p : points) {
     std::uint8_t& voxel = mask.black[voxelOf(dims, p)];

@@ -63,7 +63,11 @@ struct SparsityMask {
 bool isBlack(const SparsityMask& mask, glm::ivec3 v);
 
 // Black voxels for the distribution: each point blackens the voxel that contains it; the
-// checkerboard blackens its pattern; None leaves every voxel white. Validates first.
+// checkerboard blackens its pattern; None leaves every voxel white. Validates first. Halton and
+// Hammersley take the voxel of point i as floor(n * coordinate) of the exact rational coordinate
+// (shaders/sparsity_mask.h), which sparsity_mask.comp computes the same way: the float points of
+// haltonPoints() and hammersleyPoints() can round up into the next voxel where a coordinate lies
+// within a float's precision below a voxel face (from about 2^17 points on).
 Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims);
 
 // The part of the whole grid's mask that a piece of `dims` covers (validated against the whole
@@ -71,5 +75,18 @@ Result<SparsityMask> makeSparsityMask(const SparsityParams& params, Dims dims);
 // made first, so each piece pays for all of it.
 Result<SparsityMask> makeSparsityMaskPiece(const SparsityParams& params, const FieldPiece& piece,
                                            Dims dims);
+
+// The continuation beyond the grid of a mask of the whole grid `dims` with `blackCount` black
+// voxels (makeSparsityMask sets it; a mask made on the GPU takes it from its count).
+MaskBeyondGrid maskBeyondGrid(const SparsityParams& params, std::size_t blackCount, Dims dims);
+
+// The mask as the GPU reads it: one bit per voxel in blocks of 4 x 4 x 2 voxels per 32-bit word
+// (shaders/sparsity_mask.h), sparsityMaskWords(dims) words, an eighth of a byte per voxel.
+std::size_t sparsityMaskWords(Dims dims);
+std::vector<std::uint32_t> packSparsityMask(const SparsityMask& mask);
+
+// b^(K-1) for the smallest K with b^K > count: the digits of Halton and Hammersley indices
+// 1..count in base b (licScaledRadicalInverse).
+std::uint32_t radicalInversePower(std::uint32_t base, std::size_t count);
 
 }  // namespace lic3d

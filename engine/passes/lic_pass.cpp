@@ -58,7 +58,7 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
   constexpr Binding bindings[] = {
       {gpu::kLicBindingField},
       {gpu::kLicBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-      {gpu::kLicBindingMask},
+      {gpu::kLicBindingMask, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingBrickList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingMadeBricks, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
       {gpu::kLicBindingNoise},  // the naive kernel's own noise texture
@@ -71,11 +71,10 @@ Result<LicPass> LicPass::create(const Context& context, bool separateNoise,
                                                      : ShaderId::LicCompute));
   LIC3D_TRY_ASSIGN(pass.sampler_,
                    Sampler::create(context, VK_FILTER_LINEAR, "lic trilinear sampler"));
-  // Integer textures cannot be filtered linearly; the mask is only read with texelFetch.
-  LIC3D_TRY_ASSIGN(pass.maskSampler_,
-                   Sampler::create(context, VK_FILTER_NEAREST, "lic mask sampler"));
   LIC3D_TRY_ASSIGN(pass.noBricks_, Buffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                   MemoryUse::DeviceLocal, "lic no bricks"));
+  LIC3D_TRY_ASSIGN(pass.noMask_, Buffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                MemoryUse::DeviceLocal, "lic no mask"));
   return pass;
 }
 
@@ -95,13 +94,13 @@ Result<VkPipeline> LicPass::pipelineFor(const LicSpecialization& specialization)
   });
 }
 
-void LicPass::pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+void LicPass::pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Buffer* mask,
                               const Image& output, const Image* noise, const Buffer& lists,
                               const Buffer& made) {
   DescriptorWrites writes;
   writes.sampledImage(gpu::kLicBindingField, sampler_, field.image.view())
       .storageImage(gpu::kLicBindingOutput, output.view())
-      .sampledImage(gpu::kLicBindingMask, maskSampler_, mask.view())
+      .storageBuffer(gpu::kLicBindingMask, mask ? *mask : noMask_)
       .storageBuffer(gpu::kLicBindingBrickList, lists)
       .storageBuffer(gpu::kLicBindingMadeBricks, made);
   if (separateNoise_) writes.sampledImage(gpu::kLicBindingNoise, sampler_, noise->view());
@@ -122,12 +121,13 @@ gpu::LicPushConstants LicPass::pushConstants(Dims dims, const MaskBeyondGrid& be
   return push;
 }
 
-Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, const Buffer* mask,
                              const MaskBeyondGrid& beyond, const Image& output,
                              const LicParams& params, int zBegin, int zEnd, const Image* noise,
                              int stride) {
   LIC3D_ASSERT(!separateNoise_ || noise);
   LIC3D_ASSERT(stride >= 1);
+  LIC3D_ASSERT(mask || params.sparsity.distribution == SparsityDistribution::None);
   const LicSpecialization specialization = licSpecialization(params, field.precision, launch_);
   LIC3D_TRY_ASSIGN(const VkPipeline pipeline, pipelineFor(specialization));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -145,10 +145,11 @@ Result<void> LicPass::record(VkCommandBuffer cmd, const FieldTexture& field, con
 }
 
 Result<void> LicPass::recordBricks(VkCommandBuffer cmd, const FieldTexture& field,
-                                   const Image& mask, const MaskBeyondGrid& beyond,
+                                   const Buffer* mask, const MaskBeyondGrid& beyond,
                                    const Image& output, const LicParams& params,
                                    const VisibleBricksPass& bricks, int layerBegin, int layerEnd) {
   LIC3D_ASSERT(!separateNoise_);
+  LIC3D_ASSERT(mask || params.sparsity.distribution == SparsityDistribution::None);
   LIC3D_ASSERT(brickCounts(field.dims) == bricks.bricks());
   LIC3D_ASSERT(0 <= layerBegin && layerBegin <= layerEnd && layerEnd <= bricks.bricks().z);
   // A workgroup is a slice of a brick: the launch's shape does not apply.

@@ -72,8 +72,6 @@ LicSpecialization licLaunchFor(VkPhysicalDeviceType type);
 // The format of LIC volumes: 16-bit UNORM, enough for contrast stretching without banding; the
 // second channel is 1 where the voxel is drawn and 0 where sparsity masks it.
 inline constexpr VkFormat kLicVolumeFormat = VK_FORMAT_R16G16_UNORM;
-// The sparsity mask: one byte per voxel, 1 = black.
-inline constexpr VkFormat kSparsityMaskFormat = VK_FORMAT_R8_UINT;
 
 class LicPass {
  public:
@@ -83,20 +81,21 @@ class LicPass {
   static Result<LicPass> create(const Context& context, bool separateNoise = false,
                                 std::optional<LicSpecialization> launch = std::nullopt);
 
-  // Records the dispatch for z slices [zBegin, zEnd) of `output`. `field`, `mask` and `noise`
-  // must be in SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the
-  // caller's. `mask` is read only when params.sparsity has a distribution (any image will do
-  // otherwise); `noise` only by a separate-noise pass. With `stride` > 1, `output` is a coarse
-  // volume on coarseDims(field.dims, stride): its voxel v is the LIC of field voxel v * stride,
-  // the full volume's value there, for 1 / stride^3 of the work.
-  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+  // Records the dispatch for z slices [zBegin, zEnd) of `output`. `field` and `noise` must be in
+  // SHADER_READ_ONLY_OPTIMAL and `output` in GENERAL layout; barriers are the caller's. `mask`,
+  // the bit-packed sparsity mask of the field's grid (packSparsityMask, SparsityMaskPass), is
+  // read only when params.sparsity has a distribution (may be null otherwise); `noise` only by a
+  // separate-noise pass. With `stride` > 1, `output` is a coarse volume on
+  // coarseDims(field.dims, stride): its voxel v is the LIC of field voxel v * stride, the full
+  // volume's value there, for 1 / stride^3 of the work.
+  Result<void> record(VkCommandBuffer cmd, const FieldTexture& field, const Buffer* mask,
                       const MaskBeyondGrid& beyond, const Image& output, const LicParams& params,
                       int zBegin, int zEnd, const Image* noise = nullptr, int stride = 1);
   // The same for the bricks `bricks` listed in brick layers [layerBegin, layerEnd) (its record
   // done, its writes visible to indirect dispatches and compute shaders): one indirect dispatch
   // per layer, workgroups of 8 x 8 x 1 whatever the launch; each brick made is marked in
   // bricks.made(). Voxels of unlisted bricks are not written. Not with separate noise.
-  Result<void> recordBricks(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+  Result<void> recordBricks(VkCommandBuffer cmd, const FieldTexture& field, const Buffer* mask,
                             const MaskBeyondGrid& beyond, const Image& output,
                             const LicParams& params, const VisibleBricksPass& bricks,
                             int layerBegin, int layerEnd);
@@ -117,14 +116,14 @@ class LicPass {
   PipelineLayout layout_;
   ShaderModule shader_;
   Sampler sampler_;
-  Sampler maskSampler_;
   bool separateNoise_ = false;
   LicSpecialization launch_;  // only its launch fields are used
   PipelineCache<LicSpecialization> pipelines_;
   Buffer noBricks_;  // bound to the brick bindings of the slab variant, which never reads it
+  Buffer noMask_;    // bound to the mask binding of unmasked variants, which never read it
 
   Result<VkPipeline> pipelineFor(const LicSpecialization& specialization);
-  void pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Image& mask,
+  void pushDescriptors(VkCommandBuffer cmd, const FieldTexture& field, const Buffer* mask,
                        const Image& output, const Image* noise, const Buffer& lists,
                        const Buffer& made);
   gpu::LicPushConstants pushConstants(Dims dims, const MaskBeyondGrid& beyond,

@@ -181,6 +181,7 @@ class LicRenderer {
   const std::string& deviceName() const { return context_->deviceInfo().name; }
   std::uint64_t licDispatchCount() const { return job_.dispatchCount(); }
   std::uint64_t maskBuildCount() const { return job_.maskBuildCount(); }
+  std::uint64_t maskCacheHits() const { return job_.maskCacheHits(); }
   const IntensityStatistics& intensityStatistics() const { return job_.statistics(); }
   // The fraction of the voxels the shown volume's sparsity mask hid (the histogram pass' count of
   // masked voxels; its drawn fraction leaves out empty space too); nullopt without a mask.

@@ -53,13 +53,7 @@ Result<LicVolumeJob> LicVolumeJob::create(const Context& context, bool doubleBuf
   }
   LIC3D_TRY_ASSIGN(job.licPass_, LicPass::create(context, naiveKernel, launch));
   LIC3D_TRY_ASSIGN(job.histogramPass_, LicHistogramPass::create(context));
-  ImageDesc maskDesc;
-  maskDesc.format = kSparsityMaskFormat;
-  maskDesc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  maskDesc.name = "empty sparsity mask";
-  LIC3D_TRY_ASSIGN(job.emptyMask_, Image::create(context, maskDesc));
-  const std::uint8_t white = 0;
-  LIC3D_TRY(uploadImage(context, job.emptyMask_, &white, 1));
+  LIC3D_TRY_ASSIGN(job.masks_, SparsityMaskStore::create(context));
   if (!supportsFormat(context, kLicVolumeFormat,
                       VK_FORMAT_FEATURE_2_STORAGE_IMAGE_BIT |
                           VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
@@ -73,11 +67,9 @@ void LicVolumeJob::dropField(bool newGrid, const std::optional<FieldPiece>& piec
   finished_.reset();
   shownParams_.reset();
   shownSetup_.reset();
-  if (piece != piece_) maskParams_.reset();  // a piece's mask is cut from the whole one
-  piece_ = piece;
+  piece_ = piece;  // a piece's mask is cut from the whole one: the store tells them apart
   if (newGrid) {
-    maskParams_.reset();  // the mask and the volumes live on the field's grid
-    mask_ = Image();
+    masks_.release();  // the mask and the volumes live on the field's grid
     for (Image& volume : volumes_) volume = Image();
   }
   front_ = 0;
@@ -152,8 +144,8 @@ Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams
   return {};
 }
 
-const Image& LicVolumeJob::maskFor(const LicParams& params) const {
-  return params.sparsity.distribution == SparsityDistribution::None ? emptyMask_ : mask_;
+const Buffer* LicVolumeJob::maskFor(const LicParams& params) const {
+  return params.sparsity.distribution == SparsityDistribution::None ? nullptr : &masks_.buffer();
 }
 
 std::optional<double> LicVolumeJob::hiddenFraction(Dims dims) const {
@@ -166,7 +158,7 @@ std::optional<double> LicVolumeJob::hiddenFraction(Dims dims) const {
 std::uint64_t LicVolumeJob::bytes() const {
   std::uint64_t bytes = 0;
   for (const Image& v : volumes_) bytes += v ? v.memorySize() : 0;
-  return bytes + (mask_ ? mask_.memorySize() : 0);
+  return bytes + masks_.bytes();
 }
 
 LicStatus LicVolumeJob::status(Dims dims) const {
@@ -199,19 +191,11 @@ Result<void> LicVolumeJob::start(const LicParams& params, const FieldTextures& t
   Job job;
   job.params = params;
   job.stride = stride;
-  job.needsMask = sparsity.distribution != SparsityDistribution::None &&
-                  !(maskParams_ && *maskParams_ == sparsity);
-  if (job.needsMask && job_ && job_->needsMask && maskParams(job_->params) == sparsity) {
-    // The mask the dropped job was waiting for serves this one (a new field, e.g. the next
-    // time of a series, does not change it): not made again, and not waited for here.
-    job.mask = job_->mask;
-  } else if (job.needsMask) {
-    // Some distributions take seconds (best candidate): never on the thread that draws.
-    job.mask = std::async(std::launch::async, [sparsity, dims, piece = piece_] {
-                 return piece ? makeSparsityMaskPiece(sparsity, *piece, dims)
-                              : makeSparsityMask(sparsity, dims);
-               }).share();
-  }
+  job.needsMask =
+      sparsity.distribution != SparsityDistribution::None && !masks_.holds(sparsity, dims, piece_);
+  // A mask the dropped job was waiting for serves this one (a new field, e.g. the next time of a
+  // series, does not change it): the store neither makes it again nor waits for it here.
+  if (job.needsMask) masks_.request(sparsity, dims, piece_);
   job_ = std::move(job);
   return {};
 }
@@ -224,45 +208,22 @@ Result<void> LicVolumeJob::request(const LicParams& params, const FieldTextures&
   return start(params, textures, fieldChanged_, stride);
 }
 
-Result<void> LicVolumeJob::uploadMask(const SparsityMask& mask, Dims dims) {
-  ImageDesc desc;
-  desc.format = kSparsityMaskFormat;
-  desc.extent = extentOf(dims);
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  desc.name = "sparsity mask";
-  // Slabs of an earlier job recorded into frames still in flight may read the old mask.
-  vkQueueWaitIdle(context_->queue());
-  maskParams_.reset();
-  mask_ = Image();
-  LIC3D_TRY_ASSIGN(mask_, Image::create(*context_, desc));
-  LIC3D_TRY(uploadImage(*context_, mask_, mask.black.data(), mask.black.size()));
-  maskBeyond_ = mask.beyond;
-  ++maskBuilds_;
-  return {};
-}
-
-// Whether the job's mask is on the GPU; uploads it when the worker has finished it.
-Result<bool> LicVolumeJob::prepareMask(Dims dims) {
+// Whether the job's mask is on the GPU; puts it there when it is ready (`wait`: waits for it).
+Result<bool> LicVolumeJob::prepareMask(bool wait) {
   if (!job_->needsMask) return true;
-  if (job_->mask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
-  const Result<SparsityMask> mask = job_->mask.get();
-  if (!mask) {
-    Error error = mask.error();
+  const Result<bool> ready = masks_.prepare(wait);
+  if (!ready) {
+    Error error = ready.error();
     job_.reset();
     return error;
   }
-  StageTimer uploading("mask upload");
-  LIC3D_TRY(uploadMask(*mask, dims));
-  uploading.stop();
-  maskParams_ = maskParams(job_->params);
-  job_->needsMask = false;
-  return true;
+  if (*ready) job_->needsMask = false;
+  return *ready;
 }
 
-Result<void> LicVolumeJob::waitForMask(const FieldTextures& textures) {
+Result<void> LicVolumeJob::waitForMask(const FieldTextures&) {
   if (!job_) return {};
-  if (job_->needsMask) job_->mask.wait();
-  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ready, prepareMask(textures.field().dims));
+  LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ready, prepareMask(true));
   return {};
 }
 
@@ -273,7 +234,7 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
   if (!job_ || finished_) return work;
   const FieldTexture& field = textures.field();
   const Dims dims = field.dims;
-  LIC3D_TRY_ASSIGN(const bool maskReady, prepareMask(dims));
+  LIC3D_TRY_ASSIGN(const bool maskReady, prepareMask(false));
   if (!maskReady) {
     work.waitingForMask = true;
     return work;
@@ -349,10 +310,11 @@ Result<void> LicVolumeJob::recordSlab(VkCommandBuffer cmd, const FieldTextures& 
                                       Image& back, int zBegin, int zEnd) {
   const FieldTexture& field = textures.field();
   if (!job_->overBricks)
-    return licPass_.record(cmd, field, maskFor(job_->params), maskBeyond_, back, job_->params,
+    return licPass_.record(cmd, field, maskFor(job_->params), masks_.beyond(), back, job_->params,
                            zBegin, zEnd, textures.separateNoise(), job_->stride);
-  return licPass_.recordBricks(cmd, field, maskFor(job_->params), maskBeyond_, back, job_->params,
-                               bricks_, zBegin / kBrick, (zEnd + kBrick - 1) / kBrick);
+  return licPass_.recordBricks(cmd, field, maskFor(job_->params), masks_.beyond(), back,
+                               job_->params, bricks_, zBegin / kBrick,
+                               (zEnd + kBrick - 1) / kBrick);
 }
 
 Result<void> LicVolumeJob::classify(const FieldTextures& textures) {
@@ -422,10 +384,7 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
     // before, a brick's upload): the pending job goes on where it stopped when update() is
     // called again.
     if (progress.stopRequested()) return cancelledError();
-    if (job_->needsMask) {
-      const StageTimer timer("mask");
-      job_->mask.wait();
-    }
+    LIC3D_TRY(waitForMask(textures));
     if (job_->visible && !job_->classified) {
       const StageTimer timer("visible bricks");
       LIC3D_TRY(classify(textures));

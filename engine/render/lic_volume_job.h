@@ -33,6 +33,7 @@
 #include "passes/lic_pass.h"
 #include "passes/visible_bricks_pass.h"
 #include "render/field_textures.h"
+#include "render/sparsity_mask_store.h"
 
 namespace lic3d {
 
@@ -161,7 +162,9 @@ class LicVolumeJob {
   // The fraction of the voxels the shown volume's sparsity mask hid; nullopt without a mask.
   std::optional<double> hiddenFraction(Dims dims) const;
   std::uint64_t dispatchCount() const { return licDispatches_; }
-  std::uint64_t maskBuildCount() const { return maskBuilds_; }
+  std::uint64_t maskBuildCount() const { return masks_.builds(); }
+  // Of those, the masks taken from the cache of CPU-made masks (SparsityMaskStore).
+  std::uint64_t maskCacheHits() const { return masks_.cacheHits(); }
   // Bytes of device memory the LIC volumes and the mask hold.
   std::uint64_t bytes() const;
 
@@ -181,7 +184,6 @@ class LicVolumeJob {
     int stride = 1;
     int nextZ = 0;  // of the job's grid
     bool needsMask = false;
-    std::shared_future<Result<SparsityMask>> mask;
     // Visible work: the classification; whether the made flags are cleared first (the LIC
     // values change); whether it ran; whether the LIC is over the listed bricks (nextZ then
     // steps by brick layers) or the full pass.
@@ -203,9 +205,8 @@ class LicVolumeJob {
   Result<void> ensureVolume(int index, Dims dims);
   // Which of volumes_ a job of `stride` writes.
   int backIndex(int stride) const;
-  Result<bool> prepareMask(Dims dims);
-  Result<void> uploadMask(const SparsityMask& mask, Dims dims);
-  const Image& maskFor(const LicParams& params) const;
+  Result<bool> prepareMask(bool wait);
+  const Buffer* maskFor(const LicParams& params) const;
   Result<void> classify(const FieldTextures& textures);
   Result<void> recordSlab(VkCommandBuffer cmd, const FieldTextures& textures, Image& back,
                           int zBegin, int zEnd);
@@ -224,13 +225,9 @@ class LicVolumeJob {
   std::optional<Finished> finished_;  // computed, not shown until collectStatistics(slot)
   IntensityStatistics statistics_;
   std::uint64_t licDispatches_ = 0;
-  Image mask_;       // the sparsity mask of maskParams_ on the field's grid
-  Image emptyMask_;  // 1x1x1, bound when sparsity is off
-  std::optional<SparsityParams> maskParams_;
-  MaskBeyondGrid maskBeyond_;        // of mask_
+  SparsityMaskStore masks_;          // the sparsity mask on the field's grid
   std::optional<FieldPiece> piece_;  // of the field set, whose mask is cut from the whole grid's
-  std::uint64_t maskBuilds_ = 0;
-  bool fieldChanged_ = false;  // the field texture changed under the shown LIC volume
+  bool fieldChanged_ = false;        // the field texture changed under the shown LIC volume
   bool visibleWork_ = false;
   double fullPassShare_ = kVisibleFullPassShare;
   VisibleBricksPass bricks_;  // the made flags of volumes_[0] (visible work is single-buffered)
