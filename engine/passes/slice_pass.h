@@ -170,14 +170,15 @@ class SlicePass {
 
   // K, the slices one fragment composites: 1, 2 or 4, or 0 for the device's choice
   // (kSlicesPerFragmentGpu, kSlicesPerFragmentCpu). Pictures are the same whatever K but for the
-  // rounding of the blend; K > 1 blends 1/K as often. A GPU blends less; a CPU driver gains
-  // nothing (its cost is the samples shaded, and it shades a group's samples outside the box as
-  // well, masked): docs/BENCHMARKS.md.
+  // rounding of the blend; K > 1 blends 1/K as often. Neither device type gains: the H100's
+  // frame is bound by its fragment rate, not the blend (K = 2 took 13.0 ms where K = 1 took 7.7),
+  // and a CPU driver's cost is the samples shaded, a group's samples outside the box as well
+  // (docs/BENCHMARKS.md). Both keep K = 1; K > 1 stays for devices that blend slowly.
   void setSlicesPerFragment(int k) { requestedSlicesPerFragment_ = k; }
   // What a frame is drawn with: 1 with occlusion (each slice reads the buffer the one in front
   // wrote, blurred) or where the frame is not groupable, else the requested K.
   std::uint32_t slicesPerFragment(const SliceFrame& frame) const;
-  static constexpr int kSlicesPerFragmentGpu = 2;
+  static constexpr int kSlicesPerFragmentGpu = 1;
   static constexpr int kSlicesPerFragmentCpu = 1;
 
  private:

@@ -45,7 +45,16 @@ VisibleBricksSetup visibleBricksSetup(const gpu::SliceUniforms& u, const SliceSp
   gpu::VisibleBricksUniforms& b = setup.uniforms;
   // Linear and nearest filtering read the 8 voxels of the fragment's cell, the cubic B-spline 4
   // per axis; tube lighting's gradient reads one voxel further.
-  const int margin = (s.filter == 2 ? 2 : 1) + (s.lighting == 3 ? 1 : 0);
+  int margin = (s.filter == 2 ? 2 : 1) + (s.lighting == 3 ? 1 : 0);
+  // Where the opacity follows the LIC, a halo's ring taps read the LIC volume (linearly) up to
+  // the ring's radius R from a sample, with the sample's weight: a tap's cell lies at most
+  // floor(R) + 1 voxels from the sample's, so the margin becomes floor(R) + 2.
+  if (s.halo == 1 && (s.opacityMode == 1 || s.sparsity == 1)) {
+    const glm::vec3 voxelsPerUnit = glm::vec3(dims) / (2.0f * glm::vec3(u.halfExtent));
+    const float ring =
+        u.screenRight.w * std::max({voxelsPerUnit.x, voxelsPerUnit.y, voxelsPerUnit.z});
+    margin = std::max(margin, 2 + static_cast<int>(std::floor(ring)));
+  }
   b.roiFromTexture = u.roiFromTexture;
   b.dims = glm::ivec4(dims, margin);
   b.bricks = glm::ivec4(brickCounts(dims), 0);
