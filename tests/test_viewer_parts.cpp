@@ -201,6 +201,14 @@ TEST(ViewerParts, ADragAsksForCoarseVolumesThenTheFullOneWhenLetGo) {
   EXPECT_EQ(drag.request(false, false, 190.0), std::nullopt) << "asked for once";
   EXPECT_EQ(drag.request(true, true, 3.0), 1) << "a full LIC fits the frame: no coarse one";
   EXPECT_EQ(drag.request(false, false, 3.0), std::nullopt);
+  // A coarse job over the budget: later drags ask for the next stride, whatever the full LIC.
+  drag.noteCoarse(4, 47.0);
+  EXPECT_EQ(drag.request(true, true, 190.0), 8);
+  drag.noteCoarse(8, 6.0);
+  EXPECT_EQ(drag.request(true, true, 190.0), 8) << "within the budget: kept";
+  EXPECT_EQ(nextCoarseStride(2, 9.0), 4);
+  EXPECT_EQ(nextCoarseStride(2, 7.0), 2);
+  EXPECT_EQ(nextCoarseStride(8, 90.0), 8) << "8 at most";
 
   LicDrag forced(2);
   EXPECT_EQ(forced.request(true, true, 0.5), 2);

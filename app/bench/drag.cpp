@@ -123,7 +123,7 @@ Result<nlohmann::json> runDragBenchmarks(const Context& context, const BenchOpti
       if (i >= std::max(options.warmup, 1)) full.push_back(ms);
     }
     const double fullMs = median(full);
-    const int stride = coarseLicStride(fullMs);
+    int stride = coarseLicStride(fullMs);
     std::vector<DragFrame> frames;
     for (int i = 0; i < options.warmup + options.dragFrames; ++i) {
       // Back and forth over 20 steps: every frame asks for another volume.
@@ -132,6 +132,9 @@ Result<nlohmann::json> runDragBenchmarks(const Context& context, const BenchOpti
       LIC3D_TRY_ASSIGN(const DragFrame frame,
                        dragFrame(context, renderer, target, timer, params, stride, view));
       if (i >= options.warmup) frames.push_back(frame);
+      // As the app: a coarse job over the budget makes the next ones coarser (nextCoarseStride);
+      // the frames timed are those after the warm-up, at the stride reached then.
+      if (stride > 1 && i < options.warmup) stride = nextCoarseStride(stride, frame.licMs);
     }
     std::vector<double> frameMs, licMs, drawMs;
     for (const DragFrame& f : frames) {

@@ -232,6 +232,7 @@ Result<void> App::collectFrame(FramePresenter::Frame& f, std::uint32_t slot) {
       stats_.licTimes =
           licTimeText(licSumMs_, f.licStride, coarseDims(renderer_->dims(), f.licStride));
       if (f.licStride == 1) fullLicMs_ = licSumMs_;
+      if (f.licStride > 1) licDrag_.noteCoarse(f.licStride, licSumMs_);
       if (scriptedDrag_.scripted() && !global_.quiet)
         std::fprintf(stderr, "lic3d-view: panel: %s\n", stats_.licTimes.c_str());
       licSumMs_ = 0.0;

@@ -46,9 +46,14 @@ std::string licTimeText(double licMs, int stride, Dims grid) {
 std::optional<int> LicDrag::request(bool changed, bool dragging, double fullLicMs) {
   const bool dragEnded = !dragging && requested_ != 1;
   if (!changed && !dragEnded) return std::nullopt;
-  const int coarse = forcedStride_ > 0 ? forcedStride_ : coarseLicStride(fullLicMs);
+  const int coarse =
+      forcedStride_ > 0 ? forcedStride_ : std::max(coarseLicStride(fullLicMs), floor_);
   requested_ = changed && dragging ? coarse : 1;
   return requested_;
+}
+
+void LicDrag::noteCoarse(int stride, double ms) {
+  floor_ = std::max(floor_, nextCoarseStride(stride, ms));
 }
 
 bool ScriptedDrag::step(bool ready, LicParams& lic) {

@@ -44,9 +44,13 @@ class LicDrag {
   // while dragging asks for the coarse volume; the end of a drag that asked for one asks for the
   // full volume; any other change for the full volume.
   std::optional<int> request(bool changed, bool dragging, double fullLicMs);
+  // A coarse job at `stride` took `ms` of GPU time: while that is over the budget, later drags
+  // ask for at least the next stride (nextCoarseStride).
+  void noteCoarse(int stride, double ms);
 
  private:
   int forcedStride_ = 0;
+  int floor_ = 1;      // the least stride a drag asks for, from the coarse jobs measured
   int requested_ = 1;  // the stride last requested
 };
 

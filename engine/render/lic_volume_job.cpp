@@ -39,6 +39,10 @@ int coarseLicStride(double fullLicMs, double budgetMs) {
   return stride;
 }
 
+int nextCoarseStride(int stride, double coarseMs, double budgetMs) {
+  return coarseMs > budgetMs && stride < 8 ? stride * 2 : stride;
+}
+
 Result<LicVolumeJob> LicVolumeJob::create(const Context& context, bool doubleBuffered,
                                           bool naiveKernel, std::optional<LicSpecialization> launch,
                                           bool visibleWork, double fullPassShare) {

@@ -74,6 +74,11 @@ inline constexpr double kDragLicBudgetMs = 8.0;
 // job, 1 / stride^3 of the work of a full LIC that took `fullLicMs`, fits in `budgetMs`
 // (1 when no full LIC was timed: fullLicMs <= 0).
 int coarseLicStride(double fullLicMs, double budgetMs = kDragLicBudgetMs);
+// The stride after a coarse job at `stride` took `coarseMs`: twice it (up to 8) while it is over
+// `budgetMs`. A coarse job costs more than 1 / stride^3 of the full one on a large grid: its
+// streamlines start `stride` voxels apart, so neighbouring invocations share fewer texture
+// cache lines (1024^3 at stride 4 took 47 ms on the H100 where 1/64 of the full LIC is 3 ms).
+int nextCoarseStride(int stride, double coarseMs, double budgetMs = kDragLicBudgetMs);
 
 class LicVolumeJob {
  public:
