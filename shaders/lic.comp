@@ -47,7 +47,7 @@ layout(constant_id = kLicConstBrickList) const uint BRICK_LIST = kLicDefaultBric
 // coordinates follows the physical field on anisotropic grids.
 layout(set = 0, binding = kLicBindingField) uniform sampler3D fieldTexture;
 layout(set = 0, binding = kLicBindingOutput, rg16) uniform writeonly image3D licImage;
-layout(set = 0, binding = kLicBindingMask, std430) readonly buffer SparsityMask {
+layout(set = 0, binding = kLicBindingMask, std430) restrict readonly buffer SparsityMask {
   uint sparsityMask[];  // one bit per voxel (sparsity_mask.h)
 };
 #ifdef LIC3D_SEPARATE_NOISE

@@ -68,10 +68,12 @@ int main(int argc, char** argv) {
       "--soak", options.soak,
       "Scripted endurance run (needs --frames): a LIC or view change every 10 frames, a "
       "resize for 10 frames every 250; fails if RSS or device memory grows after the warm-up");
-  app.add_option("--drag-stride", options.dragStride,
-                 "The LIC while a LIC slider is dragged: every Nth voxel along each axis, the "
-                 "full LIC once it is let go. auto: 1, 2, 4 or 8, the smallest whose LIC fits "
-                 "8 ms of the frame, from the last full LIC's GPU time; 1: always the full LIC")
+  app.add_option(
+         "--drag-stride", options.dragStride,
+         "The LIC while a LIC slider is dragged: every Nth voxel along each axis, the "
+         "full LIC once it is let go. auto: 1, 2, 4 or 8, the smallest whose LIC fits "
+         "8 ms of the frame, from the last full LIC's GPU time, and twice as coarse after a "
+         "coarse LIC took longer; 1: always the full LIC")
       ->transform(CLI::CheckedTransformer(std::map<std::string, int>{
                                               {"auto", 0}, {"1", 1}, {"2", 2}, {"4", 4}, {"8", 8}})
                       .description(""))
