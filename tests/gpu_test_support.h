@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -41,6 +43,14 @@ VolumeDifference compareVolumes(const ScalarVolume& a, const ScalarVolume& b);
 
 // Pictures with known content: a renderer whose LIC volume is given directly (the field points
 // along +x unless one is passed), and a view that draws it opaque with grey = LIC value.
+// The speed of each voxel of `field`: what the CPU rule of the visible bricks reads.
+inline std::vector<float> speedsOf(const VectorField& field) {
+  std::vector<float> speeds(field.vectors.size());
+  std::transform(field.vectors.begin(), field.vectors.end(), speeds.begin(),
+                 [](glm::vec3 v) { return glm::length(v); });
+  return speeds;
+}
+
 inline constexpr glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
 inline constexpr glm::u8vec4 kBackground8{51, 102, 153, 255};
 LicRenderer rendererWithVolume(const Context& context, Dims dims,

@@ -28,6 +28,7 @@ namespace lic3d {
 namespace {
 
 using test::GpuTest;
+using test::speedsOf;
 
 // Not a multiple of the brick size on any axis: 3 x 3 x 4 bricks, the last of each cut short.
 constexpr Dims kGrid{21, 18, 27};
@@ -49,13 +50,6 @@ VectorField tubeField(bool holes) {
         field.vectors[voxelIndex(kGrid, i, j, k)] = v;
       }
   return field;
-}
-
-std::vector<float> speedsOf(const VectorField& field) {
-  std::vector<float> speeds(field.vectors.size());
-  std::transform(field.vectors.begin(), field.vectors.end(), speeds.begin(),
-                 [](glm::vec3 v) { return glm::length(v); });
-  return speeds;
 }
 
 // Nothing removed: no clip, the whole box kept, opacity from the speed over [0, 1].

@@ -20,6 +20,7 @@ namespace lic3d {
 namespace {
 
 using test::GpuTest;
+using test::speedsOf;
 
 constexpr Dims kGrid{40, 36, 44};
 
@@ -41,13 +42,6 @@ VectorField vesselField() {
             vessel ? glm::normalize(along) : glm::vec3(0.01f, 0.0f, 0.0f);
       }
   return field;
-}
-
-std::vector<float> speedsOf(const VectorField& field) {
-  std::vector<float> speeds(field.vectors.size());
-  std::transform(field.vectors.begin(), field.vectors.end(), speeds.begin(),
-                 [](glm::vec3 v) { return glm::length(v); });
-  return speeds;
 }
 
 Session defaultSession() {
