@@ -278,8 +278,8 @@ Result<LicWork> LicVolumeJob::record(VkCommandBuffer cmd, const FieldTextures& t
     work.slicesRecorded = zEnd - zBegin;
     job_->nextZ = zEnd;
     if (zEnd < grid.z) return work;
-    // The full pass made every brick.
-    if (visibleWork_ && !job_->overBricks && bricks_.bricks() == brickCounts(dims))
+    // The full pass made every brick (of the full volume: a coarse one marks none).
+    if (visibleWork_ && !job_->overBricks && stride == 1 && bricks_.bricks() == brickCounts(dims))
       bricks_.recordAllMade(cmd);
 
     imageBarrier(cmd, back.handle(), VK_IMAGE_LAYOUT_GENERAL,
