@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -168,16 +169,32 @@ TEST_F(CliTest, ComputeWritesVtiOrNrrdByExtensionWithTheFieldGeometry) {
   EXPECT_EQ(nrrd->geometry, expected);
   EXPECT_EQ(vti->values, nrrd->values) << "the same volume in both formats";
 
-  // Voxels that sparsity hides are NaN in both.
-  ASSERT_EQ(
-      run("compute -q --grid 12 --sparsity hammersley --sparsity-points 40 -o sparse.vti").status,
-      0);
+  // Voxels that sparsity hides are NaN in every format: the same volume in each.
+  for (const char* extension : {".vti", ".nrrd", ".raw"})
+    ASSERT_EQ(run(std::string("compute -q --grid 12 --sparsity hammersley --sparsity-points 40 "
+                              "-o sparse") +
+                  extension)
+                  .status,
+              0)
+        << extension;
   const Result<ScalarVolume> sparse = readScalarVti(path("sparse.vti"));
   ASSERT_TRUE(sparse.ok()) << sparse.error().message;
   const auto nans = std::count_if(sparse->values.begin(), sparse->values.end(),
                                   [](float v) { return std::isnan(v); });
   EXPECT_GT(nans, 0);
   EXPECT_LT(nans, static_cast<std::ptrdiff_t>(sparse->values.size()));
+  const std::string raw = test::readWhole(path("sparse.raw"));
+  ASSERT_EQ(raw.size(), sparse->values.size() * sizeof(float));
+  std::vector<float> rawValues(sparse->values.size());
+  std::memcpy(rawValues.data(), raw.data(), raw.size());  // little endian, as the host
+  for (std::size_t i = 0; i < rawValues.size(); ++i) {
+    EXPECT_EQ(std::isnan(rawValues[i]), std::isnan(sparse->values[i])) << i;
+    if (!std::isnan(rawValues[i])) {
+      EXPECT_EQ(rawValues[i], sparse->values[i]) << i;
+    }
+  }
+  const std::string sparseNrrd = test::readWhole(path("sparse.nrrd"));
+  EXPECT_EQ(sparseNrrd.substr(sparseNrrd.size() - raw.size()), raw) << "the .raw's values";
 }
 
 TEST_F(CliTest, ComputeSliceWritesASixteenBitGreyPngWithTheParameters) {

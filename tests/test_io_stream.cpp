@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Streams: vector fields read piece by piece (each piece equal to the same box cut from the
-// whole-file reader's field) and scalar volumes written block by block (byte for byte the
-// whole-volume writer's file, or no file at all).
+// whole-file reader's field). Scalar volumes written piece by piece: test_volume_stream.cpp.
 
 #include <gtest/gtest.h>
 
@@ -19,7 +18,6 @@
 #include "io/field_io.h"
 #include "io/field_stream.h"
 #include "io/nrrd.h"
-#include "io/volume_stream.h"
 #include "lic/field_piece.h"
 #include "test_support.h"
 #include "vti_test_files.h"
@@ -351,148 +349,6 @@ TEST_F(FieldStreamTest, ThreadsReadPiecesAtOnce) {
   }
   for (std::thread& thread : threads) thread.join();
   EXPECT_EQ(mismatches, std::vector<int>(8, 0));
-}
-
-// A volume of 9x7x5 values, NaN among them (as sparsity writes hidden voxels).
-ScalarVolume makeVolume() {
-  ScalarVolume volume;
-  volume.dims = {9, 7, 5};
-  volume.geometry = kGeometry;
-  for (std::size_t i = 0; i < voxelCount(volume.dims); ++i)
-    volume.values.push_back(std::sin(0.37f * static_cast<float>(i)));
-  volume.values[40] = std::numeric_limits<float>::quiet_NaN();
-  return volume;
-}
-
-// Disjoint blocks covering the 9x7x5 grid, in every shape the stream writes differently: a z slab
-// (one write), blocks spanning x (a write per layer) and smaller ones (a write per row).
-const std::vector<std::pair<Dims, Dims>> kBlocks = {
-    {{0, 0, 0}, {9, 7, 1}}, {{0, 0, 1}, {9, 4, 2}}, {{0, 4, 1}, {5, 3, 2}}, {{5, 4, 1}, {4, 3, 2}},
-    {{0, 0, 3}, {2, 3, 2}}, {{2, 0, 3}, {7, 3, 2}}, {{0, 3, 3}, {2, 4, 2}}, {{2, 3, 3}, {7, 4, 2}}};
-
-Result<void> writeBlock(ScalarVolumeStream& stream, const ScalarVolume& volume, Dims offset,
-                        Dims dims) {
-  const Result<ScalarVolume> block = cutVolume(volume, offset, dims);
-  if (!block.ok()) return block.error();
-  return stream.write(offset, dims, block->values.data());
-}
-
-class ScalarVolumeStreamTest : public test::TempFolderTest {};
-
-TEST_F(ScalarVolumeStreamTest, NrrdWrittenInBlocksFromThreadsIsTheWholeWritersFile) {
-  const ScalarVolume volume = makeVolume();
-  ASSERT_TRUE(writeScalarNrrd(path("whole.nrrd"), volume, "speed").ok());
-  Result<ScalarVolumeStream> stream =
-      ScalarVolumeStream::create(path("blocks.nrrd"), volume.dims, volume.geometry, "speed");
-  ASSERT_TRUE(stream.ok()) << stream.error().message;
-  std::vector<int> failures(3, 0);
-  std::vector<std::thread> threads;
-  for (std::size_t t = 0; t < failures.size(); ++t) {
-    threads.emplace_back([&, t] {
-      for (std::size_t b = t; b < kBlocks.size(); b += failures.size())
-        if (!writeBlock(*stream, volume, kBlocks[b].first, kBlocks[b].second).ok()) ++failures[t];
-    });
-  }
-  for (std::thread& thread : threads) thread.join();
-  EXPECT_EQ(failures, std::vector<int>(3, 0));
-  EXPECT_FALSE(fs::exists(path("blocks.nrrd")));  // not before finish()
-  const Result<void> finished = stream->finish();
-  ASSERT_TRUE(finished.ok()) << finished.error().message;
-  EXPECT_EQ(test::readWhole(path("blocks.nrrd")), test::readWhole(path("whole.nrrd")));
-  EXPECT_EQ(listFolder(), (std::vector<std::string>{"blocks.nrrd", "whole.nrrd"}));
-}
-
-TEST_F(ScalarVolumeStreamTest, AStreamNotFinishedLeavesNoFile) {
-  const ScalarVolume volume = makeVolume();
-  {
-    Result<ScalarVolumeStream> stream =
-        ScalarVolumeStream::create(path("lic.nrrd"), volume.dims, volume.geometry);
-    ASSERT_TRUE(stream.ok()) << stream.error().message;
-    ASSERT_TRUE(writeBlock(*stream, volume, kBlocks[0].first, kBlocks[0].second).ok());
-    EXPECT_EQ(listFolder().size(), 1u);  // the temporary file
-  }
-  EXPECT_TRUE(listFolder().empty());
-  {
-    // Every block but one: finish() refuses, and nothing appears.
-    Result<ScalarVolumeStream> stream =
-        ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
-    ASSERT_TRUE(stream.ok()) << stream.error().message;
-    for (std::size_t b = 1; b < kBlocks.size(); ++b)
-      ASSERT_TRUE(writeBlock(*stream, volume, kBlocks[b].first, kBlocks[b].second).ok());
-    const Result<void> finished = stream->finish();
-    ASSERT_FALSE(finished.ok());
-    EXPECT_NE(finished.error().message.find(path("lic.raw").string()), std::string::npos);
-    EXPECT_NE(finished.error().message.find("a block is missing"), std::string::npos)
-        << finished.error().message;
-  }
-  EXPECT_TRUE(listFolder().empty());
-}
-
-TEST_F(ScalarVolumeStreamTest, RawReadsBackWithItsSidecar) {
-  const ScalarVolume volume = makeVolume();
-  Result<ScalarVolumeStream> stream =
-      ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
-  ASSERT_TRUE(stream.ok()) << stream.error().message;
-  for (auto it = kBlocks.rbegin(); it != kBlocks.rend(); ++it)
-    ASSERT_TRUE(writeBlock(*stream, volume, it->first, it->second).ok());
-  ASSERT_TRUE(stream->finish().ok());
-  EXPECT_EQ(listFolder(), (std::vector<std::string>{"lic.json", "lic.raw"}));
-  EXPECT_EQ(test::readWhole(path("lic.raw")), bytesOf(volume.values, std::endian::little));
-  EXPECT_EQ(test::readWhole(path("lic.json")),
-            "{\"dims\": [9, 7, 5], \"spacing\": [0.5, 0.25, 2], \"origin\": [-1, 3, 0.125], "
-            "\"components\": 1, \"type\": \"float32\", \"endian\": \"little\", "
-            "\"bytes\": 1260}\n");
-}
-
-// The sidecar's name may hold only an older sidecar: any other file there is refused before
-// anything is written, and kept.
-TEST_F(ScalarVolumeStreamTest, RawRefusesToReplaceAJsonThatIsNotItsSidecar) {
-  const ScalarVolume volume = makeVolume();
-  writeBytes("lic.json", "{\"lic\": {\"length\": 5}}");
-  const Result<ScalarVolumeStream> refused =
-      ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
-  ASSERT_FALSE(refused.ok());
-  EXPECT_EQ(refused.error().kind, ErrorKind::InvalidInput);
-  EXPECT_NE(refused.error().message.find("lic.json: exists and is not the JSON sidecar"),
-            std::string::npos)
-      << refused.error().message;
-  EXPECT_EQ(test::readWhole(path("lic.json")), "{\"lic\": {\"length\": 5}}");
-  EXPECT_EQ(listFolder(), (std::vector<std::string>{"lic.json"}));
-  // An older sidecar is replaced.
-  writeBytes("lic.json", "{\"dims\": [1, 1, 1], \"components\": 1, \"bytes\": 4}\n");
-  Result<ScalarVolumeStream> stream =
-      ScalarVolumeStream::create(path("lic.raw"), volume.dims, volume.geometry);
-  ASSERT_TRUE(stream.ok()) << stream.error().message;
-  ASSERT_TRUE(stream->write(Dims(0), volume.dims, volume.values.data()).ok());
-  ASSERT_TRUE(stream->finish().ok());
-  EXPECT_NE(test::readWhole(path("lic.json")).find("\"bytes\": 1260"), std::string::npos);
-}
-
-TEST_F(ScalarVolumeStreamTest, BadPathsAndBlocksAreErrorsNamingTheFile) {
-  const ScalarVolume volume = makeVolume();
-  writeBytes("file", "not a folder");
-  for (const fs::path& target : {path("file") / "lic.nrrd", path("missing") / "lic.raw"}) {
-    const Result<ScalarVolumeStream> stream =
-        ScalarVolumeStream::create(target, volume.dims, volume.geometry);
-    ASSERT_FALSE(stream.ok());
-    EXPECT_EQ(stream.error().kind, ErrorKind::InvalidInput);
-    EXPECT_NE(stream.error().message.find(target.string()), std::string::npos)
-        << stream.error().message;
-  }
-  const Result<ScalarVolumeStream> vti =
-      ScalarVolumeStream::create(path("lic.vti"), volume.dims, volume.geometry);
-  ASSERT_FALSE(vti.ok());
-  EXPECT_EQ(vti.error().kind, ErrorKind::InvalidInput);
-  EXPECT_NE(vti.error().message.find("lic.vti"), std::string::npos);
-
-  Result<ScalarVolumeStream> stream =
-      ScalarVolumeStream::create(path("lic.nrrd"), volume.dims, volume.geometry);
-  ASSERT_TRUE(stream.ok());
-  const std::vector<float> values(8, 1.0f);
-  const Result<void> outside = stream->write({8, 0, 0}, {2, 2, 2}, values.data());
-  ASSERT_FALSE(outside.ok());
-  EXPECT_NE(outside.error().message.find("lic.nrrd"), std::string::npos);
-  EXPECT_NE(outside.error().message.find("does not lie inside"), std::string::npos);
 }
 
 }  // namespace

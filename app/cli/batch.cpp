@@ -407,23 +407,13 @@ Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
 }
 
 Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume) {
-  // Voxels that sparsity hides are NaN: "no value" to ParaView and VisIt.
-  ScalarVolume marked;
-  const ScalarVolume* out = &volume;
-  if (!volume.drawn.empty()) {
-    marked = volume;
-    markHiddenVoxels(marked);
-    out = &marked;
-  }
-  if (extensionOf(path) == ".vti") return writeScalarVti(path, *out);
-  if (extensionOf(path) == ".raw") {
-    // Float32 with its JSON sidecar (io/volume_stream.h), in one block.
-    LIC3D_TRY_ASSIGN(ScalarVolumeStream stream,
-                     ScalarVolumeStream::create(path, out->dims, out->geometry));
-    LIC3D_TRY(stream.write(Dims(0), out->dims, out->values.data()));
-    return stream.finish();
-  }
-  return writeScalarNrrd(path, *out);
+  // Every thread writes runs straight from the volume; voxels that sparsity hides are NaN ("no
+  // value" to ParaView and VisIt), copied with them only in the runs that have any.
+  const std::string extension = extensionOf(path);
+  const ScalarFileFormat format = extension == ".vti"   ? ScalarFileFormat::Vti
+                                  : extension == ".raw" ? ScalarFileFormat::Raw
+                                                        : ScalarFileFormat::Nrrd;
+  return writeScalarVolumeFile(path, format, volume, {.hidden = HiddenVoxels::AsNaN});
 }
 
 Result<LicSlice> parseSlice(const std::string& text) {

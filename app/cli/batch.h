@@ -102,8 +102,9 @@ Result<void> encodeVideo(const std::filesystem::path& ffmpeg, const FramePlan& p
 // be written as JSON (a file name that is not UTF-8).
 Result<PngText> pngText(const Session& session, const std::string& path);
 
-// compute's -o: .nrrd or .vti (the LIC volume, float32, with spacing and origin; voxels that
-// sparsity hides are NaN), or a slice PNG (checkComputeOutput below).
+// compute's -o: .nrrd, .vti or .raw (the LIC volume, float32, with spacing and origin; voxels that
+// sparsity hides are NaN), or a slice PNG (checkComputeOutput below). Written by every thread at
+// once, straight from the volume (writeScalarVolumeFile).
 Result<void> writeLicVolumeFile(const std::string& path, const ScalarVolume& volume);
 
 // A slice through the LIC volume: axis 0, 1, 2 for x, y, z; index -1 means the middle one.

@@ -53,8 +53,9 @@ Result<PointScalars> readPointScalarsNrrd(const std::filesystem::path& path);
 Result<RgbaVolume> readRgbaNrrd(const std::filesystem::path& path);
 
 // Float32, raw, little endian, with `space directions` and `space origin` from the geometry, and
-// `labels` whose first names the array in ParaView (`name`). All writers go through
-// writeFileAtomically, so a failed write leaves no partial file.
+// `labels` whose first names the array in ParaView (`name`). No writer leaves a partial file: the
+// others go through writeFileAtomically, this one through a ScalarVolumeStream, written by every
+// thread at once (writeScalarVolumeFile).
 Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume,
                              std::string_view name = kLicArrayName);
 // Float32, raw, little endian: what readVectorFieldNrrd reads back unchanged.

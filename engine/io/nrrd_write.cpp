@@ -14,6 +14,7 @@
 #include "io/nrrd_header.h"
 #include "io/number_type.h"
 #include "io/volume_io.h"
+#include "io/volume_stream.h"
 
 namespace lic3d {
 namespace {
@@ -81,12 +82,8 @@ std::string nrrd::scalarHeader(Dims dims, const GridGeometry& geometry, std::str
 
 Result<void> writeScalarNrrd(const std::filesystem::path& path, const ScalarVolume& volume,
                              std::string_view name) {
-  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  const std::string header = nrrd::scalarHeader(volume.dims, volume.geometry, name);
-  return writeFileAtomically(path, [&](std::ostream& out) {
-    out << header;
-    return writeLittleEndian(out, volume.values.data(), volume.values.size(), sizeof(float));
-  });
+  // By every thread at once, straight from the values (io/volume_stream.h).
+  return writeScalarVolumeFile(path, ScalarFileFormat::Nrrd, volume, {.name = name});
 }
 
 Result<void> writeVectorFieldNrrd(const std::filesystem::path& path, const VectorField& field) {

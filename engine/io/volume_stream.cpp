@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Scalar volumes written block by block: each run of voxels adjacent in the file written with
-// pwrite into a temporary file sized up front, renamed into place once every voxel is there.
+// pwrite into a temporary file sized up front, renamed into place once every voxel is there; and
+// whole volumes written so, by every thread at once.
 
 #include "io/volume_stream.h"
 
@@ -12,22 +13,27 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <limits>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/text.h"
 #include "io/file_util.h"
 #include "io/nrrd_header.h"
 #include "io/number_type.h"
 #include "io/raw_volume.h"
+#include "io/vti_header.h"
 
 namespace lic3d {
 namespace {
 
-// Values converted to little endian on a big-endian host go through a buffer of this many.
-constexpr std::size_t kChunkValues = std::size_t{1} << 20;
+// Values converted to the file's byte order go through a buffer of this many.
+constexpr std::size_t kSwapValues = std::size_t{1} << 16;
 
 Error cannotWrite(ErrorKind kind, const std::filesystem::path& path, const std::string& reason) {
   return {kind, "cannot write '" + path.string() + "': " + reason};
@@ -71,10 +77,11 @@ struct ScalarVolumeStream::State {
   TemporaryOutput output;
   Dims dims{0};
   GridGeometry geometry;
-  std::uint64_t dataOffset = 0;  // the NRRD header's bytes
+  std::uint64_t dataOffset = 0;  // the header's bytes
   bool raw = false;
-  std::atomic<std::uint64_t> written{0};  // voxels
-  bool finished = false;
+  std::endian order = std::endian::little;  // the values' in the file
+  std::atomic<std::uint64_t> written{0};    // voxels
+  std::atomic<bool> finished{false};
 };
 
 ScalarVolumeStream::ScalarVolumeStream(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -89,30 +96,87 @@ Result<ScalarVolumeStream> ScalarVolumeStream::create(const std::filesystem::pat
                                                       const GridGeometry& geometry,
                                                       std::string_view name) {
   const std::string extension = lowerCaseExtension(path);
-  if (extension != ".nrrd" && extension != ".raw")
+  const std::optional<ScalarFileFormat> format =
+      extension == ".nrrd"  ? std::optional(ScalarFileFormat::Nrrd)
+      : extension == ".vti" ? std::optional(ScalarFileFormat::Vti)
+      : extension == ".raw" ? std::optional(ScalarFileFormat::Raw)
+                            : std::nullopt;
+  if (!format)
     return cannotWrite(ErrorKind::InvalidInput, path,
-                       "a volume is written piece by piece only as .nrrd or .raw, not " +
+                       "a volume is written piece by piece only as .nrrd, .vti or .raw, not " +
                            (extension.empty() ? std::string("a file without extension")
                                               : quoteForMessage(extension)));
+  return create(path, *format, dims, geometry, name);
+}
+
+Result<ScalarVolumeStream> ScalarVolumeStream::create(const std::filesystem::path& path,
+                                                      ScalarFileFormat format, Dims dims,
+                                                      const GridGeometry& geometry,
+                                                      std::string_view name) {
   LIC3D_TRY(checkVolumeForWriting(path, dims, voxelCount(dims), 1, &geometry));
   const std::string problem =
       gridLimitProblem(static_cast<std::uint64_t>(dims.x), static_cast<std::uint64_t>(dims.y),
                        static_cast<std::uint64_t>(dims.z), kMaxStreamedVoxels);
   if (!problem.empty()) return cannotWrite(ErrorKind::InvalidInput, path, problem);
-  const bool raw = extension == ".raw";
-  if (raw) LIC3D_TRY(checkRawSidecarReplaceable(path));
-  const std::string header = raw ? std::string() : nrrd::scalarHeader(dims, geometry, name);
+  const std::uint64_t dataBytes = std::uint64_t{voxelCount(dims)} * sizeof(float);
+  std::string header;
+  std::string_view end;
+  std::endian order = std::endian::little;
+  switch (format) {
+    case ScalarFileFormat::Nrrd: header = nrrd::scalarHeader(dims, geometry, name); break;
+    case ScalarFileFormat::Raw: LIC3D_TRY(checkRawSidecarReplaceable(path)); break;
+    case ScalarFileFormat::Vti: {
+      LIC3D_TRY_ASSIGN(header,
+                       vti::appendedHeader(path, dims, geometry, NumberType::Float32, 1, name));
+      header.append(reinterpret_cast<const char*>(&dataBytes), sizeof dataBytes);
+      end = vti::kAppendedEnd;
+      order = std::endian::native;
+      break;
+    }
+  }
 
   LIC3D_TRY_ASSIGN(TemporaryOutput output, TemporaryOutput::create(path));
-  const std::uint64_t size = header.size() + std::uint64_t{voxelCount(dims)} * sizeof(float);
+  const std::uint64_t size = header.size() + dataBytes + end.size();
   if (::ftruncate(output.fd(), static_cast<off_t>(size)) != 0)
     return cannotWrite(ErrorKind::Runtime, path, std::strerror(errno));
-  if (const std::string failure = writeAllAt(output.fd(), header.data(), header.size(), 0);
-      !failure.empty())
-    return cannotWrite(ErrorKind::Runtime, path, failure);
-  auto state =
-      std::unique_ptr<State>(new State{std::move(output), dims, geometry, header.size(), raw});
+  std::string failure = writeAllAt(output.fd(), header.data(), header.size(), 0);
+  if (failure.empty())
+    failure = writeAllAt(output.fd(), end.data(), end.size(), header.size() + dataBytes);
+  if (!failure.empty()) return cannotWrite(ErrorKind::Runtime, path, failure);
+  auto state = std::unique_ptr<State>(new State{std::move(output), dims, geometry, header.size(),
+                                                format == ScalarFileFormat::Raw, order});
   return ScalarVolumeStream(std::move(state));
+}
+
+Result<void> ScalarVolumeStream::writeRun(std::uint64_t first, const float* values,
+                                          std::size_t count) {
+  State& state = *state_;
+  const std::filesystem::path& path = state.output.path();
+  if (state.finished)
+    return cannotWrite(ErrorKind::Runtime, path, "voxels came after the file was finished");
+  const std::uint64_t total = voxelCount(state.dims);
+  if (first > total || count > total - first)
+    return cannotWrite(ErrorKind::InvalidInput, path,
+                       "the run of " + std::to_string(count) + " voxels from voxel " +
+                           std::to_string(first) + " does not lie inside the " +
+                           gridText(state.dims) + " grid of " + std::to_string(total) + " voxels");
+  const std::uint64_t at = state.dataOffset + first * sizeof(float);
+  std::string failure;
+  if (state.order == std::endian::native) {
+    failure = writeAllAt(state.output.fd(), values, count * sizeof(float), at);
+  } else {
+    std::vector<float> swapped;
+    for (std::size_t done = 0; done < count && failure.empty(); done += kSwapValues) {
+      const std::size_t n = std::min(kSwapValues, count - done);
+      swapped.assign(values + done, values + done + n);
+      toNativeOrder(reinterpret_cast<char*>(swapped.data()), n, sizeof(float), state.order);
+      failure = writeAllAt(state.output.fd(), swapped.data(), n * sizeof(float),
+                           at + done * sizeof(float));
+    }
+  }
+  if (!failure.empty()) return cannotWrite(ErrorKind::Runtime, path, failure);
+  state.written += count;
+  return {};
 }
 
 Result<void> ScalarVolumeStream::write(Dims offset, Dims dims, const float* values) {
@@ -136,31 +200,10 @@ Result<void> ScalarVolumeStream::write(Dims offset, Dims dims, const float* valu
                           static_cast<std::size_t>(wholeLayers ? dims.z : 1);
   const int rows = wholeRows ? 1 : dims.y;
   const int layers = wholeLayers ? 1 : dims.z;
-  std::vector<float> swapped;
-  for (int k = 0; k < layers; ++k) {
-    for (int j = 0; j < rows; ++j) {
-      const std::uint64_t at =
-          state.dataOffset +
-          std::uint64_t{voxelIndex(state.dims, offset.x, offset.y + j, offset.z + k)} *
-              sizeof(float);
-      const float* from = values + voxelIndex(dims, 0, j, k);
-      std::string failure;
-      if constexpr (std::endian::native == std::endian::little) {
-        failure = writeAllAt(state.output.fd(), from, run * sizeof(float), at);
-      } else {
-        for (std::size_t done = 0; done < run && failure.empty(); done += kChunkValues) {
-          const std::size_t n = std::min(kChunkValues, run - done);
-          swapped.assign(from + done, from + done + n);
-          toNativeOrder(reinterpret_cast<char*>(swapped.data()), n, sizeof(float),
-                        std::endian::little);
-          failure = writeAllAt(state.output.fd(), swapped.data(), n * sizeof(float),
-                               at + done * sizeof(float));
-        }
-      }
-      if (!failure.empty()) return cannotWrite(ErrorKind::Runtime, path, failure);
-    }
-  }
-  state.written += voxelCount(dims);
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < rows; ++j)
+      LIC3D_TRY(writeRun(voxelIndex(state.dims, offset.x, offset.y + j, offset.z + k),
+                         values + voxelIndex(dims, 0, j, k), run));
   return {};
 }
 
@@ -216,6 +259,51 @@ Result<void> checkRawSidecarReplaceable(const std::filesystem::path& rawPath) {
       if (!isRawSidecarKey(item.key())) own = false;
   if (!own) return refuse("exists and is not the JSON sidecar of a raw volume");
   return {};
+}
+
+Result<void> writeScalarVolumeFile(const std::filesystem::path& path, ScalarFileFormat format,
+                                   const ScalarVolume& volume, const ScalarFileOptions& options) {
+  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
+  const bool marking = options.hidden == HiddenVoxels::AsNaN && !volume.drawn.empty();
+  if (marking && volume.drawn.size() != volume.values.size())
+    return cannotWrite(ErrorKind::InvalidInput, path,
+                       "its mask has " + std::to_string(volume.drawn.size()) + " flags for its " +
+                           std::to_string(volume.values.size()) + " voxels");
+  LIC3D_TRY_ASSIGN(
+      ScalarVolumeStream stream,
+      ScalarVolumeStream::create(path, format, volume.dims, volume.geometry, options.name));
+  const std::size_t total = volume.values.size();
+  const std::size_t run = std::max<std::size_t>(options.runBytes / sizeof(float), 1);
+  const std::size_t runs = (total + run - 1) / run;
+  const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(availableThreads(), runs));
+  std::atomic<std::size_t> next{0};
+  std::mutex failureMutex;
+  std::optional<Error> failure;
+  // A worker a thread, each taking the next run until none is left or a write failed.
+  parallelFor(threads, threads, [&](std::size_t) {
+    std::vector<float> buffer;  // a run with hidden voxels, NaN where they are
+    for (std::size_t r = next++; r < runs; r = next++) {
+      const std::size_t first = r * run;
+      const std::size_t count = std::min(run, total - first);
+      const float* values = volume.values.data() + first;
+      if (marking && std::memchr(volume.drawn.data() + first, 0, count) != nullptr) {
+        buffer.resize(count);
+        for (std::size_t i = 0; i < count; ++i)
+          buffer[i] =
+              volume.drawn[first + i] != 0 ? values[i] : std::numeric_limits<float>::quiet_NaN();
+        values = buffer.data();
+      }
+      Result<void> written = stream.writeRun(first, values, count);
+      if (!written) {
+        const std::lock_guard lock(failureMutex);
+        if (!failure) failure = written.error();
+        next = runs;
+        return;
+      }
+    }
+  });
+  if (failure) return *failure;
+  return stream.finish();
 }
 
 }  // namespace lic3d

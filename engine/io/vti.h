@@ -66,7 +66,8 @@ Result<RgbaVolume> readRgbaVti(const std::filesystem::path& path);
 
 // One Float32 point-data array named `arrayName` (the active Scalars), appended raw with a UInt64
 // size header in the host's byte order, with Origin and Spacing from the geometry; NaN values are
-// written as they are. Through writeFileAtomically, so a failed write leaves no partial file.
+// written as they are. Through a ScalarVolumeStream, written by every thread at once
+// (writeScalarVolumeFile), so a failed write leaves no partial file.
 Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
                             std::string_view arrayName = kLicArrayName);
 

@@ -10,7 +10,9 @@
 #include "io/file_util.h"
 #include "io/number_type.h"
 #include "io/volume_io.h"
+#include "io/volume_stream.h"
 #include "io/vti.h"
+#include "io/vti_header.h"
 
 namespace lic3d {
 namespace {
@@ -41,38 +43,43 @@ Result<std::string> escapeXml(const std::filesystem::path& path, std::string_vie
 Result<void> writeVti(const std::filesystem::path& path, Dims dims, const GridGeometry& geometry,
                       NumberType type, int components, std::string_view arrayName, const void* data,
                       std::size_t bytes) {
-  LIC3D_TRY_ASSIGN(const std::string name, escapeXml(path, arrayName));
-  const std::string extent = "0 " + std::to_string(dims.x - 1) + " 0 " +
-                             std::to_string(dims.y - 1) + " 0 " + std::to_string(dims.z - 1);
-  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
-  const std::string header =
-      std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
-      "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
-      "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
-      tripleText(geometry.origin, " ") + "\" Spacing=\"" + tripleText(geometry.spacing, " ") +
-      "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
-      "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
-      std::string(numberType(type).vtkXmlName) + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
-      std::to_string(components) +
-      "\" format=\"appended\" offset=\"0\"/>\n      </PointData>\n      <CellData>\n"
-      "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n   _";
+  LIC3D_TRY_ASSIGN(const std::string header,
+                   vti::appendedHeader(path, dims, geometry, type, components, arrayName));
   const std::uint64_t size = bytes;
   return writeFileAtomically(path, [&](std::ostream& out) {
     out << header;
     out.write(reinterpret_cast<const char*>(&size), sizeof size);
     out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
-    out << "\n  </AppendedData>\n</VTKFile>\n";
+    out << vti::kAppendedEnd;
     return static_cast<bool>(out);
   });
 }
 
 }  // namespace
 
+Result<std::string> vti::appendedHeader(const std::filesystem::path& path, Dims dims,
+                                        const GridGeometry& geometry, NumberType type,
+                                        int components, std::string_view arrayName) {
+  LIC3D_TRY_ASSIGN(const std::string name, escapeXml(path, arrayName));
+  const std::string extent = "0 " + std::to_string(dims.x - 1) + " 0 " +
+                             std::to_string(dims.y - 1) + " 0 " + std::to_string(dims.z - 1);
+  const char* order = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+  return std::string("<?xml version=\"1.0\"?>\n<!-- written by lic3d -->\n") +
+         "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"" + order +
+         "\" header_type=\"UInt64\">\n  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" +
+         tripleText(geometry.origin, " ") + "\" Spacing=\"" + tripleText(geometry.spacing, " ") +
+         "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\"" + extent +
+         "\">\n      <PointData Scalars=\"" + name + "\">\n        <DataArray type=\"" +
+         std::string(numberType(type).vtkXmlName) + "\" Name=\"" + name +
+         "\" NumberOfComponents=\"" + std::to_string(components) +
+         "\" format=\"appended\" offset=\"0\"/>\n      </PointData>\n      <CellData>\n"
+         "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n   _";
+}
+
 Result<void> writeScalarVti(const std::filesystem::path& path, const ScalarVolume& volume,
                             std::string_view arrayName) {
-  LIC3D_TRY(checkVolumeForWriting(path, volume.dims, volume.values.size(), 1, &volume.geometry));
-  return writeVti(path, volume.dims, volume.geometry, NumberType::Float32, 1, arrayName,
-                  volume.values.data(), volume.values.size() * sizeof(float));
+  // By every thread at once, straight from the values (io/volume_stream.h).
+  return writeScalarVolumeFile(path, ScalarFileFormat::Vti, volume, {.name = arrayName});
 }
 
 Result<void> writeRgbaVti(const std::filesystem::path& path, const RgbaVolume& volume) {
