@@ -645,9 +645,15 @@ TEST_F(CliTest, TimingsNameEveryStageAndThreadsAreBounded) {
   const std::size_t at = r.output.find("\"timings\":{");
   ASSERT_NE(at, std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"LIC\":", at), std::string::npos);
-  const CommandRun compute = run("compute --grid 16 -o v.nrrd");
+  // The volume's write is a stage of its own, with its bytes and rate.
+  const CommandRun compute = run("compute --timings --grid 16 -o v.nrrd");
   ASSERT_EQ(compute.status, 0) << compute.output;
   EXPECT_NE(compute.output.find("\"volume write\":"), std::string::npos) << compute.output;
+  const std::size_t write = compute.output.find("  volume write ");
+  ASSERT_NE(write, std::string::npos) << compute.output;
+  const std::string line = compute.output.substr(write, compute.output.find('\n', write) - write);
+  EXPECT_NE(line.find("(16384 bytes, "), std::string::npos) << line;
+  EXPECT_NE(line.find(" GB/s)"), std::string::npos) << line;
   EXPECT_NE(compute.output.find("\"volume read-back\":"), std::string::npos) << compute.output;
   const CommandRun bad = run("render --threads -2 -o b.png");
   EXPECT_EQ(bad.status, 2) << bad.output;

@@ -47,8 +47,11 @@ namespace {
 Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<LicSlice> slice,
                                 const ScalarVolume& volume) {
   if (!slice) {
-    const StageTimer timer("volume write");
-    return writeLicVolumeFile(options.output, volume);
+    StageTimer timer("volume write");
+    LIC3D_TRY(writeLicVolumeFile(options.output, volume));
+    timer.stop();
+    addStageBytes("volume write", std::uint64_t{voxelCount(volume.dims)} * sizeof(float));
+    return {};
   }
   return writeLicSlicePng(options.output, volume, *slice, options.inputs.session);
 }

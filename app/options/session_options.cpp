@@ -59,7 +59,14 @@ void printTimings(double totalSeconds) {
   double covered = 0.0;
   std::fprintf(stderr, "lic3d: timings (wall clock, seconds)\n");
   for (const auto& [stage, seconds] : stageTimings()) {
-    std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
+    // A stage that moved bytes (a volume written) shows them and its rate.
+    const std::uint64_t bytes = stageBytes(stage);
+    if (bytes > 0 && seconds > 0.0)
+      std::fprintf(stderr, "  %-24s %9.4f  (%llu bytes, %.2f GB/s)\n", stage.c_str(), seconds,
+                   static_cast<unsigned long long>(bytes),
+                   static_cast<double>(bytes) / seconds / 1e9);
+    else
+      std::fprintf(stderr, "  %-24s %9.4f\n", stage.c_str(), seconds);
     covered += seconds;
   }
   std::fprintf(stderr, "  %-24s %9.4f\n  %-24s %9.4f\n", "other",

@@ -16,6 +16,11 @@ StageTimings& table() {
   return timings;
 }
 
+std::vector<std::pair<std::string, std::uint64_t>>& bytesTable() {
+  static std::vector<std::pair<std::string, std::uint64_t>> bytes;
+  return bytes;
+}
+
 }  // namespace
 
 void addStageTime(std::string_view stage, double seconds) {
@@ -33,9 +38,27 @@ StageTimings stageTimings() {
   return table();
 }
 
+void addStageBytes(std::string_view stage, std::uint64_t bytes) {
+  const std::scoped_lock lock(stageMutex());
+  for (auto& [name, total] : bytesTable())
+    if (name == stage) {
+      total += bytes;
+      return;
+    }
+  bytesTable().emplace_back(std::string(stage), bytes);
+}
+
+std::uint64_t stageBytes(std::string_view stage) {
+  const std::scoped_lock lock(stageMutex());
+  for (const auto& [name, total] : bytesTable())
+    if (name == stage) return total;
+  return 0;
+}
+
 void clearStageTimings() {
   const std::scoped_lock lock(stageMutex());
   table().clear();
+  bytesTable().clear();
 }
 
 }  // namespace lic3d

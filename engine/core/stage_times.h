@@ -6,6 +6,7 @@
 // (`"timings"`) and with --timings. Thread-safe: worker threads add their stages too.
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -23,6 +24,11 @@ inline double secondsSince(std::chrono::steady_clock::time_point start) {
 
 void addStageTime(std::string_view stage, double seconds);
 StageTimings stageTimings();
+// The bytes a stage moved (a volume written), summed like its seconds, so that --timings can
+// give its rate; 0 for a stage without any.
+void addStageBytes(std::string_view stage, std::uint64_t bytes);
+std::uint64_t stageBytes(std::string_view stage);
+// Clears the seconds and the bytes.
 void clearStageTimings();
 
 // Adds the time from its construction to its destruction (or to stop()) to `stage`.
