@@ -152,86 +152,6 @@ TEST_F(ScalarVolumeStreamTest, VtiIsTheDocumentedAppendedRawFile) {
   EXPECT_EQ(test::readWhole(path("whole.vti")), expected);
 }
 
-TEST_F(ScalarVolumeStreamTest, VtiWrittenInBlocksReadsBackThroughTheVtiReaders) {
-  const ScalarVolume volume = makeVolume();
-  Result<ScalarVolumeStream> stream =
-      ScalarVolumeStream::create(path("lic.vti"), volume.dims, volume.geometry, "speed");
-  ASSERT_TRUE(stream.ok()) << stream.error().message;
-  for (auto it = kBlocks.rbegin(); it != kBlocks.rend(); ++it)
-    ASSERT_TRUE(writeBlockAsRuns(*stream, volume, it->first, it->second).ok());
-  ASSERT_TRUE(stream->finish().ok());
-  const auto expectValues = [&](const std::vector<float>& values) {
-    ASSERT_EQ(values.size(), volume.values.size());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (i == 40) {
-        EXPECT_TRUE(std::isnan(values[i]));
-      } else {
-        EXPECT_EQ(values[i], volume.values[i]) << i;
-      }
-    }
-  };
-  const Result<ScalarVolume> read = readScalarVti(path("lic.vti"));
-  ASSERT_TRUE(read.ok()) << read.error().message;
-  EXPECT_EQ(read->dims, volume.dims);
-  EXPECT_EQ(read->geometry, volume.geometry);
-  expectValues(read->values);
-  const Result<PointScalars> scalars = readPointScalarsVti(path("lic.vti"), "speed");
-  ASSERT_TRUE(scalars.ok()) << scalars.error().message;
-  EXPECT_EQ(scalars->dims, volume.dims);
-  expectValues(scalars->values);
-}
-
-// Sparsity's hidden voxels are NaN in every format, whichever thread wrote their run, and only
-// they: runs of 16 voxels, some with hidden voxels and some without.
-TEST_F(ScalarVolumeStreamTest, HiddenVoxelsAreNaNInEveryFormat) {
-  ScalarVolume volume = makeVolume();
-  volume.values[40] = 0.5f;
-  volume.drawn.assign(volume.values.size(), 1);
-  for (const std::size_t i : {0, 17, 18, 40, 99, 200, 314}) volume.drawn[i] = 0;
-  const ScalarVolume kept = volume;
-  for (const Format& format : kFormats) {
-    SCOPED_TRACE(format.extension);
-    const fs::path file = path(std::string("lic") + format.extension);
-    const Result<void> written = writeScalarVolumeFile(
-        file, format.format, volume, {.hidden = HiddenVoxels::AsNaN, .runBytes = 64});
-    ASSERT_TRUE(written.ok()) << written.error().message;
-    std::vector<float> values;
-    if (format.format == ScalarFileFormat::Nrrd) {
-      const Result<ScalarVolume> read = readScalarNrrd(file);
-      ASSERT_TRUE(read.ok()) << read.error().message;
-      values = read->values;
-    } else if (format.format == ScalarFileFormat::Vti) {
-      const Result<ScalarVolume> read = readScalarVti(file);
-      ASSERT_TRUE(read.ok()) << read.error().message;
-      values = read->values;
-    } else {
-      const std::string bytes = test::readWhole(file);
-      ASSERT_EQ(bytes.size(), volume.values.size() * sizeof(float));
-      values.resize(volume.values.size());
-      std::memcpy(values.data(), bytes.data(), bytes.size());  // little endian, as the host
-    }
-    ASSERT_EQ(values.size(), volume.values.size());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (volume.drawn[i] == 0) {
-        EXPECT_TRUE(std::isnan(values[i])) << i;
-      } else {
-        EXPECT_EQ(values[i], volume.values[i]) << i;
-      }
-    }
-    // In runs of the default size (one here), the same file.
-    const fs::path once = path(std::string("once") + format.extension);
-    ASSERT_TRUE(
-        writeScalarVolumeFile(once, format.format, volume, {.hidden = HiddenVoxels::AsNaN}).ok());
-    EXPECT_EQ(test::readWhole(once), test::readWhole(file));
-  }
-  // The volume itself is untouched, and without AsNaN its values are written as they are.
-  EXPECT_EQ(bytesOf(volume.values, std::endian::native), bytesOf(kept.values, std::endian::native));
-  ASSERT_TRUE(
-      writeScalarVolumeFile(path("computed.raw"), ScalarFileFormat::Raw, volume, {.runBytes = 64})
-          .ok());
-  EXPECT_EQ(test::readWhole(path("computed.raw")), bytesOf(volume.values, std::endian::little));
-}
-
 TEST_F(ScalarVolumeStreamTest, AStreamNotFinishedLeavesNoFile) {
   const ScalarVolume volume = makeVolume();
   {
@@ -344,6 +264,89 @@ TEST_F(ScalarVolumeStreamTest, BadPathsAndBlocksAreErrorsNamingTheFile) {
             std::string::npos)
       << mask.error().message;
   EXPECT_FALSE(fs::exists(path("masked.nrrd")));
+}
+
+// The tests below read files back: readers note their files as inputs of the run (by inode,
+// which a later file may reuse), so they come after those above that check the input guard.
+
+TEST_F(ScalarVolumeStreamTest, VtiWrittenInBlocksReadsBackThroughTheVtiReaders) {
+  const ScalarVolume volume = makeVolume();
+  Result<ScalarVolumeStream> stream =
+      ScalarVolumeStream::create(path("lic.vti"), volume.dims, volume.geometry, "speed");
+  ASSERT_TRUE(stream.ok()) << stream.error().message;
+  for (auto it = kBlocks.rbegin(); it != kBlocks.rend(); ++it)
+    ASSERT_TRUE(writeBlockAsRuns(*stream, volume, it->first, it->second).ok());
+  ASSERT_TRUE(stream->finish().ok());
+  const auto expectValues = [&](const std::vector<float>& values) {
+    ASSERT_EQ(values.size(), volume.values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i == 40) {
+        EXPECT_TRUE(std::isnan(values[i]));
+      } else {
+        EXPECT_EQ(values[i], volume.values[i]) << i;
+      }
+    }
+  };
+  const Result<ScalarVolume> read = readScalarVti(path("lic.vti"));
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->dims, volume.dims);
+  EXPECT_EQ(read->geometry, volume.geometry);
+  expectValues(read->values);
+  const Result<PointScalars> scalars = readPointScalarsVti(path("lic.vti"), "speed");
+  ASSERT_TRUE(scalars.ok()) << scalars.error().message;
+  EXPECT_EQ(scalars->dims, volume.dims);
+  expectValues(scalars->values);
+}
+
+// Sparsity's hidden voxels are NaN in every format, whichever thread wrote their run, and only
+// they: runs of 16 voxels, some with hidden voxels and some without.
+TEST_F(ScalarVolumeStreamTest, HiddenVoxelsAreNaNInEveryFormat) {
+  ScalarVolume volume = makeVolume();
+  volume.values[40] = 0.5f;
+  volume.drawn.assign(volume.values.size(), 1);
+  for (const std::size_t i : {0, 17, 18, 40, 99, 200, 314}) volume.drawn[i] = 0;
+  const ScalarVolume kept = volume;
+  for (const Format& format : kFormats) {
+    SCOPED_TRACE(format.extension);
+    const fs::path file = path(std::string("lic") + format.extension);
+    const Result<void> written = writeScalarVolumeFile(
+        file, format.format, volume, {.hidden = HiddenVoxels::AsNaN, .runBytes = 64});
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    std::vector<float> values;
+    if (format.format == ScalarFileFormat::Nrrd) {
+      const Result<ScalarVolume> read = readScalarNrrd(file);
+      ASSERT_TRUE(read.ok()) << read.error().message;
+      values = read->values;
+    } else if (format.format == ScalarFileFormat::Vti) {
+      const Result<ScalarVolume> read = readScalarVti(file);
+      ASSERT_TRUE(read.ok()) << read.error().message;
+      values = read->values;
+    } else {
+      const std::string bytes = test::readWhole(file);
+      ASSERT_EQ(bytes.size(), volume.values.size() * sizeof(float));
+      values.resize(volume.values.size());
+      std::memcpy(values.data(), bytes.data(), bytes.size());  // little endian, as the host
+    }
+    ASSERT_EQ(values.size(), volume.values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (volume.drawn[i] == 0) {
+        EXPECT_TRUE(std::isnan(values[i])) << i;
+      } else {
+        EXPECT_EQ(values[i], volume.values[i]) << i;
+      }
+    }
+    // In runs of the default size (one here), the same file.
+    const fs::path once = path(std::string("once") + format.extension);
+    ASSERT_TRUE(
+        writeScalarVolumeFile(once, format.format, volume, {.hidden = HiddenVoxels::AsNaN}).ok());
+    EXPECT_EQ(test::readWhole(once), test::readWhole(file));
+  }
+  // The volume itself is untouched, and without AsNaN its values are written as they are.
+  EXPECT_EQ(bytesOf(volume.values, std::endian::native), bytesOf(kept.values, std::endian::native));
+  ASSERT_TRUE(
+      writeScalarVolumeFile(path("computed.raw"), ScalarFileFormat::Raw, volume, {.runBytes = 64})
+          .ok());
+  EXPECT_EQ(test::readWhole(path("computed.raw")), bytesOf(volume.values, std::endian::little));
 }
 
 }  // namespace

@@ -64,8 +64,9 @@ class ScalarVolumeStream {
   Dims dims() const;
 
   // The voxels [first, first + count) of the whole grid (x fastest, then y, then z): `count`
-  // values written with pwrite where they lie in the file. Thread-safe: runs (and blocks) must
-  // not overlap, and any number of threads may write disjoint ones at once.
+  // values written with pwrite where they lie in the file, and counted for finish()'s check.
+  // Thread-safe: runs (and blocks) must not overlap, and any number of threads may write
+  // disjoint ones at once.
   Result<void> writeRun(std::uint64_t first, const float* values, std::size_t count);
 
   // The voxels [offset, offset + dims), `voxelCount(dims)` values x fastest, as runs: a run per
