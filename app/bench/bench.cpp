@@ -123,52 +123,6 @@ Result<void> setVolume(LicRenderer& renderer, AnalyticField field, int n, std::u
   return renderer.setInputs(makeAnalyticField(field, dims), makeWhiteNoise(dims, seed));
 }
 
-// Peak resident memory of this process (getrusage), in bytes.
-std::uint64_t hostPeakBytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;
-}
-
-// A LIC larger than the device, made in bricks (jobs/bricks.h) as `lic3d compute` makes it, the
-// field made on the device brick by brick and the bricks dropped once made: the sum of the
-// bricks' LIC dispatches (GPU timestamps) and the whole run's wall time, once.
-Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& options, int n,
-                                    int length) {
-  Session session;
-  session.field.field = options.field;
-  session.field.grid = Dims(n);
-  session.noise.seed = options.seed;
-  session.lic.length = length;
-  session.precision = options.precision;
-  LIC3D_TRY_ASSIGN(SessionInputs inputs, loadSessionInputs(session, {.fieldOnDevice = true}));
-  const Context* devices[] = {&context};
-  LicVolumeOptions how;
-  how.timeLic = true;
-  how.sink = [](const Brick&, const ScalarVolume&) -> Result<void> { return {}; };
-  const auto start = std::chrono::steady_clock::now();
-  LIC3D_TRY_ASSIGN(const LicVolumeRun run, computeLicVolume(devices, session, inputs, how));
-  const double wall = secondsSince(start);
-  const DeviceShare& share = run.devices.front();
-  const double samples = static_cast<double>(n) * n * n * (2.0 * length + 1.0);
-  std::printf(
-      "%6d^3 %6d %12.3f %12s %14.2f  in %d bricks of %s; whole run %.1f s (%.2f "
-      "Gsamples/s); device peak %.1f GiB, host peak %.1f GiB\n",
-      n, length, share.licMilliseconds, "-", samples / (share.licMilliseconds * 1e6), run.bricks,
-      gridText(run.brickCore).c_str(), wall, samples / (wall * 1e9),
-      static_cast<double>(share.peakDeviceBytes) / (1 << 30),
-      static_cast<double>(hostPeakBytes()) / (1 << 30));
-  std::fflush(stdout);
-  return nlohmann::json{{"n", n},
-                        {"length", length},
-                        {"bricks", run.bricks},
-                        {"brick_core", {run.brickCore.x, run.brickCore.y, run.brickCore.z}},
-                        {"lic_ms", share.licMilliseconds},
-                        {"wall_s", wall},
-                        {"device_peak_bytes", share.peakDeviceBytes},
-                        {"host_peak_bytes", hostPeakBytes()}};
-}
-
 // The frame table's rows for a volume of n^3 in `renderer`: each view (look), K and buffer
 // format at each size, with one slice per voxel and with a quarter of them: how the time splits
 // between what each slice costs and what each frame costs.

@@ -36,6 +36,11 @@ std::string today();
 nlohmann::json newReport(const Context& context);
 
 // `bench --kernels`: the naive kernel and every shipped one, the masked pass, the launch shapes.
+// A LIC larger than the device, made in bricks as `lic3d compute` makes it: its LIC rate and the
+// host path's rates (bricked.cpp).
+Result<nlohmann::json> benchBricked(const Context& context, const BenchOptions& options, int n,
+                                    int length);
+
 Result<nlohmann::json> runKernelBenchmarks(const Context& context, const BenchOptions& options);
 
 // `bench --visible`: the full LIC pass against classification + LIC of the visible bricks.

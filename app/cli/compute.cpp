@@ -79,64 +79,40 @@ std::optional<FieldStream> openFieldStream(const ComputeOptions& options,
   return std::optional<FieldStream>(std::move(*stream));
 }
 
-// The LIC volume written brick by brick as the bricks come (.nrrd or .raw): hidden voxels NaN, as
-// writeLicVolumeFile writes them; `drawn` counts the voxels sparsity kept.
+// The LIC volume written into its file as it is read back, from every device at once (.nrrd,
+// .raw or .vti): runs of voxels written in place, hidden voxels NaN, as writeLicVolumeFile writes
+// them.
 class StreamedOutput {
  public:
-  StreamedOutput(std::string path, Dims dims, GridGeometry geometry)
-      : path_(std::move(path)), dims_(dims), geometry_(geometry) {}
-
   static bool streams(const std::string& path) {
     const std::string extension = std::filesystem::path(path).extension().string();
-    return extension == ".nrrd" || extension == ".raw";
+    return extension == ".nrrd" || extension == ".raw" || extension == ".vti";
   }
 
-  // Bricks from several devices at once: their parts of the file are disjoint.
-  Result<void> take(const Brick& brick, const ScalarVolume& lic) {
-    {
-      const std::lock_guard lock(mutex_);
-      if (!stream_) {
-        LIC3D_TRY_ASSIGN(stream_, ScalarVolumeStream::create(path_, dims_, geometry_));
-      }
-    }
-    std::vector<float> own(voxelCount(brick.ownDims));
-    const Dims from = brick.ownOffset - brick.offset;
-    std::vector<std::uint64_t> drawn(static_cast<std::size_t>(brick.ownDims.z), 0);
-    // The brick's own voxels, a layer a thread.
-    parallelFor(static_cast<std::size_t>(brick.ownDims.z), 0, [&](std::size_t layer) {
-      const int k = static_cast<int>(layer);
-      std::size_t at = layer * static_cast<std::size_t>(brick.ownDims.x) * brick.ownDims.y;
-      for (int j = 0; j < brick.ownDims.y; ++j)
-        for (int i = 0; i < brick.ownDims.x; ++i, ++at) {
-          const std::size_t v = voxelIndex(lic.dims, from.x + i, from.y + j, from.z + k);
-          const bool hidden = !lic.drawn.empty() && lic.drawn[v] == 0;
-          own[at] = hidden ? std::numeric_limits<float>::quiet_NaN() : lic.values[v];
-          drawn[layer] += hidden ? 0 : 1;
-        }
-    });
-    for (const std::uint64_t count : drawn) drawn_ += count;
-    if (!lic.drawn.empty()) sparse_ = true;
-    return stream_->write(brick.ownOffset, brick.ownDims, own.data());
+  static Result<StreamedOutput> create(const std::string& path, Dims dims,
+                                       const GridGeometry& geometry) {
+    LIC3D_TRY_ASSIGN(ScalarVolumeStream stream, ScalarVolumeStream::create(path, dims, geometry));
+    return StreamedOutput(std::move(stream));
   }
 
-  Result<void> finish() {
-    if (!stream_) return runtimeError(path_ + ": no brick was written");
-    return stream_->finish();
-  }
+  // Where the read-back writes the voxels.
+  const VoxelTarget& target() const { return target_; }
 
-  std::optional<double> hiddenFraction() const {
-    if (!sparse_) return std::nullopt;
-    return 1.0 - static_cast<double>(drawn_) / static_cast<double>(voxelCount(dims_));
-  }
+  Result<void> finish() { return stream_->finish(); }
 
  private:
-  std::string path_;
-  Dims dims_;
-  GridGeometry geometry_;
-  std::mutex mutex_;  // guards making the stream
-  std::optional<ScalarVolumeStream> stream_;
-  std::atomic<std::uint64_t> drawn_{0};
-  std::atomic<bool> sparse_{false};
+  explicit StreamedOutput(ScalarVolumeStream stream)
+      : stream_(std::make_unique<ScalarVolumeStream>(std::move(stream))) {
+    target_.dims = stream_->dims();
+    target_.writeStage = "volume write";
+    target_.write = [stream = stream_.get()](std::uint64_t first, const float* values,
+                                             std::size_t count) -> Result<void> {
+      return stream->writeRun(first, values, count);
+    };
+  }
+
+  std::unique_ptr<ScalarVolumeStream> stream_;
+  VoxelTarget target_;
 };
 
 // The inputs, from `stream` (read once first for its largest speed, into `scan`) or read whole.
@@ -213,16 +189,17 @@ int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
   const Session& session = options.inputs.session;
   const std::string deviceNames = devicesText(contexts);
   Progress progress("LIC " + gridText(inputs.field.dims) + " on " + deviceNames, global.quiet);
-  // Bricks go straight into a .nrrd or .raw output, so that the host never holds the volume.
+  // The voxels go straight into a .nrrd or .raw output as they are read back, so that the host
+  // never holds the volume.
   std::optional<StreamedOutput> streamed;
-  if (!slice && StreamedOutput::streams(options.output))
-    streamed.emplace(options.output, inputs.field.dims, inputs.field.geometry);
-  LicVolumeOptions how{
-      .deviceCap = options.memoryBudget, .sinkAtOnce = true, .stream = stream, .scan = scan};
-  if (streamed)
-    how.sink = [&](const Brick& brick, const ScalarVolume& lic) {
-      return streamed->take(brick, lic);
-    };
+  if (!slice && StreamedOutput::streams(options.output)) {
+    Result<StreamedOutput> made =
+        StreamedOutput::create(options.output, inputs.field.dims, inputs.field.geometry);
+    if (!made) return reportError(made.error());
+    streamed.emplace(std::move(*made));
+  }
+  LicVolumeOptions how{.deviceCap = options.memoryBudget, .stream = stream, .scan = scan};
+  if (streamed) how.target = &streamed->target();
   how.stage = [&](const std::string& stage) { progress.stage(stage); };
   Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
                                               [&](double f) { progress.update(f); });
@@ -231,15 +208,16 @@ int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
   } else {
     progress.cancel();
   }
-  // In one piece the volume comes back whole; in bricks a streamed output has it already.
-  const bool wroteBricks = run && streamed && run->volume.values.empty();
-  Result<void> done = !run          ? Result<void>(run.error())
-                      : wroteBricks ? streamed->finish()
-                                    : writeComputeOutput(options, slice, run->volume);
+  Result<void> done = !run       ? Result<void>(run.error())
+                      : streamed ? streamed->finish()
+                                 : writeComputeOutput(options, slice, run->volume);
   if (!done) return reportError(done.error());
-  noteHiddenFraction(global, session.lic,
-                     wroteBricks ? streamed->hiddenFraction() : hiddenFractionOf(run->volume),
-                     summary);
+  const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
+  const std::optional<double> hidden =
+      !sparse ? std::nullopt
+              : std::optional<double>(1.0 - static_cast<double>(run->drawnVoxels) /
+                                                static_cast<double>(voxelCount(inputs.field.dims)));
+  noteHiddenFraction(global, session.lic, hidden, summary);
   summary.bricks = run->bricks;
   summary.shares = run->devices;
   if (!global.quiet)

@@ -112,7 +112,9 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
   ReducedVolume reduced(dims, inputs.field.geometry, made.factor);
   Progress progress("LIC " + gridText(dims) + " on " + devicesText(contexts), global.quiet);
   LicVolumeOptions how{.deviceCap = options.memoryBudget};
-  how.sink = [&](const Brick& brick, const ScalarVolume& lic) { return reduced.take(brick, lic); };
+  const VoxelTarget target =
+      reduced.target(session.lic.sparsity.distribution != SparsityDistribution::None);
+  how.target = &target;
   how.stage = [&](const std::string& stage) { progress.stage(stage); };
   Result<LicVolumeRun> run = computeLicVolume(pointersTo(contexts), session, inputs, how,
                                               [&](double f) { progress.update(f); });
@@ -121,8 +123,6 @@ Result<ReducedLic> makeReducedLic(const GlobalOptions& global, const ComputeOpti
     return run.error();
   }
   progress.finish();
-  if (!run->volume.values.empty())  // made in one piece after all
-    LIC3D_TRY(reduced.take(Brick{Dims(0), dims, Dims(0), dims}, run->volume));
   made.bricks = run->bricks;
   made.shares = std::move(run->devices);
   made.volume = reduced.takeVolume();

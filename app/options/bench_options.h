@@ -37,6 +37,7 @@ struct BenchOptions {
   int dragPicture = 1024;         // of --drag: the square picture's size
   int dragSlices = 256;           // of --drag: the slices drawn
   int dragFrames = 60;            // of --drag: frames timed
+  std::string writeDir;           // a bricked row also writes its NRRD into this folder
 };
 
 }  // namespace lic3d::cli

@@ -172,6 +172,11 @@ std::unique_ptr<CommandLine> makeCommandLine() {
       ->check(rangeCheck(10, 100000))
       ->capture_default_str();
   benchCommand
+      ->add_option("--write-dir", bench.writeDir,
+                   "A size larger than the device (made in bricks) is also written as a NRRD "
+                   "into this folder (removed after), for the write rate")
+      ->check(CLI::ExistingDirectory);
+  benchCommand
       ->add_option("--distribution-volume", bench.distributionVolume,
                    "Volume size N (N^3) of --distributions")
       ->check(rangeCheck(8, 1024))

@@ -122,4 +122,9 @@ float NoiseVolume::value(std::size_t index) const {
   return 0.0f;
 }
 
+void markHiddenVoxels(ScalarVolume& volume) {
+  for (std::size_t i = 0; i < volume.drawn.size(); ++i)
+    if (!volume.drawn[i]) volume.values[i] = std::numeric_limits<float>::quiet_NaN();
+}
+
 }  // namespace lic3d

@@ -106,4 +106,8 @@ struct ScalarVolume {
   float at(int i, int j, int k) const { return values[voxelIndex(dims, i, j, k)]; }
 };
 
+// The voxels sparsity hides as NaN, "no value" to ParaView, VisIt and numpy (as lic3d writes LIC
+// volumes).
+void markHiddenVoxels(ScalarVolume& volume);
+
 }  // namespace lic3d

@@ -36,16 +36,22 @@ std::vector<Brick> planBricks(Dims whole, Dims core, int ghost) {
   return bricks;
 }
 
-Dims splitCoreForDevices(Dims whole, Dims core, int count) {
+int axisToHalve(Dims core, int ghost) {
+  if (core.z / 2 >= std::max(kMinSlabLayers, 4 * ghost)) return 2;
+  int longest = 0;
+  for (int a = 1; a < 3; ++a)
+    if (core[a] > core[longest]) longest = a;
+  return longest;
+}
+
+Dims splitCoreForDevices(Dims whole, Dims core, int count, int ghost) {
   const auto bricksOf = [&](Dims c) {
     const Dims n = (whole + c - Dims(1)) / c;
     return static_cast<std::int64_t>(n.x) * n.y * n.z;
   };
   while (bricksOf(core) < count && core != Dims(1)) {
-    int longest = 0;
-    for (int a = 1; a < 3; ++a)
-      if (core[a] > core[longest]) longest = a;
-    core[longest] = (core[longest] + 1) / 2;
+    const int axis = axisToHalve(core, ghost);
+    core[axis] = (core[axis] + 1) / 2;
   }
   return core;
 }
@@ -57,11 +63,8 @@ std::optional<Dims> chooseBrickCore(Dims whole, int ghost,
     const Dims brick = glm::min(core + Dims(2 * ghost), whole);
     if (fits(brick)) return core;
     if (core == Dims(1)) return std::nullopt;
-    // Halve the longest axis (the one a slab would cut), so bricks stay close to cubes.
-    int longest = 0;
-    for (int a = 1; a < 3; ++a)
-      if (core[a] > core[longest]) longest = a;
-    core[longest] = (core[longest] + 1) / 2;
+    const int axis = axisToHalve(core, ghost);
+    core[axis] = (core[axis] + 1) / 2;
   }
 }
 
@@ -164,12 +167,12 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
       Result<ScalarVolume> lic = inputs ? jobs.lic(worker, brick, std::move(*inputs))
                                         : Result<ScalarVolume>(inputs.error());
       if (!lic) return fail(lic.error());
-      if (jobs.takeAtOnce)
+      if (jobs.take && jobs.takeAtOnce)
         if (Result<void> taken = jobs.take(brick, *lic); !taken) return fail(taken.error());
       {
         const std::lock_guard lock(mutex);
         if (failure) return;
-        if (!jobs.takeAtOnce)
+        if (jobs.take && !jobs.takeAtOnce)
           if (Result<void> taken = jobs.take(brick, *lic); !taken) {
             failure = taken.error();
             stop = true;
@@ -218,7 +221,7 @@ struct HostShare {
 HostShare hostShare(const Session& session, const BrickedHost& host) {
   const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
   return {(host.fieldMadeHere ? 12u : 0u) + (host.wholeResult ? 4u + (sparse ? 1u : 0u) : 0u),
-          (host.fieldOnHost ? kBrickHostBytes : 12u) * static_cast<std::uint64_t>(host.devices)};
+          (host.fieldOnHost ? kBrickHostBytes : 0u) * static_cast<std::uint64_t>(host.devices)};
 }
 
 std::uint64_t hostBytes(const HostShare& share, Dims dims, Dims brick) {
@@ -299,11 +302,13 @@ class BrickReport {
   const std::function<void(const std::string&)>& stage_;
 };
 
-// A LIC dispatch (timed with GPU timestamps when asked), read back; `progress` follows the
-// dispatch (untimed only).
-Result<ScalarVolume> licOnDevice(const Context& context, LicRenderer& renderer,
-                                 const LicParams& params, bool timed, DeviceShare& share,
-                                 const ProgressCallback& progress = {}) {
+// A LIC dispatch (timed with GPU timestamps when asked), its region [from, from + extent) read
+// back into `target` at `at`; `progress` follows the dispatch (untimed only). Returns the
+// region's drawn voxels.
+Result<std::uint64_t> licOnDevice(const Context& context, LicRenderer& renderer,
+                                  const LicParams& params, bool timed, DeviceShare& share,
+                                  Dims from, Dims extent, const VoxelTarget& target, Dims at,
+                                  const ProgressCallback& progress = {}) {
   if (timed) {
     GpuTimer timer;
     if (context.supportsTimestamps()) {
@@ -316,7 +321,15 @@ Result<ScalarVolume> licOnDevice(const Context& context, LicRenderer& renderer,
   } else {
     LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(params, progress));
   }
-  return renderer.readLicVolume();
+  const Clock::time_point start = Clock::now();
+  const ReadbackRing& ring = renderer.licJob().readback();
+  const double waited = ring.waitSeconds(), used = ring.useSeconds();
+  LIC3D_TRY_ASSIGN(const std::uint64_t drawn, renderer.readLicInto(from, extent, target, at));
+  share.readbackSeconds += secondsSince(start);
+  share.readbackWaitSeconds += ring.waitSeconds() - waited;
+  share.convertSeconds += ring.useSeconds() - used;
+  share.readbackBytes += voxelCount(extent) * 4;
+  return drawn;
 }
 
 }  // namespace
@@ -372,21 +385,17 @@ SessionInputs streamedInputs(const FieldStream& stream, const Session& session,
 
 namespace {
 
-// The LIC of the whole grid on the first device, in one piece.
+// The LIC of the whole grid on the first device, in one piece, into `target`.
 Result<void> computeWhole(const Context& context, const Session& session, SessionInputs& inputs,
-                          const LicVolumeOptions& options, const ProgressCallback& progress,
-                          LicVolumeRun& run) {
+                          const LicVolumeOptions& options, const VoxelTarget& target,
+                          const ProgressCallback& progress, LicVolumeRun& run) {
   const Clock::time_point start = Clock::now();
   LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
   LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
   DeviceShare& share = run.devices[0];
-  if (options.timeLic) {
-    LIC3D_TRY_ASSIGN(run.volume, licOnDevice(context, renderer, session.lic, true, share));
-  } else {
-    LIC3D_TRY_ASSIGN([[maybe_unused]] const bool ran, renderer.updateLic(session.lic, progress));
-    LIC3D_TRY_ASSIGN(run.volume, renderer.readLicVolume());
-  }
   const Dims dims = inputs.field.dims;
+  LIC3D_TRY_ASSIGN(run.drawnVoxels, licOnDevice(context, renderer, session.lic, options.timeLic,
+                                                share, Dims(0), dims, target, Dims(0), progress));
   share.bricks = 1;
   share.voxels = voxelCount(dims);
   share.seconds = secondsSince(start);
@@ -485,10 +494,23 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     return parameterError("noise.file",
                           "a field read brick by brick takes the seeded white noise of the whole "
                           "grid, at one time");
-  // A streamed field is never whole on the host: always in bricks.
-  if (!brickable || (whole && devices.size() == 1 && !options.stream)) {
+  // Without a target, the voxels go into the run's volume on the host.
+  const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
+  VoxelTarget own;
+  const auto targetOnHost = [&](const GridGeometry& geometry) {
+    run.volume = emptyResult(dims, geometry);
+    if (sparse) resizeLarge(run.volume.drawn, run.volume.values.size());
+    own = memoryTarget(run.volume);
+  };
+  const VoxelTarget* target = options.target ? options.target : &own;
+  // A grid that fits the first device whole is made there alone: more devices would add their
+  // start-up and the ghost layers of a split to a LIC of a fraction of a second, and the
+  // read-back and writing, which bound such a run, share the host (docs/SCALE.md, "Several
+  // devices"). A streamed field is never whole on the host: always in bricks.
+  if (!brickable || (whole && !options.stream)) {
     LIC3D_TRY(whole);
-    LIC3D_TRY(computeWhole(*devices[0], session, inputs, options, progress, run));
+    if (!options.target) targetOnHost(inputs.field.geometry);
+    LIC3D_TRY(computeWhole(*devices[0], session, inputs, options, *target, progress, run));
     return run;
   }
   const int ghost = licGhostLayers(session.lic);
@@ -496,11 +518,11 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
   const BrickedHost host{
       .fieldMadeHere = !onDevice && !options.stream && inputs.sampled.has_value(),
       .fieldOnHost = !onDevice,
-      .wholeResult = !options.sink,
+      .wholeResult = !options.target,
       .devices = static_cast<int>(devices.size())};
   // A brick fits every device, and the bricks in flight fit the host beside the whole grid's.
   LIC3D_TRY_ASSIGN(Dims core, chooseCore(devices, session, dims, ghost, shape, host, whole));
-  core = splitCoreForDevices(dims, core, static_cast<int>(devices.size()));
+  core = splitCoreForDevices(dims, core, static_cast<int>(devices.size()), ghost);
   const std::vector<Brick> bricks = planBricks(dims, core, ghost);
   if (options.stream && inputs.field.dims != options.stream->dims())
     return inputError("the streamed field's grid is not the inputs' grid");
@@ -516,6 +538,7 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     renderers.push_back(std::move(renderer));
   }
   BrickJobs jobs;
+  std::atomic<std::uint64_t> drawnVoxels{0};
   // The field on the host, where the bricks are cut from, unless the device makes each brick's.
   std::optional<VectorField> made;
   LIC3D_TRY(preparePieces(session, inputs, options, made, jobs));
@@ -539,29 +562,27 @@ Result<LicVolumeRun> computeLicVolume(std::span<const Context* const> devices,
     }
     report.brickStage(index, "LIC");
     report.partial(worker, kInputsPart);
-    LIC3D_TRY_ASSIGN(ScalarVolume lic,
-                     licOnDevice(*devices[static_cast<std::size_t>(worker)], renderer, session.lic,
-                                 options.timeLic, share, progress.withReport([&](double f) {
-                                   report.partial(worker, kInputsPart + (1.0 - kInputsPart) * f);
-                                 })));
+    LIC3D_TRY_ASSIGN(
+        const std::uint64_t drawn,
+        licOnDevice(*devices[static_cast<std::size_t>(worker)], renderer, session.lic,
+                    options.timeLic, share, brick.ownOffset - brick.offset, brick.ownDims, *target,
+                    brick.ownOffset, progress.withReport([&](double f) {
+                      report.partial(worker, kInputsPart + (1.0 - kInputsPart) * f);
+                    })));
+    drawnVoxels += drawn;
     report.partial(worker, 0.0);  // counted as done once taken
     share.peakDeviceBytes = std::max(share.peakDeviceBytes,
                                      devices[static_cast<std::size_t>(worker)]->allocatedBytes());
     share.bricks += 1;
     share.voxels += voxelCount(brick.ownDims);
     share.seconds += secondsSince(start);
-    return lic;
+    return ScalarVolume();  // its voxels are in the target already
   };
-  if (!options.sink) run.volume = emptyResult(dims, inputs.field.geometry);
-  jobs.takeAtOnce = options.sink && options.sinkAtOnce;
-  jobs.take = [&](const Brick& brick, const ScalarVolume& lic) -> Result<void> {
-    if (options.sink) return options.sink(brick, lic);
-    copyOwnVoxels(brick, lic, run.volume);
-    return {};
-  };
+  if (!options.target) targetOnHost(inputs.field.geometry);
   LIC3D_TRY(runBricks(static_cast<int>(devices.size()), bricks, jobs,
                       progress.withReport([&](double) { report.brickDone(); })));
   run.bricks = static_cast<int>(bricks.size());
+  run.drawnVoxels = drawnVoxels.load();
   run.brickCore = core;
   return run;
 }

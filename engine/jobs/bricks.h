@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/session.h"
 #include "core/volume.h"
+#include "core/voxel_target.h"
 #include "gpu/vulkan_context.h"
 #include "io/field_stream.h"
 #include "lic/lic_reference.h"
@@ -32,16 +33,25 @@ struct Brick {
   Dims ownDims{0};
 };
 
-// Splits `core` further (halving its longest axis) until `whole` has at least `count` bricks, so
-// that each of `count` devices gets one.
-Dims splitCoreForDevices(Dims whole, Dims core, int count);
+// Bricks are slabs of whole x-y layers while they can be: a slab's own voxels are one run of a
+// file or a volume (read, converted and written as one piece, docs/SCALE.md), and its ghost layers
+// cost no more than a cube's while it is at least kMinSlabLayers and 4 ghost layers thick on
+// each side. Past that, bricks are halved along their longest axis, staying close to cubes.
+inline constexpr int kMinSlabLayers = 32;
+// The axis a brick core of `ghost` ghost layers is halved along next: z while the halves stay
+// such slabs, else its longest.
+int axisToHalve(Dims core, int ghost);
+
+// Splits `core` further (axisToHalve) until `whole` has at least `count` bricks, so that each of
+// `count` devices gets one.
+Dims splitCoreForDevices(Dims whole, Dims core, int count, int ghost = 0);
 
 // Bricks whose own parts tile `whole` in blocks of at most `core` voxels per axis (the last of
 // each row shorter), each widened by `ghost` layers where the grid goes on.
 std::vector<Brick> planBricks(Dims whole, Dims core, int ghost);
 
 // The largest brick core for which `fits` accepts the brick (core plus the ghost layers): the
-// whole grid when it fits; else cores halved along the longest axis until one fits. Nothing when
+// whole grid when it fits; else cores halved (axisToHalve) until one fits. Nothing when
 // not even a core of one voxel fits.
 std::optional<Dims> chooseBrickCore(Dims whole, int ghost,
                                     const std::function<bool(Dims brick)>& fits);
@@ -66,7 +76,8 @@ struct PieceInputs {
 };
 
 // The work of a bricked run. `prepare` (optional) makes a brick's host inputs; `lic` makes its
-// LIC on worker `worker` (a device); `take` gets each brick's LIC, one call at a time.
+// LIC on worker `worker` (a device); `take` (optional: `lic` may deliver the voxels itself) gets
+// each brick's LIC, one call at a time.
 struct BrickJobs {
   std::function<Result<PieceInputs>(const Brick&)> prepare;
   std::function<Result<ScalarVolume>(int worker, const Brick&, std::optional<PieceInputs>)> lic;
@@ -86,22 +97,23 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
 struct DeviceShare {
   std::string device;
   int bricks = 0;
-  std::uint64_t voxels = 0;      // its bricks' own voxels
-  double seconds = 0.0;          // busy: its bricks' inputs, LIC and read-back
-  double licMilliseconds = 0.0;  // its LIC dispatches on the device (LicVolumeOptions::timeLic)
+  std::uint64_t voxels = 0;          // its bricks' own voxels
+  double seconds = 0.0;              // busy: its bricks' inputs, LIC and read-back
+  double licMilliseconds = 0.0;      // its LIC dispatches on the device (LicVolumeOptions::timeLic)
+  double readbackSeconds = 0.0;      // reading its bricks back and converting them into the target
+  std::uint64_t readbackBytes = 0;   // of LIC texels read back (4 a voxel)
+  double readbackWaitSeconds = 0.0;  // of those, waiting for slabs to come over the link
+  double convertSeconds = 0.0;  // of those, converting slabs into the target (and writing them)
   std::uint64_t peakDeviceBytes = 0;  // lic3d's own device allocations at their highest
 };
 
 struct LicVolumeRun {
-  ScalarVolume volume;  // empty when a sink took the bricks
+  ScalarVolume volume;  // empty when a target took the voxels
   int bricks = 1;       // 1: the grid in one piece
   Dims brickCore{0};
   std::vector<DeviceShare> devices;
+  std::uint64_t drawnVoxels = 0;  // of the grid: all of them without a sparsity mask
 };
-
-// Where a bricked run's bricks go instead of one volume on the host (a file written brick by
-// brick, a reduced copy): each brick's LIC, one call at a time.
-using BrickSink = std::function<Result<void>(const Brick&, const ScalarVolume&)>;
 
 // What a field streamed from its file needs before its bricks: the whole field's max |u|
 // (maxVoxelSpeedOverVoxels), its largest |v| and its non-finite vectors, from one pass over the
@@ -113,9 +125,11 @@ struct StreamScan {
 };
 struct LicVolumeOptions {
   std::uint64_t deviceCap = 0;  // > 0: at most this many bytes of each device (--memory-budget)
-  BrickSink sink;           // the bricks go here when set (and LicVolumeRun::volume stays empty)
-  bool sinkAtOnce = false;  // the sink may take bricks from several devices at once
-  bool timeLic = false;     // time each LIC dispatch with GPU timestamps (lic3d bench)
+  // Where the voxels go as each brick (or the one piece) is read back, from every device at once
+  // (a file written in place, a reduced copy); LicVolumeRun::volume then stays empty. Null: into
+  // LicVolumeRun::volume.
+  const VoxelTarget* target = nullptr;
+  bool timeLic = false;  // time each LIC dispatch with GPU timestamps (lic3d bench)
   // The field read brick by brick from this file (SessionInputs::field then holds only its grid
   // and geometry: streamedInputs), never whole.
   const FieldStream* stream = nullptr;

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "jobs/reduced_volume.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace lic3d {
 
 Dims reducedDims(Dims dims, int factor) { return (dims + Dims(factor - 1)) / factor; }
@@ -31,7 +34,7 @@ std::optional<int> chooseReduction(Dims dims, int largest, const std::function<b
 }
 
 ReducedVolume::ReducedVolume(Dims whole, const GridGeometry& geometry, int factor)
-    : factor_(factor) {
+    : factor_(factor), whole_(whole) {
   volume_.dims = reducedDims(whole, factor);
   volume_.geometry = reducedGeometry(geometry, factor);
   volume_.values.assign(voxelCount(volume_.dims), 0.0f);
@@ -53,6 +56,38 @@ Result<void> ReducedVolume::take(const Brick& brick, const ScalarVolume& lic) {
         if (!lic.drawn.empty()) volume_.drawn[to] = lic.drawn[from];
       }
   return {};
+}
+
+VoxelTarget ReducedVolume::target(bool sparse) {
+  if (sparse) volume_.drawn.assign(volume_.values.size(), 1);
+  VoxelTarget target;
+  target.dims = whole_;
+  target.write = [this](std::uint64_t first, const float* values,
+                        std::size_t count) -> Result<void> {
+    const std::uint64_t row = static_cast<std::uint64_t>(whole_.x);
+    const std::uint64_t layer = row * static_cast<std::uint64_t>(whole_.y);
+    // Row by row: only rows at multiples of the factor in y and z hold reduced voxels.
+    for (std::uint64_t v = first, end = first + count; v < end;) {
+      const std::uint64_t rowEnd = std::min(end, (v / row + 1) * row);
+      const int y = static_cast<int>((v / row) % whole_.y);
+      const int z = static_cast<int>(v / layer);
+      if (y % factor_ == 0 && z % factor_ == 0) {
+        const int x0 = static_cast<int>(v % row);
+        for (int x = (x0 + factor_ - 1) / factor_ * factor_;
+             static_cast<std::uint64_t>(x) < rowEnd - v + static_cast<std::uint64_t>(x0);
+             x += factor_) {
+          const float value = values[v - first + static_cast<std::uint64_t>(x - x0)];
+          const std::size_t to = voxelIndex(volume_.dims, x / factor_, y / factor_, z / factor_);
+          const bool hidden = std::isnan(value);
+          volume_.values[to] = hidden ? 0.0f : value;
+          if (!volume_.drawn.empty()) volume_.drawn[to] = hidden ? 0 : 1;
+        }
+      }
+      v = rowEnd;
+    }
+    return {};
+  };
+  return target;
 }
 
 }  // namespace lic3d

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/volume.h"
+#include "core/voxel_target.h"
 #include "jobs/bricks.h"
 
 namespace lic3d {
@@ -29,8 +30,12 @@ class ReducedVolume {
  public:
   ReducedVolume(Dims whole, const GridGeometry& geometry, int factor);
 
-  // A brick's own voxels that fall on the reduced grid (a BrickSink).
+  // A brick's own voxels that fall on the reduced grid.
   Result<void> take(const Brick& brick, const ScalarVolume& lic);
+  // Where a LIC of the whole grid is read back to (LicVolumeOptions::target): the runs' voxels
+  // that fall on the reduced grid, from any thread; a NaN (a voxel sparsity hides) is kept as not
+  // drawn when `sparse`. The volume must outlive the target.
+  VoxelTarget target(bool sparse);
 
   int factor() const { return factor_; }
   const ScalarVolume& volume() const { return volume_; }
@@ -39,6 +44,7 @@ class ReducedVolume {
 
  private:
   int factor_;
+  Dims whole_;
   ScalarVolume volume_;
 };
 

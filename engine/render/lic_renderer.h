@@ -99,6 +99,12 @@ class LicRenderer {
   Result<RgbaImage> render(const LicParams& params, const ViewParams& view);
 
   Result<ScalarVolume> readLicVolume() const { return job_.read(textures_); }
+  // The region [from, from + extent) of the LIC volume into `target` at `at`
+  // (LicVolumeJob::readInto); returns the region's drawn voxels.
+  Result<std::uint64_t> readLicInto(Dims from, Dims extent, const VoxelTarget& target,
+                                    Dims at) const {
+    return job_.readInto(from, extent, target, at);
+  }
 
   // Records one frame of the shown volume into `target` (sized for the view): its cleared
   // rendering and the draw into the picture's part of it; the read-back is the caller's.

@@ -2,15 +2,21 @@
 #include "render/lic_volume_job.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <mutex>
 
 #include "core/parallel.h"
 #include "core/stage_times.h"
 #include "gpu/submit.h"
 
 namespace lic3d {
+namespace {
+using Clock = std::chrono::steady_clock;
+}  // namespace
 namespace {
 
 // With progress reporting the pass is split into this many slabs along z (at most).
@@ -409,30 +415,122 @@ Result<bool> LicVolumeJob::update(const LicParams& params, const FieldTextures& 
 
 Result<ScalarVolume> LicVolumeJob::read(const FieldTextures& textures) const {
   if (!shownParams_) return inputError("no LIC volume has been computed");
-  const StageTimer timer("volume read-back");
   const FieldTexture& field = textures.field();
   ScalarVolume volume;
   volume.dims = shownDims(field.dims);
   volume.geometry = field.geometry;
   volume.geometry.spacing *= static_cast<double>(shownStride_);
   resizeLarge(volume.values, voxelCount(volume.dims));
-  const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
-  if (sparse) resizeLarge(volume.drawn, volume.values.size());
-  // Converted straight from the read-back buffer: RG16, the value and whether it is drawn.
-  LIC3D_TRY(readImageWith(*context_, shownVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4,
-                          [&](const void* texels, std::size_t) {
-                            const auto* bytes = static_cast<const std::byte*>(texels);
-                            parallelChunks(
-                                volume.values.size(), [&](std::size_t begin, std::size_t end) {
-                                  for (std::size_t i = begin; i < end; ++i) {
-                                    std::uint16_t texel[2];
-                                    std::memcpy(texel, bytes + 4 * i, 4);
-                                    volume.values[i] = static_cast<float>(texel[0]) / 65535.0f;
-                                    if (sparse) volume.drawn[i] = texel[1] >= 32768 ? 1 : 0;
-                                  }
-                                });
-                          }));
+  if (shownParams_->sparsity.distribution != SparsityDistribution::None)
+    resizeLarge(volume.drawn, volume.values.size());
+  LIC3D_TRY(readInto(Dims(0), volume.dims, memoryTarget(volume), Dims(0)));
   return volume;
+}
+
+namespace {
+
+// Texels of the LIC volume (RG16: the value, whether drawn) converted into `count` values (and
+// drawn flags where `drawn` is given; hidden voxels NaN where it is not and `sparse`). Returns
+// the drawn voxels.
+std::uint64_t convertTexels(const std::byte* texels, std::size_t count, bool sparse, float* values,
+                            std::uint8_t* drawn) {
+  std::uint64_t shown = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint16_t texel[2];
+    std::memcpy(texel, texels + 4 * i, 4);
+    const bool isDrawn = !sparse || texel[1] >= 32768;
+    shown += isDrawn ? 1 : 0;
+    if (drawn) {
+      drawn[i] = isDrawn ? 1 : 0;
+      values[i] = static_cast<float>(texel[0]) / 65535.0f;
+    } else {
+      values[i] = isDrawn ? static_cast<float>(texel[0]) / 65535.0f
+                          : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return shown;
+}
+
+}  // namespace
+
+Result<std::uint64_t> LicVolumeJob::readInto(Dims from, Dims extent, const VoxelTarget& target,
+                                             Dims at) const {
+  if (!shownParams_) return inputError("no LIC volume has been computed");
+  const bool sparse = shownParams_->sparsity.distribution != SparsityDistribution::None;
+  // The region's rows are adjacent in the target when they span its x and y (a slab): a slab is
+  // then one run of the target, else each row is one.
+  const bool adjacent = extent.x == target.dims.x && extent.y == target.dims.y;
+  const std::size_t row = static_cast<std::size_t>(extent.x);
+  std::atomic<std::uint64_t> drawn{0};
+  std::mutex mutex;
+  std::optional<Error> failure;
+  // The time in target.write, summed over the threads, and in the chunks in all.
+  std::atomic<std::int64_t> writeNs{0}, chunkNs{0};
+  double writeSeconds = 0.0;  // the share of the slabs' wall time spent writing
+  const auto slab = [&](const void* texels, int firstLayer, int layers) -> Result<void> {
+    const std::size_t count = row * static_cast<std::size_t>(extent.y) * layers;
+    const Clock::time_point slabStart = Clock::now();
+    writeNs = 0;
+    chunkNs = 0;
+    parallelChunks(
+        count,
+        [&](std::size_t begin, std::size_t end) {
+          thread_local std::vector<float> local;
+          const Clock::time_point chunkStart = Clock::now();
+          std::uint64_t shown = 0;
+          for (std::size_t i = begin; i < end;) {
+            // The run from slab voxel i: to the chunk's end, or its row's.
+            const std::size_t rowIndex = i / row;
+            const std::size_t n = adjacent ? end - i : std::min(end, (rowIndex + 1) * row) - i;
+            const int y = static_cast<int>(rowIndex % static_cast<std::size_t>(extent.y));
+            const int z = static_cast<int>(rowIndex / static_cast<std::size_t>(extent.y));
+            const std::uint64_t first =
+                voxelIndex(target.dims, at.x + static_cast<int>(i - rowIndex * row), at.y + y,
+                           at.z + firstLayer + z);
+            const std::byte* in = static_cast<const std::byte*>(texels) + 4 * i;
+            if (target.values) {
+              shown += convertTexels(in, n, sparse, target.values + first,
+                                     target.drawn ? target.drawn + first : nullptr);
+            } else {
+              local.resize(n);
+              shown += convertTexels(in, n, sparse, local.data(), nullptr);
+              const Clock::time_point writing = Clock::now();
+              Result<void> written = target.write(first, local.data(), n);
+              writeNs +=
+                  std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - writing)
+                      .count();
+              if (!written) {
+                const std::lock_guard lock(mutex);
+                if (!failure) failure = written.error();
+                return;
+              }
+            }
+            i += n;
+          }
+          drawn += shown;
+          chunkNs += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - chunkStart)
+                         .count();
+        },
+        std::size_t{1} << 18);
+    if (chunkNs > 0)
+      writeSeconds += secondsSince(slabStart) * static_cast<double>(writeNs.load()) /
+                      static_cast<double>(chunkNs.load());
+    if (failure) return *failure;
+    return {};
+  };
+  const Clock::time_point start = Clock::now();
+  const Result<void> read = readback_.read(
+      *context_, shownVolume(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4, from, extent, slab);
+  // The slabs' wall time in the writes is the write stage's where the target names one.
+  const bool ownStage = target.writeStage != nullptr;
+  addStageTime("volume read-back", secondsSince(start) - (ownStage ? writeSeconds : 0.0));
+  addStageBytes("volume read-back", voxelCount(extent) * 4);
+  if (ownStage) {
+    addStageTime(target.writeStage, writeSeconds);
+    addStageBytes(target.writeStage, voxelCount(extent) * sizeof(float));
+  }
+  LIC3D_TRY(read);
+  return drawn.load();
 }
 
 Result<double> timeLicDispatch(const Context& context, LicVolumeJob& job,

@@ -24,6 +24,8 @@
 #include "core/error.h"
 #include "core/lic_params.h"
 #include "core/volume.h"
+#include "core/voxel_target.h"
+#include "gpu/readback.h"
 #include "gpu/resources.h"
 #include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
@@ -138,6 +140,14 @@ class LicVolumeJob {
   // The shown volume read back on its grid: the field's, or the coarse grid of a coarse volume
   // (coarseDims, its spacing `stride` times the field's).
   Result<ScalarVolume> read(const FieldTextures& textures) const;
+  // The region [from, from + extent) of the shown volume read back into `target` at `at` (the
+  // region's first voxel in the target's grid), slab by slab through the job's staging ring
+  // (gpu/readback.h), each slab converted on all threads while the device copies the next.
+  // Returns how many of the region's voxels are drawn (all of them without a sparsity mask).
+  Result<std::uint64_t> readInto(Dims from, Dims extent, const VoxelTarget& target, Dims at) const;
+  // The staging bytes of the read-back ring, once it is made.
+  std::size_t readbackBytes() const { return readback_.bytes(); }
+  const ReadbackRing& readback() const { return readback_; }
 
   // Whether update(params) would run the pass: no full volume of `params` for the current field.
   bool needs(const LicParams& params) const {
@@ -217,6 +227,7 @@ class LicVolumeJob {
                           int zBegin, int zEnd);
 
   const Context* context_ = nullptr;
+  mutable ReadbackRing readback_;  // made on the first read-back, kept for the next bricks
   LicPass licPass_;
   LicHistogramPass histogramPass_;
   bool doubleBuffered_ = false;
