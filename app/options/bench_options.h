@@ -37,6 +37,7 @@ struct BenchOptions {
   int dragPicture = 1024;         // of --drag: the square picture's size
   int dragSlices = 256;           // of --drag: the slices drawn
   int dragFrames = 60;            // of --drag: frames timed
+  std::string readField;          // a field file read by pieces: read and packing rates
 };
 
 }  // namespace lic3d::cli

@@ -121,6 +121,12 @@ Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std:
   return stream;
 }
 
+std::uint64_t FieldStream::dataBytes() const {
+  const std::uint64_t voxels = voxelCount(dims_);
+  return voxels * vectors_.components * vectors_.valueBytes +
+         (hasMask_ ? voxels * mask_.components * mask_.valueBytes : 0);
+}
+
 Result<void> FieldStream::checkFileHolds(const FileReader& file, const std::filesystem::path& path,
                                          Dims dims, const ArrayLayout& array, bool exact) {
   const std::uint64_t values = voxelCount(dims) * array.components;

@@ -40,6 +40,8 @@ class FieldStream {
   const GridGeometry& geometry() const { return geometry_; }
   const std::string& unit() const { return unit_; }            // NRRD `sample units`, else empty
   const std::string& arrayName() const { return arrayName_; }  // the .vti array, else empty
+  // The bytes of the file that readPiece reads over the whole grid (the vectors and any mask).
+  std::uint64_t dataBytes() const;
 
   // The voxels [offset, offset + dims) as a field of `dims` voxels whose origin is the piece's
   // first voxel (as cutFieldPiece places it; `piece` is left for the caller), with unit(). Vectors
