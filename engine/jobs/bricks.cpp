@@ -198,9 +198,11 @@ namespace {
 
 // The host holds, besides what is loaded, the field where it is made here (an analytic one), the
 // whole LIC volume (and its drawn mask with sparsity) unless a sink takes the bricks, and per
-// device two bricks at a time (the one on the device and the next one's inputs): field copies,
-// noise, packed texels, staging and read-back, about kBrickHostBytes a voxel.
-constexpr std::uint64_t kBrickHostBytes = 56;
+// device two bricks at a time: at most while a brick's texels are packed into the staging buffer
+// and the next brick's inputs are read: two bricks' field (12 bytes a voxel) and noise (1), and
+// the staging texels (16 as RGBA32F, 8 as RGBA16F). A brick's read-back comes later (4 bytes of
+// staging, 4 of LIC, 1 drawn), when the next one's inputs are all of the rest: less.
+constexpr std::uint64_t kBrickHostBytes = 2 * (12 + 1) + 16;
 
 struct BrickedHost {
   bool fieldMadeHere = false;  // an analytic field sampled on the host, cut into bricks
