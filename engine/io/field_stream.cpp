@@ -257,7 +257,16 @@ Result<void> FieldStream::readPieceInto(Dims offset, Dims dims, VectorField& fie
                              scratch.valid[voxel] = value != 0.0 ? 1 : 0;
                            }));
     }
-    for (std::size_t i = 0; i < count; ++i) {
+    // A component is NaN or infinite where its exponent bits are all set: one pass that the
+    // compiler vectorizes finds whether any is, and only then (or with a mask) each vector is
+    // looked at.
+    std::uint32_t nonFiniteSeen = 0;
+    for (std::size_t i = 0; i < 3 * count; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, reinterpret_cast<const float*>(vectors) + i, sizeof(bits));
+      nonFiniteSeen |= (bits & 0x7f800000u) == 0x7f800000u ? 1u : 0u;
+    }
+    for (std::size_t i = 0; i < count && (hasMask_ || nonFiniteSeen != 0); ++i) {
       glm::vec3& v = vectors[i];
       if (hasMask_ && scratch.valid[i] == 0) {
         v = glm::vec3(0.0f);
