@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -178,6 +179,32 @@ TEST_F(CliTest, ALicTooLargeToDrawIsDrawnFromAReducedCopy) {
   // What the LIC changes frame by frame cannot come from one reduced copy.
   const CommandRun bias = run(field + "--memory-budget 16MB --animate-bias 2 -o 'b_%d.png'");
   EXPECT_EQ(bias.status, 3) << bias.output;
+}
+
+// `bench --read-field` reads the whole file by each piece shape and packs one brick's inputs: every
+// row a rate over the file's bytes.
+TEST_F(CliTest, BenchReadFieldGivesTheRatesOfAStreamedFile) {
+  const Dims dims{20, 12, 10};
+  writeRawField(path("abc.raw"), makeAnalyticField(AnalyticField::Abc, dims));
+  const CommandRun r = run("bench --read-field abc.raw --repeats 5 --warmup 1 --json r.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(test::readWhole(path("r.json")));
+  EXPECT_EQ(report["grid"], "20x12x10");
+  EXPECT_EQ(report["file_bytes"], voxelCount(dims) * 12);
+  std::vector<std::string> rows;
+  for (const nlohmann::json& row : report["rows"]) {
+    rows.push_back(row["what"].get<std::string>());
+    EXPECT_GT(row.value("gb_per_s", 0.0), 0.0) << row.dump();
+  }
+  EXPECT_EQ(rows, (std::vector<std::string>{"scan (largest |u|)", "read by z-slabs",
+                                            "read by bricks", "read by z-slabs, memory reused",
+                                            "noise (GB of vectors)", "packing (GB of vectors)"}));
+  EXPECT_TRUE(has(r.output, "read by z-slabs")) << r.output;
+  // A file that must be read whole has no piece-read rate.
+  std::ofstream(path("f.vtk")) << "# vtk DataFile Version 3.0\n";
+  const CommandRun whole = run("bench --read-field f.vtk");
+  EXPECT_NE(whole.status, 0) << whole.output;
+  EXPECT_TRUE(has(whole.output, "f.vtk")) << whole.output;
 }
 
 }  // namespace

@@ -11,10 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "core/parallel.h"
 #include "io/field_io.h"
 #include "io/field_stream.h"
 #include "io/nrrd.h"
@@ -70,30 +72,36 @@ void expectPiecesMatchWholeRead(const fs::path& path, std::string_view arrayName
   FieldReadInfo info;
   const Result<VectorField> whole = readVectorField(path, arrayName, &info);
   ASSERT_TRUE(whole.ok()) << whole.error().message;
-  const Result<FieldStream> stream = FieldStream::open(path, arrayName);
+  Result<FieldStream> stream = FieldStream::open(path, arrayName);
   ASSERT_TRUE(stream.ok()) << stream.error().message;
   EXPECT_EQ(stream->dims(), whole->dims);
   EXPECT_EQ(stream->geometry(), whole->geometry);
   EXPECT_EQ(stream->unit(), info.unit);
   EXPECT_EQ(stream->arrayName(), info.arrayName);
-  for (const auto& [offset, dims] : kBoxes) {
-    bool inside = true;
-    for (int a = 0; a < 3; ++a) inside = inside && offset[a] + dims[a] <= whole->dims[a];
-    if (!inside) continue;
-    SCOPED_TRACE(gridText(dims) + " at " + std::to_string(offset.x) + "," +
-                 std::to_string(offset.y) + "," + std::to_string(offset.z));
-    const Result<VectorField> piece = stream->readPiece(offset, dims);
-    ASSERT_TRUE(piece.ok()) << piece.error().message;
-    const Result<VectorField> cut = cutFieldPiece(*whole, offset, dims);
-    ASSERT_TRUE(cut.ok());
-    EXPECT_EQ(piece->dims, cut->dims);
-    EXPECT_EQ(piece->geometry, cut->geometry);
-    EXPECT_FALSE(piece->piece.has_value());
-    ASSERT_EQ(piece->vectors.size(), cut->vectors.size());
-    EXPECT_EQ(std::memcmp(piece->vectors.data(), cut->vectors.data(),
-                          piece->vectors.size() * sizeof(glm::vec3)),
-              0);
-  }
+  // Read in tasks of the default size (one for these small pieces), of one voxel, of a few voxels
+  // (parts of a row) and of a few rows: the same vectors whichever thread read which part.
+  for (const std::size_t chunk :
+       {std::size_t{0}, std::size_t{1}, std::size_t{50}, std::size_t{400}})
+    for (const auto& [offset, dims] : kBoxes) {
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) inside = inside && offset[a] + dims[a] <= whole->dims[a];
+      if (!inside) continue;
+      stream->setChunkBytes(chunk > 0 ? chunk : std::size_t{4} << 20);
+      SCOPED_TRACE(gridText(dims) + " at " + std::to_string(offset.x) + "," +
+                   std::to_string(offset.y) + "," + std::to_string(offset.z) + " in tasks of " +
+                   std::to_string(stream->chunkBytes()) + " bytes");
+      const Result<VectorField> piece = stream->readPiece(offset, dims);
+      ASSERT_TRUE(piece.ok()) << piece.error().message;
+      const Result<VectorField> cut = cutFieldPiece(*whole, offset, dims);
+      ASSERT_TRUE(cut.ok());
+      EXPECT_EQ(piece->dims, cut->dims);
+      EXPECT_EQ(piece->geometry, cut->geometry);
+      EXPECT_FALSE(piece->piece.has_value());
+      ASSERT_EQ(piece->vectors.size(), cut->vectors.size());
+      EXPECT_EQ(std::memcmp(piece->vectors.data(), cut->vectors.data(),
+                            piece->vectors.size() * sizeof(glm::vec3)),
+                0);
+    }
 }
 
 template <class T>
@@ -153,6 +161,51 @@ TEST_F(FieldStreamTest, NonFiniteVectorsBecomeZeroAndAreCounted) {
   EXPECT_EQ(nonFinite, 1u);
   ASSERT_TRUE(stream->readPiece({0, 2, 0}, {7, 1, 1}, &nonFinite).ok());
   EXPECT_EQ(nonFinite, 0u);
+}
+
+// A piece read by threads in tasks of a few voxels: the same non-finite count, and each part handed
+// to the visitor once, final; a field read into again keeps its memory when it is large enough.
+TEST_F(FieldStreamTest, PiecesReadInPartsByThreadsAreVisitedOnceEach) {
+  const VectorField field = makeField();
+  const fs::path path =
+      writeRaw("field.raw", bytesOf(valuesOf<float>(field, false), std::endian::little),
+               R"({"dims": [7, 5, 4]})");
+  Result<FieldStream> stream = FieldStream::open(path);
+  ASSERT_TRUE(stream.ok()) << stream.error().message;
+  const Result<VectorField> whole = stream->readPiece({0, 0, 0}, kDims);
+  ASSERT_TRUE(whole.ok());
+  for (const std::size_t chunk : {std::size_t{1}, std::size_t{30}, std::size_t{100}}) {
+    SCOPED_TRACE(chunk);
+    stream->setChunkBytes(chunk);
+    VectorField into;
+    std::mutex mutex;
+    std::vector<int> seen(voxelCount(kDims), 0);
+    std::vector<glm::vec3> visited(voxelCount(kDims));
+    std::uint64_t nonFinite = 0;
+    ASSERT_TRUE(stream
+                    ->readPieceInto({0, 0, 0}, kDims, into, &nonFinite,
+                                    [&](const glm::vec3* vectors, std::size_t count) {
+                                      const std::lock_guard lock(mutex);
+                                      const std::size_t at =
+                                          static_cast<std::size_t>(vectors - into.vectors.data());
+                                      for (std::size_t i = 0; i < count; ++i) {
+                                        ++seen[at + i];
+                                        visited[at + i] = vectors[i];
+                                      }
+                                    })
+                    .ok());
+    EXPECT_EQ(nonFinite, 2u);
+    EXPECT_EQ(seen, std::vector<int>(voxelCount(kDims), 1));
+    EXPECT_EQ(visited, whole->vectors);  // non-finite vectors already zero
+    EXPECT_EQ(into.vectors, whole->vectors);
+    // Read again into the same field, a smaller piece: its memory is kept.
+    const glm::vec3* memory = into.vectors.data();
+    ASSERT_TRUE(stream->readPieceInto({0, 1, 0}, {7, 4, 2}, into, &nonFinite).ok());
+    EXPECT_EQ(into.vectors.data(), memory);
+    EXPECT_EQ(into.dims, Dims(7, 4, 2));
+    EXPECT_EQ(into.vectors, cutFieldPiece(*whole, {0, 1, 0}, {7, 4, 2})->vectors);
+    EXPECT_EQ(nonFinite, 2u);  // voxels 9 (2,1,0) and 31 (3,4,0)
+  }
 }
 
 TEST_F(FieldStreamTest, NrrdPiecesEqualTheWholeReadAttachedAndDetached) {

@@ -9,6 +9,7 @@
 #include <set>
 #include <stop_token>
 #include <thread>
+#include <vector>
 
 #include "core/parallel.h"
 #include "core/stage_times.h"
@@ -52,6 +53,26 @@ TEST(Parallel, FieldsNoiseAndStatisticsAreTheSameOnOneThreadAndOnMany) {
   EXPECT_EQ(one.max, many.max);
   EXPECT_EQ(one.voxelSpeed, many.voxelSpeed);
   EXPECT_GT(one.max, one.min);
+}
+
+// resizeLarge faults a large array's new pages in on all threads first: the items it had stay,
+// the new ones are zero, and so is a range it grows into again.
+TEST(Parallel, ResizeLargeKeepsTheOldItemsAndZeroesTheNew) {
+  std::vector<std::uint32_t> values(1000);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<std::uint32_t>(i + 1);
+  const std::size_t count = (std::size_t{80} << 20) / sizeof(std::uint32_t);
+  resizeLarge(values, count);
+  ASSERT_EQ(values.size(), count);
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < count; ++i)
+    wrong += values[i] != (i < 1000 ? static_cast<std::uint32_t>(i + 1) : 0u) ? 1 : 0;
+  EXPECT_EQ(wrong, 0u);
+  values.resize(1000);
+  values[999] = 7;
+  resizeLarge(values, count);  // within its capacity: the old item kept again
+  EXPECT_EQ(values[999], 7u);
+  EXPECT_EQ(std::count(values.begin() + 1000, values.end(), 0u),
+            static_cast<std::ptrdiff_t>(count - 1000));
 }
 
 TEST(Parallel, TheThreadLimitBoundsTheThreadsThatRun) {

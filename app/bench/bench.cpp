@@ -619,13 +619,14 @@ int runBench(const GlobalOptions& global, const BenchOptions& options) {
   Result<Context> context = Context::create(contextOptions);
   if (!context) return reportError(context.error());
   const Result<nlohmann::json> report =
-      options.variants        ? runVariants(*context, options)
-      : options.distributions ? runDistributions(*context, options)
-      : options.kernels       ? runKernelBenchmarks(*context, options)
-      : options.fidelity      ? runFidelityBenchmarks(*context, options)
-      : options.visible       ? runVisibleBenchmarks(*context, options)
-      : options.drag          ? runDragBenchmarks(*context, options)
-                              : runBenchmarks(*context, options);
+      options.variants             ? runVariants(*context, options)
+      : options.distributions      ? runDistributions(*context, options)
+      : options.kernels            ? runKernelBenchmarks(*context, options)
+      : options.fidelity           ? runFidelityBenchmarks(*context, options)
+      : options.visible            ? runVisibleBenchmarks(*context, options)
+      : options.drag               ? runDragBenchmarks(*context, options)
+      : !options.readField.empty() ? runReadRateBenchmarks(*context, options)
+                                   : runBenchmarks(*context, options);
   if (!report) return reportError(report.error());
   if (!options.json.empty()) {
     if (auto r = writeFileAtomically(options.json, report->dump(2) + "\n"); !r)

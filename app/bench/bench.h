@@ -48,6 +48,10 @@ Result<nlohmann::json> runVisibleBenchmarks(const Context& context, const BenchO
 // `bench --drag`: the app's frames while a LIC slider is dragged (bench/drag.cpp).
 Result<nlohmann::json> runDragBenchmarks(const Context& context, const BenchOptions& options);
 
+// `bench --read-field FILE`: the scan and piece-read rates of a streamed field file, and one
+// brick's noise and packing (bench/read_rate.cpp).
+Result<nlohmann::json> runReadRateBenchmarks(const Context& context, const BenchOptions& options);
+
 // `bench --fidelity`: each RK2 scheme's error against a converged LIC, on the CPU and the device.
 Result<nlohmann::json> runFidelityBenchmarks(const Context& context, const BenchOptions& options);
 

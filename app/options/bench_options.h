@@ -38,6 +38,7 @@ struct BenchOptions {
   int dragSlices = 256;           // of --drag: the slices drawn
   int dragFrames = 60;            // of --drag: frames timed
   std::string writeDir;           // a bricked row also writes its NRRD into this folder
+  std::string readField;          // a field file read by pieces: read and packing rates
 };
 
 }  // namespace lic3d::cli

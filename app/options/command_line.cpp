@@ -171,6 +171,12 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   benchCommand->add_option("--drag-frames", bench.dragFrames, "Frames --drag times")
       ->check(rangeCheck(10, 100000))
       ->capture_default_str();
+  benchCommand->add_option(
+      "--read-field", bench.readField,
+      "Instead: the rates at which this field file (raw, raw NRRD, appended-raw VTI) is read "
+      "brick by brick: the scan for its largest |u| and the reads by z-slabs and by bricks, in "
+      "GB/s of the file's bytes from the page cache after a warm-up read, then one brick's noise "
+      "and texel packing; wall clock, median of --repeats");
   benchCommand
       ->add_option("--write-dir", bench.writeDir,
                    "A size larger than the device (made in bricks) is also written as a NRRD "

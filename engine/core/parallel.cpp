@@ -94,6 +94,18 @@ void parallelFor(std::size_t count, unsigned threads, const std::function<void(s
     if (failure) std::rethrow_exception(failure);
 }
 
+void touchPagesInParallel(void* data, std::size_t bytes) {
+  constexpr std::size_t kPage = 4096;
+  if (bytes < (std::size_t{64} << 20)) return;
+  auto* const first = static_cast<volatile unsigned char*>(data);
+  parallelChunks(
+      bytes,
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t at = begin; at < end; at += kPage) first[at] = 0;
+      },
+      std::size_t{8} << 20);
+}
+
 void adviseHugePages(void* data, std::size_t bytes) {
   constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
   const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);

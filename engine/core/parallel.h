@@ -37,12 +37,20 @@ void parallelCopy(void* to, const void* from, std::size_t bytes);
 // one per 4 KiB when it is first written. A no-op for small ranges and where unsupported.
 void adviseHugePages(void* data, std::size_t bytes);
 
-// v.resize(count) for volume-sized arrays: the memory is advised to huge pages before the new
-// items are first written.
+// Writes a zero byte into every page of [data, data + bytes) on availableThreads(), for ranges
+// of 64 MiB or more (smaller ones: nothing): the kernel's page faults (and its clearing of each
+// page) then run on all threads rather than in the first serial pass over a new array. The
+// range must be memory the caller owns and may overwrite.
+void touchPagesInParallel(void* data, std::size_t bytes);
+
+// v.resize(count) for volume-sized arrays: the memory is advised to huge pages and its new part's
+// pages faulted in on all threads before resize first writes the new items.
 template <class Vector>
 void resizeLarge(Vector& v, std::size_t count) {
+  const std::size_t old = v.size();
   v.reserve(count);
   adviseHugePages(v.data(), v.capacity() * sizeof(*v.data()));
+  if (count > old) touchPagesInParallel(v.data() + old, (count - old) * sizeof(*v.data()));
   v.resize(count);
 }
 

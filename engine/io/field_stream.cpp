@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <mutex>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -121,6 +124,12 @@ Result<FieldStream> FieldStream::openVti(const std::filesystem::path& path, std:
   return stream;
 }
 
+std::uint64_t FieldStream::dataBytes() const {
+  const std::uint64_t voxels = voxelCount(dims_);
+  return voxels * vectors_.components * vectors_.valueBytes +
+         (hasMask_ ? voxels * mask_.components * mask_.valueBytes : 0);
+}
+
 Result<void> FieldStream::checkFileHolds(const FileReader& file, const std::filesystem::path& path,
                                          Dims dims, const ArrayLayout& array, bool exact) {
   const std::uint64_t values = voxelCount(dims) * array.components;
@@ -174,19 +183,27 @@ Result<void> FieldStream::readValues(const ArrayLayout& array, std::uint64_t fir
 }
 
 Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t* nonFinite) const {
+  VectorField field;
+  LIC3D_TRY(readPieceInto(offset, dims, field, nonFinite));
+  return field;
+}
+
+Result<void> FieldStream::readPieceInto(Dims offset, Dims dims, VectorField& field,
+                                        std::uint64_t* nonFinite, const RunVisitor& visit) const {
   for (int a = 0; a < 3; ++a)
     if (dims[a] < 1 || offset[a] < 0 || offset[a] > dims_[a] - dims[a])
       return fileError(path_, "the piece of " + gridText(dims) + " voxels at " +
                                   std::to_string(offset.x) + "," + std::to_string(offset.y) + "," +
                                   std::to_string(offset.z) + " does not lie inside the " +
                                   gridText(dims_) + " grid");
-  VectorField field;
   field.dims = dims;
   field.geometry.spacing = geometry_.spacing;
   field.geometry.origin = geometry_.origin + glm::dvec3(offset) * geometry_.spacing;
   field.unit = unit_;
-  resizeLarge(field.vectors, voxelCount(dims));
-  std::vector<std::uint8_t> valid(hasMask_ ? voxelCount(dims) : 0);
+  field.piece.reset();
+  const std::size_t voxels = voxelCount(dims);
+  if (field.vectors.capacity() < voxels) field.vectors = {};  // no copy of the old vectors
+  resizeLarge(field.vectors, voxels);
 
   // Runs of voxels adjacent in the file: a row, a layer when the piece spans x, the whole piece
   // when it spans x and y.
@@ -195,49 +212,108 @@ Result<VectorField> FieldStream::readPiece(Dims offset, Dims dims, std::uint64_t
   const std::size_t run = static_cast<std::size_t>(dims.x) *
                           static_cast<std::size_t>(wholeRows ? dims.y : 1) *
                           static_cast<std::size_t>(wholeLayers ? dims.z : 1);
-  const int rows = wholeRows ? 1 : dims.y;
-  const int layers = wholeLayers ? 1 : dims.z;
+  const std::size_t rows = wholeRows ? 1 : static_cast<std::size_t>(dims.y);
+  const std::size_t runs = rows * static_cast<std::size_t>(wholeLayers ? 1 : dims.z);
+  // The threads take tasks of about chunkBytes_ of the file each: a part of a long run, or
+  // several short runs.
+  const std::size_t fileVoxelBytes = vectors_.components * vectors_.valueBytes +
+                                     (hasMask_ ? mask_.components * mask_.valueBytes : 0);
+  const std::size_t chunkVoxels = std::max<std::size_t>(1, chunkBytes_ / fileVoxelBytes);
+  const std::size_t parts = (run + chunkVoxels - 1) / chunkVoxels;
+  const std::size_t partVoxels = (run + parts - 1) / parts;
+  const std::size_t runsPerTask = parts > 1 ? 1 : std::max<std::size_t>(1, chunkVoxels / run);
+  const std::size_t tasks = parts > 1 ? runs * parts : (runs + runsPerTask - 1) / runsPerTask;
   // Float32 vectors in the host's order are read straight into the field.
   const bool direct = vectors_.type == NumberType::Float32 && vectors_.components == 3 &&
                       !vectors_.planar && vectors_.order == std::endian::native;
-  std::vector<unsigned char> buffer;
-  for (int k = 0; k < layers; ++k) {
-    for (int j = 0; j < rows; ++j) {
-      const std::uint64_t first = voxelIndex(dims_, offset.x, offset.y + j, offset.z + k);
-      const std::size_t local = voxelIndex(dims, 0, j, k);
-      glm::vec3* vectors = field.vectors.data() + local;
-      if (direct) {
-        LIC3D_TRY(file_.readAt(vectors_.offset + first * sizeof(glm::vec3), vectors,
-                               run * sizeof(glm::vec3), "the data"));
-      } else {
-        LIC3D_TRY(readValues(vectors_, first, run, buffer,
-                             [&](std::size_t voxel, std::size_t component, double value) {
-                               vectors[voxel][static_cast<glm::length_t>(component)] =
-                                   vectorComponent(value);
-                             }));
-      }
-      if (hasMask_) {
-        std::uint8_t* flags = valid.data() + local;
-        LIC3D_TRY(readValues(mask_, first, run, buffer,
-                             [&](std::size_t voxel, std::size_t, double value) {
-                               flags[voxel] = value != 0.0 ? 1 : 0;
-                             }));
-      }
-    }
-  }
 
-  std::uint64_t zeroed = 0;
-  for (std::size_t i = 0; i < field.vectors.size(); ++i) {
-    glm::vec3& v = field.vectors[i];
-    if (hasMask_ && valid[i] == 0) {
-      v = glm::vec3(0.0f);
-    } else if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-      v = glm::vec3(0.0f);
-      ++zeroed;
+  // What a thread keeps between its tasks.
+  struct Scratch {
+    std::vector<unsigned char> buffer;
+    std::vector<std::uint8_t> valid;
+    std::uint64_t zeroed = 0;
+  };
+  // Voxels [begin, begin + count) of run r: read, masked, non-finite vectors zeroed, visited.
+  const auto readRun = [&](std::size_t r, std::size_t begin, std::size_t count,
+                           Scratch& scratch) -> Result<void> {
+    const int j = static_cast<int>(r % rows), k = static_cast<int>(r / rows);
+    const std::uint64_t first =
+        voxelIndex(dims_, offset.x, offset.y + j, offset.z + k) + std::uint64_t{begin};
+    glm::vec3* vectors = field.vectors.data() + voxelIndex(dims, 0, j, k) + begin;
+    if (direct) {
+      LIC3D_TRY(file_.readAt(vectors_.offset + first * sizeof(glm::vec3), vectors,
+                             count * sizeof(glm::vec3), "the data"));
+    } else {
+      LIC3D_TRY(readValues(vectors_, first, count, scratch.buffer,
+                           [&](std::size_t voxel, std::size_t component, double value) {
+                             vectors[voxel][static_cast<glm::length_t>(component)] =
+                                 vectorComponent(value);
+                           }));
     }
-  }
+    if (hasMask_) {
+      scratch.valid.resize(count);
+      LIC3D_TRY(readValues(mask_, first, count, scratch.buffer,
+                           [&](std::size_t voxel, std::size_t, double value) {
+                             scratch.valid[voxel] = value != 0.0 ? 1 : 0;
+                           }));
+    }
+    // A component is NaN or infinite where its exponent bits are all set: one pass that the
+    // compiler vectorizes finds whether any is, and only then (or with a mask) each vector is
+    // looked at.
+    std::uint32_t nonFiniteSeen = 0;
+    for (std::size_t i = 0; i < 3 * count; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, reinterpret_cast<const float*>(vectors) + i, sizeof(bits));
+      nonFiniteSeen |= (bits & 0x7f800000u) == 0x7f800000u ? 1u : 0u;
+    }
+    for (std::size_t i = 0; i < count && (hasMask_ || nonFiniteSeen != 0); ++i) {
+      glm::vec3& v = vectors[i];
+      if (hasMask_ && scratch.valid[i] == 0) {
+        v = glm::vec3(0.0f);
+      } else if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        v = glm::vec3(0.0f);
+        ++scratch.zeroed;
+      }
+    }
+    if (visit) visit(vectors, count);
+    return {};
+  };
+  const auto readTask = [&](std::size_t t, Scratch& scratch) -> Result<void> {
+    if (parts > 1) {
+      const std::size_t begin = (t % parts) * partVoxels;
+      return readRun(t / parts, begin, std::min(partVoxels, run - begin), scratch);
+    }
+    for (std::size_t r = t * runsPerTask; r < std::min(runs, (t + 1) * runsPerTask); ++r)
+      LIC3D_TRY(readRun(r, 0, run, scratch));
+    return {};
+  };
+
+  // Each thread takes the next task until none is left or one failed (the lowest failed task's
+  // error is returned).
+  const std::size_t threads = std::min<std::size_t>(availableThreads(), tasks);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  std::optional<Error> failure;
+  std::size_t failedTask = tasks;
+  std::uint64_t zeroed = 0;
+  parallelFor(threads, static_cast<unsigned>(threads), [&](std::size_t) {
+    Scratch scratch;
+    for (std::size_t t = next++; t < tasks && !failed; t = next++)
+      if (Result<void> done = readTask(t, scratch); !done) {
+        const std::lock_guard lock(mutex);
+        if (t < failedTask) {
+          failedTask = t;
+          failure = done.error();
+        }
+        failed = true;
+      }
+    const std::lock_guard lock(mutex);
+    zeroed += scratch.zeroed;
+  });
+  if (failure) return *failure;
   if (nonFinite) *nonFinite = zeroed;
-  return field;
+  return {};
 }
 
 }  // namespace lic3d

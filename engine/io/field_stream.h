@@ -12,10 +12,12 @@
 // Files whose data must be decoded from the start (gzip NRRD; ascii, base64 or compressed VTI;
 // .vtk; .pvti) are Unsupported: the caller reads them whole (readVectorField), within host memory.
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,13 +42,31 @@ class FieldStream {
   const GridGeometry& geometry() const { return geometry_; }
   const std::string& unit() const { return unit_; }            // NRRD `sample units`, else empty
   const std::string& arrayName() const { return arrayName_; }  // the .vti array, else empty
+  // The bytes of the file that readPiece reads over the whole grid (the vectors and any mask).
+  std::uint64_t dataBytes() const;
 
   // The voxels [offset, offset + dims) as a field of `dims` voxels whose origin is the piece's
   // first voxel (as cutFieldPiece places it; `piece` is left for the caller), with unit(). Vectors
   // with a NaN or infinite component become zero and are counted in `*nonFinite` (VTK's
   // vtkValidPointMask applied first, as readVectorField applies it). Safe from several threads at
   // once; errors name the file.
+  // The piece's file bytes are read with pread on all available threads, in tasks of about
+  // chunkBytes() each, and each task's vectors checked as soon as they are read.
   Result<VectorField> readPiece(Dims offset, Dims dims, std::uint64_t* nonFinite = nullptr) const;
+  // Sees `count` vectors of a piece being read, final (masked, non-finite ones zero), on the
+  // thread that read them: called from several threads at once, once for each part of the piece.
+  using RunVisitor = std::function<void(const glm::vec3* vectors, std::size_t count)>;
+  // readPiece into `field`, whose vectors' memory is kept where it is large enough (a scan's
+  // slabs), each part handed to `visit` (when given) once it is read.
+  Result<void> readPieceInto(Dims offset, Dims dims, VectorField& field,
+                             std::uint64_t* nonFinite = nullptr,
+                             const RunVisitor& visit = {}) const;
+
+  // The bytes of the file one thread reads at a time (a few MiB: large enough for pread to run at
+  // the page cache's speed, small enough that the threads share a piece evenly and find its
+  // vectors still in cache when they check them). Smaller only in tests, to spread a small piece.
+  std::size_t chunkBytes() const { return chunkBytes_; }
+  void setChunkBytes(std::size_t bytes) { chunkBytes_ = std::max<std::size_t>(bytes, 1); }
 
  private:
   // One array in a file: `components` values per voxel of `valueBytes`, from byte `offset` on;
@@ -82,6 +102,7 @@ class FieldStream {
   ArrayLayout vectors_;
   bool hasMask_ = false;  // vtkValidPointMask, on the same points
   ArrayLayout mask_;
+  std::size_t chunkBytes_ = std::size_t{4} << 20;
 };
 
 }  // namespace lic3d

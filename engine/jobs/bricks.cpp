@@ -200,10 +200,13 @@ Result<std::vector<int>> runBricks(int workers, const std::vector<Brick>& bricks
 namespace {
 
 // The host holds, besides what is loaded, the field where it is made here (an analytic one), the
-// whole LIC volume (and its drawn mask with sparsity) unless a sink takes the bricks, and per
-// device two bricks at a time (the one on the device and the next one's inputs): field copies,
-// noise, packed texels, staging and read-back, about kBrickHostBytes a voxel.
-constexpr std::uint64_t kBrickHostBytes = 56;
+// whole LIC volume (and its drawn mask with sparsity) unless a target takes the voxels, and per
+// device two bricks at a time: at most while a brick's texels are packed into the staging buffer
+// and the next brick's inputs are read: two bricks' field (12 bytes a voxel) and noise (1), and
+// the staging texels (16 as RGBA32F, 8 as RGBA16F). A brick's read-back goes through the
+// device's staging ring (3 x 128 MiB, gpu/readback.h) straight into the target: nothing a voxel.
+// A brick made on the device holds nothing a voxel on the host.
+constexpr std::uint64_t kBrickHostBytes = 2 * (12 + 1) + 16;
 
 struct BrickedHost {
   bool fieldMadeHere = false;  // an analytic field sampled on the host, cut into bricks
@@ -252,11 +255,13 @@ Result<void> checkBrickedHostMemory(const Session& session, Dims dims,
 
 using Clock = std::chrono::steady_clock;
 
-// Layers per slab of a stream's scan: about 64 MiB of vectors each.
+// Layers per slab of a stream's scan: about 256 MiB of vectors each, read by all threads (the
+// one slab buffer the scan holds).
 int scanLayers(Dims dims) {
   const std::uint64_t layer =
       std::uint64_t{12} * static_cast<std::uint64_t>(dims.x) * static_cast<std::uint64_t>(dims.y);
-  return static_cast<int>(std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / layer, 1, 64));
+  return static_cast<int>(
+      std::clamp<std::uint64_t>((std::uint64_t{256} << 20) / layer, 1, std::max(dims.z, 1)));
 }
 
 // The progress of a bricked run from any worker, one call at a time: the bricks done and the part
@@ -335,35 +340,33 @@ Result<std::uint64_t> licOnDevice(const Context& context, LicRenderer& renderer,
 }  // namespace
 
 Result<StreamScan> scanFieldStream(const FieldStream& stream, const ProgressCallback& progress) {
+  const StageTimer timer("field scan");
   const Dims dims = stream.dims();
   const int layers = scanLayers(dims);
   const int slabs = (dims.z + layers - 1) / layers;
-  std::mutex mutex;
+  const glm::dvec3 scale = voxelUnitScale(stream.geometry());
+  std::mutex mutex;  // guards `scan`
   StreamScan scan;
-  std::optional<Error> failure;
-  int done = 0;
-  parallelFor(static_cast<std::size_t>(slabs), 0, [&](std::size_t s) {
-    const int z = static_cast<int>(s) * layers;
-    const Dims slabDims{dims.x, dims.y, std::min(layers, dims.z - z)};
-    std::uint64_t nonFinite = 0;
-    Result<VectorField> slab = stream.readPiece({0, 0, z}, slabDims, &nonFinite);
-    double speed = 0.0, magnitude = 0.0;
-    if (slab) {
-      speed = maxVoxelSpeedOverVoxels(*slab);
-      for (const glm::vec3& v : slab->vectors)
-        magnitude = std::max(magnitude, static_cast<double>(glm::length(v)));
-    }
+  // The slabs in turn, each read by all threads; each part measured by the thread that read it,
+  // while it is in cache. The largest values are the same in any order.
+  VectorField slab;
+  const FieldStream::RunVisitor measure = [&](const glm::vec3* vectors, std::size_t count) {
+    const double speed = maxVoxelSpeedOf(vectors, count, scale);
+    double magnitude = 0.0;
+    for (std::size_t i = 0; i < count; ++i)
+      magnitude = std::max(magnitude, static_cast<double>(glm::length(vectors[i])));
     const std::lock_guard lock(mutex);
-    if (!slab) {
-      if (!failure) failure = slab.error();
-      return;
-    }
     scan.maxVoxelSpeed = std::max(scan.maxVoxelSpeed, speed);
     scan.maxMagnitude = std::max(scan.maxMagnitude, magnitude);
+  };
+  for (int s = 0; s < slabs; ++s) {
+    const int z = s * layers;
+    std::uint64_t nonFinite = 0;
+    LIC3D_TRY(stream.readPieceInto({0, 0, z}, {dims.x, dims.y, std::min(layers, dims.z - z)}, slab,
+                                   &nonFinite, measure));
     scan.nonFinite += nonFinite;
-    if (progress) progress(static_cast<double>(++done) / static_cast<double>(slabs));
-  });
-  if (failure) return *failure;
+    if (progress) progress(static_cast<double>(s + 1) / static_cast<double>(slabs));
+  }
   if (scan.maxMagnitude == 0.0)
     return inputError(stream.path().string() + ": every vector is zero; there is no flow to show");
   return scan;
@@ -452,8 +455,11 @@ Result<void> preparePieces(const Session& session, SessionInputs& inputs,
     }
     jobs.prepare = [&options, dims, seed,
                     maxSpeed = scan.maxVoxelSpeed](const Brick& brick) -> Result<PieceInputs> {
+      StageTimer reading("brick field read");
       LIC3D_TRY_ASSIGN(VectorField piece, options.stream->readPiece(brick.offset, brick.dims));
+      reading.stop();
       piece.piece = FieldPiece{dims, brick.offset, maxSpeed};
+      const StageTimer noise("brick noise");
       return PieceInputs{std::move(piece),
                          makeWhiteNoisePiece(dims, brick.offset, brick.dims, seed)};
     };

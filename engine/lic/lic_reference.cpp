@@ -75,18 +75,23 @@ double maxVoxelSpeed(const VectorField& field) {
   return maxVoxelSpeedOverVoxels(field);
 }
 
+double maxVoxelSpeedOf(const glm::vec3* vectors, std::size_t count, glm::dvec3 scale) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const glm::vec3& v = vectors[i];
+    // The same arithmetic as maxMagnitude (volume.cpp): equal to it on isotropic grids.
+    const double x = v.x * scale.x, y = v.y * scale.y, z = v.z * scale.z;
+    largest = std::max(largest, std::sqrt(x * x + y * y + z * z));
+  }
+  return largest;
+}
+
 double maxVoxelSpeedOverVoxels(const VectorField& field) {
   const glm::dvec3 scale = voxelUnitScale(field.geometry);
   std::mutex mutex;
   double largest = 0.0;
   parallelChunks(field.vectors.size(), [&](std::size_t begin, std::size_t end) {
-    double local = 0.0;
-    for (std::size_t i = begin; i < end; ++i) {
-      const glm::vec3& v = field.vectors[i];
-      // The same arithmetic as maxMagnitude (volume.cpp): equal to it on isotropic grids.
-      const double x = v.x * scale.x, y = v.y * scale.y, z = v.z * scale.z;
-      local = std::max(local, std::sqrt(x * x + y * y + z * z));
-    }
+    const double local = maxVoxelSpeedOf(field.vectors.data() + begin, end - begin, scale);
     const std::scoped_lock lock(mutex);
     largest = std::max(largest, local);
   });

@@ -33,6 +33,9 @@ glm::dvec3 voxelUnitScale(const GridGeometry& geometry);
 double maxVoxelSpeed(const VectorField& field);
 // The largest |v * voxelUnitScale| over this field's own voxels, piece or not.
 double maxVoxelSpeedOverVoxels(const VectorField& field);
+// The same over `count` vectors with `scale` = voxelUnitScale(geometry), on this thread (a part of
+// a field read by threads).
+double maxVoxelSpeedOf(const glm::vec3* vectors, std::size_t count, glm::dvec3 scale);
 
 // Edge-clamped trilinear interpolation of a field at continuous voxel positions, in voxel units.
 class FieldSampler {
