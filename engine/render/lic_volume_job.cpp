@@ -123,16 +123,24 @@ Result<void> LicVolumeJob::setVolume(const ScalarVolume& volume, const LicParams
   job_.reset();
   if (front_ >= 2) front_ = 0;  // a full volume replaces a coarse one
   LIC3D_TRY(ensureVolume(front_, field.dims));
-  // RG16: the value, and whether the voxel is drawn.
-  std::vector<std::uint16_t> texels(2 * volume.values.size());
-  for (std::size_t i = 0; i < volume.values.size(); ++i) {
-    texels[2 * i] = static_cast<std::uint16_t>(
-        std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
-    texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
-  }
   vkQueueWaitIdle(context_->queue());  // frames may still read the shown volume
-  LIC3D_TRY(
-      uploadImage(*context_, shownVolume(), texels.data(), texels.size() * sizeof(std::uint16_t)));
+  {
+    const StageTimer timer("LIC volume upload");
+    // RG16: the value, and whether the voxel is drawn; converted on all threads straight into
+    // the staging buffer.
+    LIC3D_TRY(uploadImageFilled(
+        *context_, shownVolume(), volume.values.size() * 2 * sizeof(std::uint16_t),
+        [&](void* staging) {
+          auto* texels = static_cast<std::uint16_t*>(staging);
+          parallelChunks(volume.values.size(), [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
+              texels[2 * i] = static_cast<std::uint16_t>(
+                  std::lround(std::clamp(volume.values[i], 0.0f, 1.0f) * 65535.0f));
+              texels[2 * i + 1] = volume.drawn.empty() || volume.drawn[i] ? 65535 : 0;
+            }
+          });
+        }));
+  }
   LIC3D_TRY(submitAndWait(
       *context_,
       [&](VkCommandBuffer cmd) {
