@@ -6,8 +6,6 @@
 #include "io/volume_stream.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -84,38 +82,7 @@ struct ScalarVolumeStream::State {
   std::endian order = std::endian::little;  // the values' in the file
   std::atomic<std::uint64_t> written{0};    // voxels
   std::atomic<bool> finished{false};
-  // The file mapped for writing (shared): runs are copied into it from every thread at once. A
-  // positioned write takes the file's lock in the kernel, so writes of one file from several
-  // threads run one at a time (2.2-2.6 GB/s into tmpfs on the H100 host, docs/SCALE.md); page
-  // faults of a shared mapping do not. Null: positioned writes.
-  char* map = nullptr;
-  std::size_t mapBytes = 0;
-
-  void unmap() {
-    if (map) ::munmap(map, mapBytes);
-    map = nullptr;
-  }
-  ~State() { unmap(); }
 };
-
-namespace {
-
-// Maps `fd` (sized to `bytes`) for writing when the values go in the host's order and the
-// filesystem has room for every byte: a shared mapping's page faults on a full filesystem end
-// the process (SIGBUS) where a write would fail, so the room is checked first (and by the
-// commands before any work, checkFreeSpace). Null where it cannot be mapped.
-char* mapForWriting(int fd, std::uint64_t bytes, bool native) {
-  if (!native || bytes == 0) return nullptr;
-  struct statvfs fs {};
-  if (::fstatvfs(fd, &fs) != 0 ||
-      static_cast<std::uint64_t>(fs.f_bavail) * fs.f_frsize < bytes + (std::uint64_t{64} << 20))
-    return nullptr;
-  void* map = ::mmap(nullptr, static_cast<std::size_t>(bytes), PROT_READ | PROT_WRITE, MAP_SHARED,
-                     fd, 0);
-  return map == MAP_FAILED ? nullptr : static_cast<char*>(map);
-}
-
-}  // namespace
 
 ScalarVolumeStream::ScalarVolumeStream(std::unique_ptr<State> state) : state_(std::move(state)) {}
 ScalarVolumeStream::ScalarVolumeStream(ScalarVolumeStream&& other) noexcept = default;
@@ -178,8 +145,6 @@ Result<ScalarVolumeStream> ScalarVolumeStream::create(const std::filesystem::pat
   if (!failure.empty()) return cannotWrite(ErrorKind::Runtime, path, failure);
   auto state = std::unique_ptr<State>(new State{std::move(output), dims, geometry, header.size(),
                                                 format == ScalarFileFormat::Raw, order});
-  state->map = mapForWriting(state->output.fd(), size, order == std::endian::native);
-  state->mapBytes = static_cast<std::size_t>(size);
   return ScalarVolumeStream(std::move(state));
 }
 
@@ -197,9 +162,7 @@ Result<void> ScalarVolumeStream::writeRun(std::uint64_t first, const float* valu
                            gridText(state.dims) + " grid of " + std::to_string(total) + " voxels");
   const std::uint64_t at = state.dataOffset + first * sizeof(float);
   std::string failure;
-  if (state.map) {
-    std::memcpy(state.map + at, values, count * sizeof(float));
-  } else if (state.order == std::endian::native) {
+  if (state.order == std::endian::native) {
     failure = writeAllAt(state.output.fd(), values, count * sizeof(float), at);
   } else {
     std::vector<float> swapped;
@@ -256,7 +219,6 @@ Result<void> ScalarVolumeStream::finish() {
                            std::to_string(total) + " (" +
                            (written < total ? "a block is missing" : "blocks overlap") + ")");
   state.finished = true;
-  state.unmap();  // the pages stay in the file's cache; commit's fsync writes them out
   if (!state.raw) return state.output.commit();
   // The pair commits as one: both complete on disk under temporary names before either is
   // renamed, then the data, then the sidecar, two renames apart. A run cut short before the
