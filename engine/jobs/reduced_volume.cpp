@@ -42,24 +42,6 @@ ReducedVolume::ReducedVolume(Dims whole, const GridGeometry& geometry, int facto
   resizeLarge(volume_.values, voxelCount(volume_.dims));  // zeros, faulted in on all threads
 }
 
-Result<void> ReducedVolume::take(const Brick& brick, const ScalarVolume& lic) {
-  if (lic.dims != brick.dims) return inputError("a brick's LIC is not on the brick's grid");
-  if (!lic.drawn.empty() && volume_.drawn.empty()) volume_.drawn.assign(volume_.values.size(), 1);
-  // The first multiple of the factor at or after the brick's own first voxel, on each axis.
-  const Dims first = (brick.ownOffset + Dims(factor_ - 1)) / factor_ * factor_;
-  const Dims end = brick.ownOffset + brick.ownDims;
-  for (int z = first.z; z < end.z; z += factor_)
-    for (int y = first.y; y < end.y; y += factor_)
-      for (int x = first.x; x < end.x; x += factor_) {
-        const std::size_t from =
-            voxelIndex(lic.dims, x - brick.offset.x, y - brick.offset.y, z - brick.offset.z);
-        const std::size_t to = voxelIndex(volume_.dims, x / factor_, y / factor_, z / factor_);
-        volume_.values[to] = lic.values[from];
-        if (!lic.drawn.empty()) volume_.drawn[to] = lic.drawn[from];
-      }
-  return {};
-}
-
 VoxelTarget ReducedVolume::target(bool sparse) {
   if (sparse) volume_.drawn.assign(volume_.values.size(), 1);
   VoxelTarget target;

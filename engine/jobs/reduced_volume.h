@@ -30,8 +30,6 @@ class ReducedVolume {
  public:
   ReducedVolume(Dims whole, const GridGeometry& geometry, int factor);
 
-  // A brick's own voxels that fall on the reduced grid.
-  Result<void> take(const Brick& brick, const ScalarVolume& lic);
   // Where a LIC of the whole grid is read back to (LicVolumeOptions::target): the runs' voxels
   // that fall on the reduced grid, from any thread; a NaN (a voxel sparsity hides) is kept as not
   // drawn when `sparse`. The volume must outlive the target.
