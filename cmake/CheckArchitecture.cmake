@@ -64,14 +64,15 @@ if(CHECK STREQUAL "layers")
   endforeach()
   # The front ends: one folder per program over the command-line library (app/CMakeLists.txt).
   # Each may include the engine, the library options/ and its own folder; app/main.cpp (the lic3d
-  # program) also hands commands to cli/ and bench/; python/ uses only options/ and the engine.
-  set(programs options cli bench viewer)
+  # program) also hands commands to cli/ and bench/; python/ (the module) uses only options/, the
+  # engine and its own files.
+  set(programs options cli bench viewer python)
   set(allowed_options options)
   set(allowed_cli options cli)
   set(allowed_bench options bench)
   set(allowed_viewer options viewer)
   set(allowed_main options cli bench)
-  set(allowed_python options)
+  set(allowed_python options python)
   file(GLOB_RECURSE app_files RELATIVE "${SOURCE_DIR}"
        "${SOURCE_DIR}/app/*.h" "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/python/*.h"
        "${SOURCE_DIR}/python/*.cpp")

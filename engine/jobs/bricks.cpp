@@ -393,8 +393,12 @@ Result<void> computeWhole(const Context& context, const Session& session, Sessio
                           const LicVolumeOptions& options, const VoxelTarget& target,
                           const ProgressCallback& progress, LicVolumeRun& run) {
   const Clock::time_point start = Clock::now();
-  LIC3D_TRY_ASSIGN(LicRenderer renderer, LicRenderer::create(context, {session.precision}));
-  LIC3D_TRY(moveToTime(inputs, session, session.time, renderer, true));
+  std::optional<LicRenderer> made;
+  if (!options.renderer) {
+    LIC3D_TRY_ASSIGN(made, LicRenderer::create(context, {session.precision}));
+    LIC3D_TRY(moveToTime(inputs, session, session.time, *made, true));
+  }
+  LicRenderer& renderer = options.renderer ? *options.renderer : *made;
   DeviceShare& share = run.devices[0];
   const Dims dims = inputs.field.dims;
   LIC3D_TRY_ASSIGN(run.drawnVoxels, licOnDevice(context, renderer, session.lic, options.timeLic,

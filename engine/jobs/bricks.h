@@ -130,6 +130,10 @@ struct LicVolumeOptions {
   // LicVolumeRun::volume.
   const VoxelTarget* target = nullptr;
   bool timeLic = false;  // time each LIC dispatch with GPU timestamps (lic3d bench)
+  // A renderer on the first device that holds the inputs at session.time already (moveToTime):
+  // a grid made whole is made with it, keeping its pipelines, field textures and LIC volume
+  // between runs (the Python module's lic3d.Renderer). Null: one is made for the run.
+  LicRenderer* renderer = nullptr;
   // The field read brick by brick from this file (SessionInputs::field then holds only its grid
   // and geometry: streamedInputs), never whole.
   const FieldStream* stream = nullptr;

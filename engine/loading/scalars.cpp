@@ -19,6 +19,12 @@ bool isScalarFile(const std::string& name) {
   return extension == ".nrrd" || extension == ".nhdr";
 }
 
+const PointScalars* heldArray(const std::string& name, const SessionInputs& inputs) {
+  for (const PointScalars& array : inputs.arrays)
+    if (array.name == name) return &array;
+  return nullptr;
+}
+
 }  // namespace
 
 Result<std::optional<PointScalars>> loadScalars(const std::string& name, const std::string& key,
@@ -32,13 +38,16 @@ Result<std::optional<PointScalars>> loadScalars(const std::string& name, const s
                                    "alone; colour and opacity of a series follow speed");
   if (derived)
     return std::optional<PointScalars>(derivedScalars(inputs.field, *derived, inputs.info.unit));
-  if (!inputs.fromFile && !isScalarFile(name))
+  const PointScalars* held = heldArray(name, inputs);
+  if (!held && !inputs.fromFile && !isScalarFile(name))
     return parameterError(key, "'" + name + "' is not speed, vorticity or helicity, and " +
                                    session.field.field +
                                    " is an analytic field with no arrays; a scalar file "
                                    "(.nrrd, .nhdr) on its grid may be given instead");
   PointScalars scalars;
-  if (isScalarFile(name)) {
+  if (held) {
+    scalars = *held;
+  } else if (isScalarFile(name)) {
     LIC3D_TRY_ASSIGN(scalars, readPointScalars(name, {}));
   } else {
     LIC3D_TRY_ASSIGN(scalars, readPointScalars(session.field.field, name));
@@ -71,6 +80,7 @@ Result<void> checkScalarName(const std::string& name, const std::string& key,
   if (!inputs && !analytic) return {};  // the file's arrays are known once it is read
   std::vector<std::string> names = {"speed", "vorticity", "helicity"};
   if (inputs) {
+    if (heldArray(name, *inputs)) return {};
     for (const std::string& array : inputs->info.scalarNames)
       if (array == name) return {};
     names = scalarChoices(*inputs);
@@ -99,6 +109,7 @@ std::vector<std::string> scalarChoices(const SessionInputs& inputs) {
   for (const DerivedQuantity q :
        {DerivedQuantity::Speed, DerivedQuantity::Vorticity, DerivedQuantity::Helicity})
     names.emplace_back(enumName(q));
+  for (const PointScalars& array : inputs.arrays) names.push_back(array.name);
   for (const std::string& name : inputs.info.scalarNames) names.push_back(name);
   return names;
 }

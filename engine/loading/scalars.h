@@ -21,6 +21,7 @@ namespace lic3d {
 //   "speed"                  nullopt: the slices take |v| from the field texture itself
 //   "vorticity", "helicity"  derived from the field on the host
 //   a path ending in .nrrd or .nhdr   that file's scalar, which must have the field's grid
+//   an array of inputs.arrays  that array (held in memory by the front end)
 //   any other name           the point (or cell) scalar array of that name in the field's file
 // Resampled to the LIC grid with field.resolution. `key` names the parameter in errors
 // (view.color_by, view.opacity_by). A time series blended on the GPU has only speed.

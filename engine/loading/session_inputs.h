@@ -84,6 +84,7 @@ struct InputOptions {
   // than on the host: for front ends that need no host copy of the field (no CPU LIC, no derived
   // scalars, no RGBA volume).
   bool fieldOnDevice = false;
+  bool operator==(const InputOptions&) const = default;
 };
 
 // What the frames' fields come from: one steady field; a time-dependent analytic field sampled
@@ -103,6 +104,9 @@ struct SessionInputs {
   std::map<int, VectorField> hostSteps;  // blended on the host: at most the two in use
   int stepsRead = 0;                     // of the series, for the closing report
   std::vector<double> blendMs;           // GPU time of each blend
+  // Scalar arrays a front end holds in memory (the Python module's), on the field's grid before
+  // its resolution: colour and opacity name them as a file's arrays, and find them first.
+  std::vector<PointScalars> arrays;
 };
 
 // The field and noise of `session` at session.time (a series: the first step of the bracket
