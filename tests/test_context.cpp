@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
 #include <string>
 
 #include "gpu/vulkan_context.h"
@@ -60,6 +64,32 @@ TEST(Devices, UnknownSelectorIsAnInputErrorListingTheDevices) {
     EXPECT_NE(context.error().message.find(devices[0].name), std::string::npos)
         << context.error().message;
   }
+}
+
+// The text of a file, empty where it cannot be read.
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(Devices, TheDriverStaysLoadedOnceTheLastContextIsGone) {
+  // A driver loaded again for each context takes memory it never gives back (NVIDIA's static
+  // TLS), until no context finds a driver: it stays mapped, loaded once, for the process's life.
+  const char* driverFiles = std::getenv("VK_DRIVER_FILES");
+  if (!driverFiles) GTEST_SKIP() << "VK_DRIVER_FILES names no driver to look for";
+  std::smatch library;
+  const std::string manifest = fileText(driverFiles);
+  ASSERT_TRUE(
+      std::regex_search(manifest, library, std::regex("\"library_path\"\\s*:\\s*\"([^\"]+)\"")))
+      << driverFiles;
+  const std::string name = std::filesystem::path(library[1].str()).filename().string();
+  for (int i = 0; i < 3; ++i) {
+    const Result<Context> context = Context::create({});
+    ASSERT_TRUE(context.ok()) << context.error().message;
+    EXPECT_NE(fileText("/proc/self/maps").find(name), std::string::npos);
+  }
+  EXPECT_NE(fileText("/proc/self/maps").find(name), std::string::npos)
+      << name << " was unloaded with the last context";
 }
 
 TEST(Devices, NoDriverGivesAClearError) {

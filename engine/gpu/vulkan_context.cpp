@@ -157,8 +157,28 @@ DeviceInfo describeDevice(VkPhysicalDevice device, int index,
   return info;
 }
 
+// The drivers stay loaded for the life of the process, held by a bare instance made once and
+// never destroyed. Without it each instance loads the drivers again once the last one is gone,
+// and NVIDIA's driver (580.159) takes static TLS that it never gives back each time it is loaded:
+// after 30 instances, one after another in one process (a Python session's calls, a ParaView
+// session's filter runs), no instance finds a driver ("cannot allocate memory in static TLS
+// block"). Best effort: where it fails, the instance that follows says why.
+void keepDriversLoaded() {
+  static std::once_flag once;
+  static VkInstance kept = VK_NULL_HANDLE;
+  std::call_once(once, [] {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "lic3d";
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    if (vkCreateInstance(&info, nullptr, &kept) != VK_SUCCESS) kept = VK_NULL_HANDLE;
+  });
+}
+
 Result<VkInstance> createInstance(bool validation, const std::vector<const char*>& extraExtensions,
                                   bool* debugUtils) {
+  keepDriversLoaded();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "lic3d";
   app.pEngineName = "lic3d";
