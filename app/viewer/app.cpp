@@ -180,28 +180,54 @@ Result<void> App::handleActions(const Actions& actions) {
       stats_.message = "loaded " + ui_.sessionPath;
     }
   }
-  if (actions.renderImage && session_.twoD && planeView_ && planeView_->hasPicture()) {
-    const Result<void> written = writePng(ui_.imagePath, planeView_->image(session_.view));
-    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
-  } else if (actions.renderImage && renderer_->hasVolume()) {
-    // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
-    vkDeviceWaitIdle(context_->device());
-    ViewParams view = session_.view;
-    view.width = ui_.imageWidth;
-    view.height = ui_.imageHeight;
-    Result<RgbaImage> image = renderer_->render(*renderer_->shownParams(), view);
-    const Result<void> written =
-        image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
+  if (actions.renderImage) {
+    const Result<void> written = renderImage();
     stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
   }
   return {};
 }
 
+// Each picture carries the session that remakes it (`lic3d render --session picture.png`).
+Result<void> App::renderImage() {
+  if (session_.twoD) {
+    if (!planeView_ || !planeView_->hasPicture()) return runtimeError("no 2D picture to write yet");
+    const Session shown = shownSession(0, 0);
+    LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(shown, ui_.imagePath));
+    return writePng(ui_.imagePath, planeView_->image(shown.view), text);
+  }
+  if (!renderer_->hasVolume()) return runtimeError("no LIC volume to render yet");
+  // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
+  vkDeviceWaitIdle(context_->device());
+  const Session shown = shownSession(ui_.imageWidth, ui_.imageHeight);
+  LIC3D_TRY_ASSIGN(const RgbaImage image, renderer_->render(shown.lic, shown.view));
+  LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(shown, ui_.imagePath));
+  return writePng(ui_.imagePath, image, text);
+}
+
+Session App::shownSession(int width, int height) const {
+  Session shown = session_;
+  if (shown.twoD) {
+    // The plane's picture at the size it was made at (the view's, unless the session gives one).
+    if (planeView_ && planeView_->hasPicture()) {
+      shown.plane.width = planeView_->imageDims().x;
+      shown.plane.height = planeView_->imageDims().y;
+    }
+    return shown;
+  }
+  if (renderer_ && renderer_->shownParams()) shown.lic = *renderer_->shownParams();
+  shown.view.width = width;
+  shown.view.height = height;
+  return shown;
+}
+
+// A screenshot carries the session of the picture without the panels at the window's size: with
+// the panels hidden (H, Tab, --hide-ui) that is the screenshot itself.
 Result<void> App::saveScreenshot(const FramePresenter::Frame& f) {
   const std::string path = f.scriptedShot
                                ? options_.screenshot
                                : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
-  LIC3D_TRY(writePng(path, presenter_->screenshot(f)));
+  LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(f.shown, path));
+  LIC3D_TRY(writePng(path, presenter_->screenshot(f), text));
   stats_.message = "wrote " + path;
   if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", path.c_str());
   return {};
@@ -408,8 +434,19 @@ Result<bool> App::frame() {
                             ready;
   // It quits after this frame; run() saves the screenshot once the frame has finished.
   const bool quitAfterThis = scriptedShot;
+  if (scriptedShot && !stopped_ && !options_.renderImage.empty()) {
+    LIC3D_TRY(renderImage());
+    if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", ui_.imagePath.c_str());
+  }
   f.scriptedShot = scriptedShot && !options_.screenshot.empty();
   f.screenshot = actions.screenshot || f.scriptedShot;
+  if (f.screenshot) {
+    const VkExtent2D extent = presenter_->extent();
+    const int width = static_cast<int>(extent.width);
+    f.shown = shownSession(
+        session_.view.stereo == StereoMode::SideBySide ? std::max(width / 2, 1) : width,
+        static_cast<int>(extent.height));
+  }
 
   LIC3D_TRY(recordPicture(f, slot, layout));
   LIC3D_TRY_ASSIGN(const bool outOfDate,

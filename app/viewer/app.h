@@ -89,7 +89,14 @@ class App {
   void animate(double seconds);
   Result<void> handleActions(const Actions& actions);
   void updatePlane();
+  // The session that remakes the picture shown, at `width` x `height` pixels (per eye for
+  // side-by-side stereo; ignored in 2D, where the plane's picture keeps the size it was made at):
+  // the LIC parameters of the volume on screen, which lag the panels' while a new one is made.
+  Session shownSession(int width, int height) const;
   Result<void> saveScreenshot(const FramePresenter::Frame& f);
+  // "Render image": the picture shown without the UI, to ui_.imagePath with its session (in 3D
+  // at ui_.imageWidth x ui_.imageHeight, rendered offscreen; in 2D the plane's picture).
+  Result<void> renderImage();
   void saveRecovery() const;
 
   const cli::GlobalOptions& global_;

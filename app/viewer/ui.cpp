@@ -476,13 +476,14 @@ void filesPanel(UiState& ui, Actions& actions) {
   ImGui::SameLine();
   if (ImGui::Button("Load session")) actions.loadSession = true;
   if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
-  tip("The window as it is, UI included, to lic3d-screenshot-N.png");
+  tip("The window as it is, UI included, to lic3d-screenshot-N.png. It carries the session of "
+      "the picture without the panels: `lic3d render --session` remakes it");
   pathText("image", ui.imagePath, "PNG file for the image below");
   ImGui::InputInt2("size", &ui.imageWidth);
   ui.imageWidth = std::clamp(ui.imageWidth, 16, 16384);
   ui.imageHeight = std::clamp(ui.imageHeight, 16, 16384);
   if (ImGui::Button("Render image")) actions.renderImage = true;
-  tip("The volume alone at this size, as `lic3d render` would make it");
+  tip("The volume alone at this size, as `lic3d render --session` remakes it from the PNG");
 }
 
 // The app's state at the top of the panel: speed, the volume, the device, work in progress and
