@@ -5,12 +5,14 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -119,6 +121,12 @@ TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
   ASSERT_EQ(shot.height, kHeight);
+  // With the panels shown the screenshot carries the session of the picture without them, at
+  // the window's size.
+  Result<Session> carried = readSession(path("shot.png"));
+  ASSERT_TRUE(carried) << carried.error().message;
+  EXPECT_EQ(carried->view.width, kWidth);
+  EXPECT_EQ(carried->view.height, kHeight);
 
   EXPECT_GT(fraction(shot, kDockedVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9)
       << "the volume should cover the middle of the view left of the panels";
@@ -158,6 +166,65 @@ TEST_F(ViewerTest, HiddenUiLeavesOnlyTheVolume) {
   ASSERT_EQ(shot.width, kWidth) << r.output;
   EXPECT_EQ(fraction(shot, kPanel, imguiBlue), 0.0);
   EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
+}
+
+// The largest difference of a colour channel between two pictures of one size, and how many
+// channels differ by more than one level.
+struct PixelDifference {
+  int largest = 0;
+  std::size_t beyondOne = 0;
+};
+PixelDifference difference(const test::RgbaPixels& a, const test::RgbaPixels& b) {
+  PixelDifference d;
+  for (std::size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const int step = std::abs(static_cast<int>(a.rgba[i]) - static_cast<int>(b.rgba[i]));
+    d.largest = std::max(d.largest, step);
+    if (step > 1) ++d.beyondOne;
+  }
+  return d;
+}
+
+// Every PNG the app writes carries the session that made it, as the CLI's do: `lic3d render
+// --session` remakes a screenshot taken with the panels hidden, and the "Render image" picture,
+// pixel for pixel (within one level): the same camera and aspect at the window's size, the LIC
+// parameters shown, the same look.
+TEST_F(ViewerTest, ScreenshotsAndRenderedImagesRemakeThemselves) {
+  const CommandRun r = view(
+      "--grid 32 --azimuth 50 --elevation 20 --length 12 --hide-ui --frames 3 "
+      "--screenshot shot.png --render-image image.png --image-size 96x72",
+      "160x120");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  for (const auto& [name, width, height] :
+       {std::tuple<std::string, int, int>{"shot", 160, 120}, {"image", 96, 72}}) {
+    SCOPED_TRACE(name);
+    const test::RgbaPixels made = test::readRgbaPng(path(name + ".png"));
+    ASSERT_EQ(made.width, width) << r.output;
+    ASSERT_EQ(made.height, height);
+    EXPECT_GT(
+        fraction(made, {0, 0, width, height}, [](int r_, int g, int b) { return lit(r_, g, b); }),
+        0.2)
+        << "no volume in the picture";
+    Result<Session> carried = readSession(path(name + ".png"));
+    ASSERT_TRUE(carried) << carried.error().message;
+    EXPECT_EQ(carried->view.width, width);
+    EXPECT_EQ(carried->view.height, height);
+    EXPECT_EQ(carried->lic.length, 12);
+    EXPECT_EQ(test::decodePng(path(name + ".png")).text["Software"], "lic3d 0.1.0");
+
+    const CommandRun again =
+        runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+                 "' render -q --session " + name + ".png -o " + name + "-again.png");
+    ASSERT_EQ(again.status, 0) << again.output;
+    const test::RgbaPixels remade = test::readRgbaPng(path(name + "-again.png"));
+    ASSERT_EQ(remade.width, width);
+    ASSERT_EQ(remade.height, height);
+    const PixelDifference d = difference(made, remade);
+    std::printf("%s.png remade: largest difference %d, %zu channels beyond one level\n",
+                name.c_str(), d.largest, d.beyondOne);
+    EXPECT_LE(d.largest, 1) << d.beyondOne << " channels differ by more than one level";
+  }
 }
 
 // The app starts from a session and saves the same session back; `lic3d render` reads it.
