@@ -225,6 +225,24 @@ TEST_F(ViewerTest, ScreenshotsAndRenderedImagesRemakeThemselves) {
                 name.c_str(), d.largest, d.beyondOne);
     EXPECT_LE(d.largest, 1) << d.beyondOne << " channels differ by more than one level";
   }
+
+  // The app's contrast stretch follows the whole grid (its LIC makes every voxel), the CLI's the
+  // bricks the view can show (docs/VISIBLE_WORK.md): where the view hides whole bricks (a clip
+  // box) the remake takes --visible-work off.
+  const CommandRun clipped = view(
+      "--grid 32 --clip 0,0.5,0,1,0,1 --hide-ui --frames 3 --screenshot clipped.png", "160x120");
+  ASSERT_EQ(clipped.status, 0) << clipped.output;
+  const CommandRun again =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render -q --session clipped.png --visible-work off -o clipped-again.png");
+  ASSERT_EQ(again.status, 0) << again.output;
+  const test::RgbaPixels made = test::readRgbaPng(path("clipped.png"));
+  const test::RgbaPixels remade = test::readRgbaPng(path("clipped-again.png"));
+  ASSERT_EQ(remade.width, made.width);
+  ASSERT_EQ(remade.height, made.height);
+  const PixelDifference d = difference(made, remade);
+  std::printf("clipped.png remade with --visible-work off: largest difference %d\n", d.largest);
+  EXPECT_LE(d.largest, 1) << d.beyondOne << " channels differ by more than one level";
 }
 
 // The app starts from a session and saves the same session back; `lic3d render` reads it.
@@ -561,8 +579,9 @@ TEST_F(ViewerTest, ADeviceLostAgainAndAgainIsGivenUpOn) {
 }
 
 TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
-  for (const char* args : {"--window-size 10x10", "--screenshot shot.png",
-                           "--frames 2 --screenshot shot.jpg", "--session missing.json"}) {
+  for (const char* args :
+       {"--window-size 10x10", "--screenshot shot.png", "--frames 2 --screenshot shot.jpg",
+        "--session missing.json", "--render-image image.png", "--frames 2 --render-image x.jpg"}) {
     const CommandRun r =
         runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_VIEWER) + "' " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
