@@ -188,11 +188,11 @@ PixelDifference difference(const test::RgbaPixels& a, const test::RgbaPixels& b)
 // Every PNG the app writes carries the session that made it, as the CLI's do: `lic3d render
 // --session` remakes a screenshot taken with the panels hidden, and the "Render image" picture,
 // pixel for pixel (within one level): the same camera and aspect at the window's size, the LIC
-// parameters shown, the same look.
+// parameters shown, the same look, and the legend, title and axes the engine draws in both.
 TEST_F(ViewerTest, ScreenshotsAndRenderedImagesRemakeThemselves) {
   const CommandRun r = view(
-      "--grid 32 --azimuth 50 --elevation 20 --length 12 --hide-ui --frames 3 "
-      "--screenshot shot.png --render-image image.png --image-size 96x72",
+      "--grid 32 --azimuth 50 --elevation 20 --length 12 --legend --axes --title Remade "
+      "--hide-ui --frames 3 --screenshot shot.png --render-image image.png --image-size 96x72",
       "160x120");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;

@@ -23,6 +23,7 @@
 #include "viewer/frames.h"
 #include "viewer/input.h"
 #include "viewer/loading.h"
+#include "viewer/overlay.h"
 #include "viewer/plane.h"
 #include "viewer/script_progress.h"
 #include "viewer/soak.h"
@@ -82,8 +83,7 @@ class App {
   // Where the picture, its legend and its title go in the window: the part left of the panels.
   PictureLayout viewLayout() const;
   std::optional<LegendSpec> legendSpec() const;
-  void drawAxes(const PictureLayout& layout) const;
-  void drawAnnotations(const PictureLayout& layout) const;
+  void drawAnnotations(const PictureLayout& layout);
   // Colour and opacity follow the session's colorBy and opacityBy (loaded when they change).
   Result<void> updateScalars();
   void animate(double seconds);
@@ -152,6 +152,7 @@ class App {
   ScriptProgress progress_;
   int exitStatus_ = cli::kExitOk;
   Soak soak_;
+  AnnotationLayer annotation_;
 };
 
 }  // namespace lic3d::viewer
