@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "lic/annotation.h"
 
@@ -31,6 +32,12 @@ std::vector<OverlayRun> annotationRuns(const ViewParams& view, const LegendSpec*
   annotatePicture(white, view, legend, dims, geometry);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
+      // Most pixels hold no annotation: black stays 0 and white 255 (the alpha byte included).
+      const std::size_t i = 4 * (static_cast<std::size_t>(y) * width + x);
+      std::uint32_t onBlack, onWhite;
+      std::memcpy(&onBlack, &black.pixels[i], 4);
+      std::memcpy(&onWhite, &white.pixels[i], 4);
+      if (onBlack == 0u && onWhite == 0xffffffffu) continue;
       const glm::u8vec4 c = black.at(x, y), w = white.at(x, y);
       const float kept = (static_cast<float>(w.r - c.r) + static_cast<float>(w.g - c.g) +
                           static_cast<float>(w.b - c.b)) /
