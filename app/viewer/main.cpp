@@ -66,10 +66,11 @@ int main(int argc, char** argv) {
                  "Scripted run: save the window as this PNG before quitting (needs --frames). "
                  "Like every PNG the app writes it carries its session: `lic3d render --session "
                  "shot.png` remakes the picture without the panels, the same pixels when they "
-                 "were hidden (--hide-ui) and neither legend, title nor axes are drawn");
+                 "were hidden (--hide-ui; with a clip box or plane add --visible-work off)");
   app.add_option("--render-image", options.renderImage,
                  "Scripted run: also save what \"Render image\" makes (the picture without the "
-                 "UI, offscreen at --image-size) as this PNG before quitting (needs --frames)");
+                 "UI, offscreen at --image-size, carrying its session) as this PNG before "
+                 "quitting (needs --frames)");
 
   app.add_flag(
       "--soak", options.soak,
