@@ -312,7 +312,7 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlaneAtTheViewsResolution) {
   const std::string args =
       "--look dense --mode 2d --field circle --grid 64 --frames 3 --hide-ui "
       "--save-session out.json --screenshot shot.png";
-  const CommandRun r = view(args);
+  const CommandRun r = view(args + " --render-image plane.png");
   ASSERT_EQ(r.status, 0) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
@@ -333,6 +333,18 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlaneAtTheViewsResolution) {
   ASSERT_TRUE(saved) << saved.error().message;
   EXPECT_TRUE(saved->twoD);
   EXPECT_EQ(saved->plane.width, 0) << "the view's size is not the session's";
+  // "Render image" writes the plane's picture at the size it was made at, and carries that size:
+  // `lic3d render2d --session` remakes it.
+  const CommandRun again =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render2d -q --session plane.png -o plane-again.png");
+  ASSERT_EQ(again.status, 0) << again.output;
+  const test::RgbaPixels plane = test::readRgbaPng(path("plane.png"));
+  const test::RgbaPixels remade = test::readRgbaPng(path("plane-again.png"));
+  EXPECT_EQ(plane.width, kHeight);
+  ASSERT_EQ(remade.width, plane.width);
+  ASSERT_EQ(remade.height, plane.height);
+  EXPECT_LE(difference(plane, remade).largest, 1);
 
   // The same plane as a 64x64 image, stretched ten times: its grain is a fraction of the one
   // made at the view's pixels.
