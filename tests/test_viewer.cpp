@@ -5,12 +5,14 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -119,6 +121,12 @@ TEST_F(ViewerTest, ScriptedRunShowsTheVolumeAndThePanelsAndQuits) {
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
   ASSERT_EQ(shot.height, kHeight);
+  // With the panels shown the screenshot carries the session of the picture without them, at
+  // the window's size.
+  Result<Session> carried = readSession(path("shot.png"));
+  ASSERT_TRUE(carried) << carried.error().message;
+  EXPECT_EQ(carried->view.width, kWidth);
+  EXPECT_EQ(carried->view.height, kHeight);
 
   EXPECT_GT(fraction(shot, kDockedVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9)
       << "the volume should cover the middle of the view left of the panels";
@@ -158,6 +166,83 @@ TEST_F(ViewerTest, HiddenUiLeavesOnlyTheVolume) {
   ASSERT_EQ(shot.width, kWidth) << r.output;
   EXPECT_EQ(fraction(shot, kPanel, imguiBlue), 0.0);
   EXPECT_GT(fraction(shot, kVolume, [](int r_, int g, int b) { return lit(r_, g, b); }), 0.9);
+}
+
+// The largest difference of a colour channel between two pictures of one size, and how many
+// channels differ by more than one level.
+struct PixelDifference {
+  int largest = 0;
+  std::size_t beyondOne = 0;
+};
+PixelDifference difference(const test::RgbaPixels& a, const test::RgbaPixels& b) {
+  PixelDifference d;
+  for (std::size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const int step = std::abs(static_cast<int>(a.rgba[i]) - static_cast<int>(b.rgba[i]));
+    d.largest = std::max(d.largest, step);
+    if (step > 1) ++d.beyondOne;
+  }
+  return d;
+}
+
+// Every PNG the app writes carries the session that made it, as the CLI's do: `lic3d render
+// --session` remakes a screenshot taken with the panels hidden, and the "Render image" picture,
+// pixel for pixel (within one level): the same camera and aspect at the window's size, the LIC
+// parameters shown, the same look, and the legend, title and axes the engine draws in both.
+TEST_F(ViewerTest, ScreenshotsAndRenderedImagesRemakeThemselves) {
+  const CommandRun r = view(
+      "--grid 32 --azimuth 50 --elevation 20 --length 12 --legend --axes --title Remade "
+      "--hide-ui --frames 3 --screenshot shot.png --render-image image.png --image-size 96x72",
+      "160x120");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  for (const auto& [name, width, height] :
+       {std::tuple<std::string, int, int>{"shot", 160, 120}, {"image", 96, 72}}) {
+    SCOPED_TRACE(name);
+    const test::RgbaPixels made = test::readRgbaPng(path(name + ".png"));
+    ASSERT_EQ(made.width, width) << r.output;
+    ASSERT_EQ(made.height, height);
+    EXPECT_GT(
+        fraction(made, {0, 0, width, height}, [](int r_, int g, int b) { return lit(r_, g, b); }),
+        0.2)
+        << "no volume in the picture";
+    Result<Session> carried = readSession(path(name + ".png"));
+    ASSERT_TRUE(carried) << carried.error().message;
+    EXPECT_EQ(carried->view.width, width);
+    EXPECT_EQ(carried->view.height, height);
+    EXPECT_EQ(carried->lic.length, 12);
+    EXPECT_EQ(test::decodePng(path(name + ".png")).text["Software"], "lic3d 0.1.0");
+
+    const CommandRun again =
+        runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+                 "' render -q --session " + name + ".png -o " + name + "-again.png");
+    ASSERT_EQ(again.status, 0) << again.output;
+    const test::RgbaPixels remade = test::readRgbaPng(path(name + "-again.png"));
+    ASSERT_EQ(remade.width, width);
+    ASSERT_EQ(remade.height, height);
+    const PixelDifference d = difference(made, remade);
+    std::printf("%s.png remade: largest difference %d, %zu channels beyond one level\n",
+                name.c_str(), d.largest, d.beyondOne);
+    EXPECT_LE(d.largest, 1) << d.beyondOne << " channels differ by more than one level";
+  }
+
+  // The app's contrast stretch follows the whole grid (its LIC makes every voxel), the CLI's the
+  // bricks the view can show (docs/VISIBLE_WORK.md): where the view hides whole bricks (a clip
+  // box) the remake takes --visible-work off.
+  const CommandRun clipped = view(
+      "--grid 32 --clip 0,0.5,0,1,0,1 --hide-ui --frames 3 --screenshot clipped.png", "160x120");
+  ASSERT_EQ(clipped.status, 0) << clipped.output;
+  const CommandRun again =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render -q --session clipped.png --visible-work off -o clipped-again.png");
+  ASSERT_EQ(again.status, 0) << again.output;
+  const test::RgbaPixels made = test::readRgbaPng(path("clipped.png"));
+  const test::RgbaPixels remade = test::readRgbaPng(path("clipped-again.png"));
+  ASSERT_EQ(remade.width, made.width);
+  ASSERT_EQ(remade.height, made.height);
+  const PixelDifference d = difference(made, remade);
+  std::printf("clipped.png remade with --visible-work off: largest difference %d\n", d.largest);
+  EXPECT_LE(d.largest, 1) << d.beyondOne << " channels differ by more than one level";
 }
 
 // The app starts from a session and saves the same session back; `lic3d render` reads it.
@@ -227,7 +312,7 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlaneAtTheViewsResolution) {
   const std::string args =
       "--look dense --mode 2d --field circle --grid 64 --frames 3 --hide-ui "
       "--save-session out.json --screenshot shot.png";
-  const CommandRun r = view(args);
+  const CommandRun r = view(args + " --render-image plane.png");
   ASSERT_EQ(r.status, 0) << r.output;
   const test::RgbaPixels shot = test::readRgbaPng(path("shot.png"));
   ASSERT_EQ(shot.width, kWidth) << r.output;
@@ -248,6 +333,18 @@ TEST_F(ViewerTest, TwoDModeShowsThePictureOfAPlaneAtTheViewsResolution) {
   ASSERT_TRUE(saved) << saved.error().message;
   EXPECT_TRUE(saved->twoD);
   EXPECT_EQ(saved->plane.width, 0) << "the view's size is not the session's";
+  // "Render image" writes the plane's picture at the size it was made at, and carries that size:
+  // `lic3d render2d --session` remakes it.
+  const CommandRun again =
+      runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_EXECUTABLE) +
+               "' render2d -q --session plane.png -o plane-again.png");
+  ASSERT_EQ(again.status, 0) << again.output;
+  const test::RgbaPixels plane = test::readRgbaPng(path("plane.png"));
+  const test::RgbaPixels remade = test::readRgbaPng(path("plane-again.png"));
+  EXPECT_EQ(plane.width, kHeight);
+  ASSERT_EQ(remade.width, plane.width);
+  ASSERT_EQ(remade.height, plane.height);
+  EXPECT_LE(difference(plane, remade).largest, 1);
 
   // The same plane as a 64x64 image, stretched ten times: its grain is a fraction of the one
   // made at the view's pixels.
@@ -494,8 +591,9 @@ TEST_F(ViewerTest, ADeviceLostAgainAndAgainIsGivenUpOn) {
 }
 
 TEST_F(ViewerTest, BadArgumentsExitWithStatusTwoBeforeOpeningAWindow) {
-  for (const char* args : {"--window-size 10x10", "--screenshot shot.png",
-                           "--frames 2 --screenshot shot.jpg", "--session missing.json"}) {
+  for (const char* args :
+       {"--window-size 10x10", "--screenshot shot.png", "--frames 2 --screenshot shot.jpg",
+        "--session missing.json", "--render-image image.png", "--frames 2 --render-image x.jpg"}) {
     const CommandRun r =
         runShell("cd '" + folder().string() + "' && '" + std::string(LIC3D_VIEWER) + "' " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.output;

@@ -2,7 +2,7 @@
 // The desktop app's parts that need no window (app/viewer/panel_logic.h, plane.h,
 // script_progress.h, drag.h): how a long path is shortened, which control sets the opacity, the
 // preset file the panel names, the 2D picture's size for the view, a scripted run's progress, and
-// which LIC a slider's drag asks for.
+// which LIC a slider's drag asks for; the annotation layer the app draws over its picture.
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
@@ -13,7 +13,9 @@
 
 #include "core/look.h"
 #include "core/view_params.h"
+#include "lic/annotation.h"
 #include "viewer/drag.h"
+#include "viewer/overlay.h"
 #include "viewer/panel_logic.h"
 #include "viewer/plane.h"
 #include "viewer/script_progress.h"
@@ -250,6 +252,47 @@ TEST(ViewerParts, ThePanelShowsTheMedianFrameTimesAndTheLastLicsTime) {
   EXPECT_EQ(frameTimeText(16.66, 9.123, 60), "frame 16.7 ms CPU, 9.12 ms GPU (median of 60)");
   EXPECT_EQ(licTimeText(2.914, 2, {256, 256, 256}), "LIC 2.91 ms GPU, coarse 256x256x256");
   EXPECT_EQ(licTimeText(23.1, 1, {512, 512, 512}), "LIC 23.10 ms GPU, full 512x512x512");
+}
+
+// The app draws the legend, the title and the axes as a layer of runs over its picture (ImGui
+// blends them): over any picture they give what `lic3d render` draws into it (annotatePicture),
+// within one level, on a dark and on a light background, where lines and text cross each other
+// and the volume.
+TEST(ViewerParts, TheAnnotationLayerDrawsWhatTheCliDraws) {
+  for (const glm::vec3 background : {glm::vec3(0.0f), glm::vec3(1.0f)}) {
+    ViewParams view;
+    view.width = 240;
+    view.height = 180;
+    view.background = background;
+    view.color = ColorMode::Magnitude;
+    view.legend = view.axes = true;
+    view.title = "Tornado";
+    const LegendSpec legend{[](float t) { return glm::vec3(t, 0.5f, 1.0f - t); }, 0.0f, 0.3f,
+                            "speed [m/s]"};
+    const Dims dims{32, 24, 16};
+    const GridGeometry geometry;
+    // A busy picture beneath: every level of every channel somewhere.
+    RgbaImage picture;
+    picture.width = view.width;
+    picture.height = view.height;
+    picture.pixels.resize(static_cast<std::size_t>(view.width) * view.height * 4);
+    for (std::size_t i = 0; i < picture.pixels.size(); ++i)
+      picture.pixels[i] = static_cast<std::uint8_t>((i * 37 + i / 4 * 11) % 256);
+    RgbaImage cli = picture, app = picture;
+    annotatePicture(cli, view, &legend, dims, geometry);
+    const std::vector<OverlayRun> runs = annotationRuns(view, &legend, dims, geometry);
+    blendRuns(app, runs);
+    int largest = 0, changed = 0;
+    for (std::size_t i = 0; i < cli.pixels.size(); ++i) {
+      if (i % 4 == 3) continue;
+      largest = std::max(largest, std::abs(cli.pixels[i] - app.pixels[i]));
+      changed += cli.pixels[i] != picture.pixels[i];
+    }
+    EXPECT_GT(changed, 2000) << "no annotation drawn";
+    EXPECT_LE(largest, 1);
+    // The layer holds the annotation only: runs, not a pixel each.
+    EXPECT_LT(runs.size(), static_cast<std::size_t>(changed));
+  }
 }
 
 }  // namespace

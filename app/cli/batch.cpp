@@ -369,18 +369,6 @@ Result<void> encodeVideo(const fs::path& ffmpeg, const FramePlan& plan, double f
   return {};
 }
 
-Result<PngText> pngText(const Session& session, const std::string& path) {
-  PngText text;
-  try {
-    text.emplace_back(kPngSessionKey, sessionToJson(sessionForFolder(
-                                          session, std::filesystem::path(path).parent_path())));
-  } catch (const std::exception& e) {
-    return inputError(std::string("cannot record the parameters in the PNG as JSON: ") + e.what());
-  }
-  text.emplace_back("Software", kVersionText);
-  return text;
-}
-
 Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
                                                    const BatchOptions& options,
                                                    const SessionOptions& inputs) {

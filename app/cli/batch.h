@@ -2,8 +2,9 @@
 #pragma once
 // Batch work of `lic3d render` and `lic3d compute`: animations (turntable, bias cycle) and the
 // frame ranges that split them over job arrays, outputs chosen by file extension (LIC and RGBA
-// volumes, a LIC slice as 16-bit PNG), the parameters every PNG carries, video through ffmpeg,
-// and the one-line JSON summary scripts read. docs/BATCH.md is the user's side of this file.
+// volumes, a LIC slice as 16-bit PNG), video through ffmpeg, and the one-line JSON summary
+// scripts read. The session every PNG carries is pngText (options/session_options.h).
+// docs/BATCH.md is the user's side of this file.
 
 #include <filesystem>
 #include <optional>
@@ -96,11 +97,6 @@ Result<std::filesystem::path> findFfmpeg();
 // `fps`, through a temporary file renamed when ffmpeg succeeded. A failing ffmpeg is Runtime.
 Result<void> encodeVideo(const std::filesystem::path& ffmpeg, const FramePlan& plan, double fps,
                          const std::string& video);
-
-// The PNG text of a picture made from `session` for the PNG `path`: kPngSessionKey (sessionToJson,
-// its file paths relative to the PNG's folder) and "Software". An error when the session cannot
-// be written as JSON (a file name that is not UTF-8).
-Result<PngText> pngText(const Session& session, const std::string& path);
 
 // compute's -o: .nrrd, .vti or .raw (the LIC volume, float32, with spacing and origin; voxels that
 // sparsity hides are NaN), or a slice PNG (checkComputeOutput below). Written by every thread at

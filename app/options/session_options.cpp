@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -501,6 +502,18 @@ Result<void> checkOutputPath(const std::string& path, const char* extension) {
     ::unlink(probe.c_str());
   }
   return {};
+}
+
+Result<PngText> pngText(const Session& session, const std::string& path) {
+  PngText text;
+  try {
+    text.emplace_back(kPngSessionKey, sessionToJson(sessionForFolder(
+                                          session, std::filesystem::path(path).parent_path())));
+  } catch (const std::exception& e) {
+    return inputError(std::string("cannot record the parameters in the PNG as JSON: ") + e.what());
+  }
+  text.emplace_back("Software", kVersionText);
+  return text;
 }
 
 }  // namespace lic3d::cli

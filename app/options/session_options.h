@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The flags shared by the subcommands (and the viewer), bound straight to a Session: the engine's
-// parameter structs plus where the field and the noise come from.
+// parameter structs plus where the field and the noise come from; and the session every PNG of
+// the CLI and the app carries (pngText).
 
 #include <cstdint>
 #include <initializer_list>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/session.h"
 #include "core/volume.h"
+#include "io/png_writer.h"
 #include "loading/session_inputs.h"
 
 // CLI11 is heavy to compile: only the files that declare options include it (options/flags.h).
@@ -146,5 +148,11 @@ Result<std::vector<float>> parseFloatList(const std::string& text, const char* f
 
 // The output must have `extension` and lie in an existing folder: checked before any work.
 Result<void> checkOutputPath(const std::string& path, const char* extension);
+
+// The PNG text of a picture made from `session` for the PNG `path`, in every PNG lic3d and the
+// app write: kPngSessionKey (sessionToJson, its file paths relative to the PNG's folder) and
+// "Software". An error when the session cannot be written as JSON (a file name that is not
+// UTF-8).
+Result<PngText> pngText(const Session& session, const std::string& path);
 
 }  // namespace lic3d::cli

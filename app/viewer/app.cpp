@@ -66,68 +66,31 @@ PictureLayout App::viewLayout() const {
                     static_cast<int>(panelWidth(ui_, static_cast<float>(extent.width)));
   const std::optional<LegendSpec> legend = stopped_ ? std::nullopt : legendSpec();
   return pictureLayout(std::max(width, 1), static_cast<int>(extent.height),
-                       legend ? &*legend : nullptr, session_.view.title);
+                       legend ? &*legend : nullptr, session_.view.title, session_.view.fontSize);
 }
 
-// The box's edges and axis ticks (--axes) around the volume, in ImGui's background layer.
-void App::drawAxes(const PictureLayout& layout) const {
-  if (!session_.view.axes || !renderer_->hasVolume() ||
-      session_.view.stereo == StereoMode::SideBySide)
-    return;
-  const glm::ivec4 area = layout.picture;
-  const VolumeFacts facts = renderer_->volumeFacts();
-  const SliceFrame frame =
-      makeSliceFrame(session_.view, facts, Eye::Mono,
-                     {static_cast<std::uint32_t>(area.z), static_cast<std::uint32_t>(area.w)});
-  const BoxAxes axes = projectBoxAxes(frame.camera, session_.view.camera.orthographic,
-                                      frame.halfExtent, facts.dims, facts.geometry, area);
-  const ImU32 line = imguiInk(session_.view.background, 160);
-  const ImU32 ink = imguiInk(session_.view.background);
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  for (const auto& [a, b] : axes.edges) draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), line);
-  for (const AxisTick& tick : axes.ticks) {
-    const glm::vec2 end = tick.at + 5.0f * tick.outward;
-    const ImVec2 size = ImGui::CalcTextSize(tick.text.c_str());
-    // The label's centre beyond the tick, far enough along the outward direction to clear it;
-    // a label that would leave the view (a close camera) is left out with its tick.
-    const glm::vec2 centre = end + (0.5f * std::abs(tick.outward.x) * size.x +
-                                    0.5f * std::abs(tick.outward.y) * size.y + 3.0f) *
-                                       tick.outward;
-    const glm::vec2 low = centre - 0.5f * glm::vec2(size.x, size.y);
-    if (low.x < static_cast<float>(area.x) || low.y < static_cast<float>(area.y) ||
-        low.x + size.x > static_cast<float>(area.x + area.z) ||
-        low.y + size.y > static_cast<float>(area.y + area.w))
-      continue;
-    draw->AddLine(ImVec2(tick.at.x, tick.at.y), ImVec2(end.x, end.y), ink);
-    draw->AddText(ImVec2(low.x, low.y), ink, tick.text.c_str());
-  }
-  for (const AxisLabel& label : axes.labels) {
-    // Beyond its edge's tick labels, on the line through the middle of the edge along its
-    // outward normal (as the CLI's pictures place it, lic/legend.h): at its own axis.
-    float band = 0.0f;
-    for (const AxisTick& tick : axes.ticks)
-      if (tick.axis == label.axis) {
-        const ImVec2 t = ImGui::CalcTextSize(tick.text.c_str());
-        band = std::max(band, std::abs(tick.outward.x) * t.x + std::abs(tick.outward.y) * t.y);
-      }
-    const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
-    const float half =
-        0.5f * (std::abs(label.outward.x) * size.x + std::abs(label.outward.y) * size.y);
-    const glm::vec2 centre = label.at + (5.0f + 6.0f + band + half) * label.outward;
-    const float x = std::clamp(centre.x - 0.5f * size.x, static_cast<float>(area.x) + 2.0f,
-                               std::max(2.0f, static_cast<float>(area.x + area.z) - size.x - 2.0f));
-    const float y = std::clamp(centre.y - 0.5f * size.y, static_cast<float>(area.y) + 2.0f,
-                               std::max(2.0f, static_cast<float>(area.y + area.w) - size.y - 2.0f));
-    draw->AddText(ImVec2(x, y), ink, label.text.c_str());
-  }
-}
-
-void App::drawAnnotations(const PictureLayout& layout) const {
+// The legend, the title and the box axes as `lic3d render` draws them, in ImGui's background
+// layer over the picture (viewer/overlay.h).
+void App::drawAnnotations(const PictureLayout& layout) {
   if (stopped_) return;
-  if (const std::optional<LegendSpec> legend = legendSpec())
-    drawLegend(*legend, layout.legend, session_.view.background);
-  drawTitle(session_.view.title, layout.title, session_.view.background);
-  if (!session_.twoD) drawAxes(layout);
+  const std::optional<LegendSpec> legend = legendSpec();
+  ViewParams view = session_.view;
+  view.axes = view.axes && !session_.twoD && renderer_->hasVolume();
+  if (!legend && view.title.empty() && !view.axes) return;
+  // The annotated area: the picture and the legend's column, left of the panels.
+  const int width =
+      layout.legend.z > 0 ? layout.legend.x + layout.legend.z : layout.picture.x + layout.picture.z;
+  view.width = view.stereo == StereoMode::SideBySide ? std::max(width / 2, 1) : width;
+  view.height = static_cast<int>(presenter_->extent().height);
+  const VolumeFacts facts = renderer_->volumeFacts();
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  for (const OverlayRun& run :
+       annotation_.runs(view, legend ? &*legend : nullptr, facts.dims, facts.geometry))
+    draw->AddRectFilled(
+        ImVec2(static_cast<float>(run.x0) / scale.x, static_cast<float>(run.y) / scale.y),
+        ImVec2(static_cast<float>(run.x1) / scale.x, static_cast<float>(run.y + 1) / scale.y),
+        IM_COL32(run.color.r, run.color.g, run.color.b, run.color.a));
 }
 
 void App::animate(double seconds) {
@@ -180,28 +143,54 @@ Result<void> App::handleActions(const Actions& actions) {
       stats_.message = "loaded " + ui_.sessionPath;
     }
   }
-  if (actions.renderImage && session_.twoD && planeView_ && planeView_->hasPicture()) {
-    const Result<void> written = writePng(ui_.imagePath, planeView_->image(session_.view));
-    stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
-  } else if (actions.renderImage && renderer_->hasVolume()) {
-    // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
-    vkDeviceWaitIdle(context_->device());
-    ViewParams view = session_.view;
-    view.width = ui_.imageWidth;
-    view.height = ui_.imageHeight;
-    Result<RgbaImage> image = renderer_->render(*renderer_->shownParams(), view);
-    const Result<void> written =
-        image ? writePng(ui_.imagePath, *image) : Result<void>(image.error());
+  if (actions.renderImage) {
+    const Result<void> written = renderImage();
     stats_.message = written ? "wrote " + ui_.imagePath : written.error().message;
   }
   return {};
 }
 
+// Each picture carries the session that remakes it (`lic3d render --session picture.png`).
+Result<void> App::renderImage() {
+  if (session_.twoD) {
+    if (!planeView_ || !planeView_->hasPicture()) return runtimeError("no 2D picture to write yet");
+    const Session shown = shownSession(0, 0);
+    LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(shown, ui_.imagePath));
+    return writePng(ui_.imagePath, planeView_->image(shown.view), text);
+  }
+  if (!renderer_->hasVolume()) return runtimeError("no LIC volume to render yet");
+  // The offscreen render shares the renderer's uniform slots with the frames: wait for them.
+  vkDeviceWaitIdle(context_->device());
+  const Session shown = shownSession(ui_.imageWidth, ui_.imageHeight);
+  LIC3D_TRY_ASSIGN(const RgbaImage image, renderer_->render(shown.lic, shown.view));
+  LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(shown, ui_.imagePath));
+  return writePng(ui_.imagePath, image, text);
+}
+
+Session App::shownSession(int width, int height) const {
+  Session shown = session_;
+  if (shown.twoD) {
+    // The plane's picture at the size it was made at (the view's, unless the session gives one).
+    if (planeView_ && planeView_->hasPicture()) {
+      shown.plane.width = planeView_->imageDims().x;
+      shown.plane.height = planeView_->imageDims().y;
+    }
+    return shown;
+  }
+  if (renderer_ && renderer_->shownParams()) shown.lic = *renderer_->shownParams();
+  shown.view.width = width;
+  shown.view.height = height;
+  return shown;
+}
+
+// A screenshot carries the session of the picture without the panels at the window's size: with
+// the panels hidden (H, Tab, --hide-ui) that is the screenshot itself.
 Result<void> App::saveScreenshot(const FramePresenter::Frame& f) {
   const std::string path = f.scriptedShot
                                ? options_.screenshot
                                : "lic3d-screenshot-" + std::to_string(++screenshots_) + ".png";
-  LIC3D_TRY(writePng(path, presenter_->screenshot(f)));
+  LIC3D_TRY_ASSIGN(const PngText text, cli::pngText(f.shown, path));
+  LIC3D_TRY(writePng(path, presenter_->screenshot(f), text));
   stats_.message = "wrote " + path;
   if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", path.c_str());
   return {};
@@ -408,8 +397,19 @@ Result<bool> App::frame() {
                             ready;
   // It quits after this frame; run() saves the screenshot once the frame has finished.
   const bool quitAfterThis = scriptedShot;
+  if (scriptedShot && !stopped_ && !options_.renderImage.empty()) {
+    LIC3D_TRY(renderImage());
+    if (!global_.quiet) std::fprintf(stderr, "lic3d-view: wrote %s\n", ui_.imagePath.c_str());
+  }
   f.scriptedShot = scriptedShot && !options_.screenshot.empty();
   f.screenshot = actions.screenshot || f.scriptedShot;
+  if (f.screenshot) {
+    const VkExtent2D extent = presenter_->extent();
+    const int width = static_cast<int>(extent.width);
+    f.shown = shownSession(
+        session_.view.stereo == StereoMode::SideBySide ? std::max(width / 2, 1) : width,
+        static_cast<int>(extent.height));
+  }
 
   LIC3D_TRY(recordPicture(f, slot, layout));
   LIC3D_TRY_ASSIGN(const bool outOfDate,

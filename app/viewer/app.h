@@ -23,6 +23,7 @@
 #include "viewer/frames.h"
 #include "viewer/input.h"
 #include "viewer/loading.h"
+#include "viewer/overlay.h"
 #include "viewer/plane.h"
 #include "viewer/script_progress.h"
 #include "viewer/soak.h"
@@ -82,14 +83,20 @@ class App {
   // Where the picture, its legend and its title go in the window: the part left of the panels.
   PictureLayout viewLayout() const;
   std::optional<LegendSpec> legendSpec() const;
-  void drawAxes(const PictureLayout& layout) const;
-  void drawAnnotations(const PictureLayout& layout) const;
+  void drawAnnotations(const PictureLayout& layout);
   // Colour and opacity follow the session's colorBy and opacityBy (loaded when they change).
   Result<void> updateScalars();
   void animate(double seconds);
   Result<void> handleActions(const Actions& actions);
   void updatePlane();
+  // The session that remakes the picture shown, at `width` x `height` pixels (per eye for
+  // side-by-side stereo; ignored in 2D, where the plane's picture keeps the size it was made at):
+  // the LIC parameters of the volume on screen, which lag the panels' while a new one is made.
+  Session shownSession(int width, int height) const;
   Result<void> saveScreenshot(const FramePresenter::Frame& f);
+  // "Render image": the picture shown without the UI, to ui_.imagePath with its session (in 3D
+  // at ui_.imageWidth x ui_.imageHeight, rendered offscreen; in 2D the plane's picture).
+  Result<void> renderImage();
   void saveRecovery() const;
 
   const cli::GlobalOptions& global_;
@@ -145,6 +152,7 @@ class App {
   ScriptProgress progress_;
   int exitStatus_ = cli::kExitOk;
   Soak soak_;
+  AnnotationLayer annotation_;
 };
 
 }  // namespace lic3d::viewer

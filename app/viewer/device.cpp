@@ -94,6 +94,11 @@ Result<void> App::init() {
   LIC3D_TRY(createGpu());
 
   ui_.visible = !options_.hideUi;
+  if (!options_.renderImage.empty()) ui_.imagePath = options_.renderImage;
+  if (options_.imageWidth > 0) {
+    ui_.imageWidth = options_.imageWidth;
+    ui_.imageHeight = options_.imageHeight;
+  }
   ui_.pendingField = session_.field;
   ui_.pendingNoise = session_.noise;
   ui_.pendingTimeSteps = session_.timeSteps;

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/rgba_image.h"
+#include "core/session.h"
 #include "gpu/resources.h"
 #include "gpu/timer.h"
 #include "gpu/vulkan_context.h"
@@ -43,6 +44,7 @@ class FramePresenter {
     bool licBegan = false;  // they began that job
     bool screenshot = false;
     bool scriptedShot = false;  // the screenshot asked for by --screenshot
+    Session shown;              // what the screenshot shows: the session its PNG carries
   };
 
   // `context` (made with the window's surface) must outlive the presenter.

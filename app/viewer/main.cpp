@@ -45,8 +45,9 @@ int main(int argc, char** argv) {
       "2D mode: the plane of a 3D field, AXIS or AXIS:INDEX (default z, the middle layer)");
   std::string imageSize;
   app.add_option("--image-size", imageSize,
-                 "2D mode: the LIC image WxH in pixels (default: the view's size, one image "
-                 "pixel per screen pixel)");
+                 "The size WxH of the image \"Render image\" writes: in 2D mode the LIC image "
+                 "(default: the view's size, one image pixel per screen pixel), in 3D the "
+                 "offscreen picture (default 1920x1080)");
 
   viewer::ViewerOptions options;
   std::string windowSize;
@@ -62,7 +63,14 @@ int main(int argc, char** argv) {
                  "(from 100 frames on, progress on stderr)")
       ->check(CLI::Range(1, 1000000));
   app.add_option("--screenshot", options.screenshot,
-                 "Scripted run: save the window as this PNG before quitting (needs --frames)");
+                 "Scripted run: save the window as this PNG before quitting (needs --frames). "
+                 "Like every PNG the app writes it carries its session: `lic3d render --session "
+                 "shot.png` remakes the picture without the panels, the same pixels when they "
+                 "were hidden (--hide-ui; with a clip box or plane add --visible-work off)");
+  app.add_option("--render-image", options.renderImage,
+                 "Scripted run: also save what \"Render image\" makes (the picture without the "
+                 "UI, offscreen at --image-size, carrying its session) as this PNG before "
+                 "quitting (needs --frames)");
 
   app.add_flag(
       "--soak", options.soak,
@@ -105,6 +113,13 @@ int main(int argc, char** argv) {
     }
     if (auto r = checkOutputPath(options.screenshot, ".png"); !r) return reportError(r.error());
   }
+  if (!options.renderImage.empty()) {
+    if (options.frames == 0) {
+      std::fprintf(stderr, "lic3d-view: error: --render-image needs --frames\n");
+      return kExitBadInput;
+    }
+    if (auto r = checkOutputPath(options.renderImage, ".png"); !r) return reportError(r.error());
+  }
   if (options.dragLic > 0 && options.frames == 0) {
     std::fprintf(stderr, "lic3d-view: error: --drag-lic needs --frames\n");
     return kExitBadInput;
@@ -123,6 +138,8 @@ int main(int argc, char** argv) {
     if (!size) return reportError(size.error());
     inputs.session.plane.width = size->x;
     inputs.session.plane.height = size->y;
+    options.imageWidth = size->x;
+    options.imageHeight = size->y;
   }
 
   try {

@@ -476,13 +476,14 @@ void filesPanel(UiState& ui, Actions& actions) {
   ImGui::SameLine();
   if (ImGui::Button("Load session")) actions.loadSession = true;
   if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
-  tip("The window as it is, UI included, to lic3d-screenshot-N.png");
+  tip("The window as it is, UI included, to lic3d-screenshot-N.png. It carries the session of "
+      "the picture without the panels: `lic3d render --session` remakes it");
   pathText("image", ui.imagePath, "PNG file for the image below");
   ImGui::InputInt2("size", &ui.imageWidth);
   ui.imageWidth = std::clamp(ui.imageWidth, 16, 16384);
   ui.imageHeight = std::clamp(ui.imageHeight, 16, 16384);
   if (ImGui::Button("Render image")) actions.renderImage = true;
-  tip("The volume alone at this size, as `lic3d render` would make it");
+  tip("The volume alone at this size, as `lic3d render --session` remakes it from the PNG");
 }
 
 // The app's state at the top of the panel: speed, the volume, the device, work in progress and
@@ -515,15 +516,6 @@ void statusSection(const Stats& stats) {
   if (!stats.message.empty()) ImGui::TextWrapped("%s", stats.message.c_str());
   ImGui::Separator();
 }
-
-}  // namespace
-
-ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha) {
-  const glm::u8vec4 c = inkFor(background, alpha);
-  return IM_COL32(c.r, c.g, c.b, c.a);
-}
-
-namespace {
 
 void helpPanel(UiState& ui) {
   if (!ui.help) return;
@@ -571,50 +563,6 @@ void alertDialog(const Stats& stats, Actions& actions) {
 float panelWidth(const UiState& ui, float displayWidth) {
   if (!ui.visible) return 0.0f;
   return std::floor(std::min(380.0f, 0.45f * displayWidth));
-}
-
-void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background) {
-  if (area.z <= 0 || area.w <= 0) return;
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  const ImU32 ink = imguiInk(background);
-  const float font = ImGui::GetFontSize();
-  const float x0 = static_cast<float>(area.x) + 0.5f * font, x1 = x0 + font;
-  const float y0 = static_cast<float>(area.y) + static_cast<float>(area.w) / 6.0f + 2.0f * font;
-  const float y1 = static_cast<float>(area.y + area.w) - static_cast<float>(area.w) / 6.0f;
-  if (y1 - y0 < 8.0f) return;
-  const int steps = 64;
-  for (int i = 0; i < steps; ++i) {
-    const float t0 = static_cast<float>(i) / steps, t1 = static_cast<float>(i + 1) / steps;
-    const glm::vec3 c = glm::clamp(legend.color(1.0f - 0.5f * (t0 + t1)), 0.0f, 1.0f);
-    draw->AddRectFilled(ImVec2(x0, y0 + t0 * (y1 - y0)), ImVec2(x1, y0 + t1 * (y1 - y0)),
-                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
-  }
-  draw->AddRect(ImVec2(x0 - 1, y0 - 1), ImVec2(x1 + 1, y1 + 1), ink);
-  const float right = static_cast<float>(area.x + area.z) - 2.0f;
-  char label[32];
-  for (const double tick : niceTicks(legend.low, legend.high, 6)) {
-    const float t = legend.high > legend.low
-                        ? static_cast<float>((tick - legend.low) / (legend.high - legend.low))
-                        : 0.0f;
-    const float y = y1 - t * (y1 - y0);
-    std::snprintf(label, sizeof label, "%.4g", tick);
-    draw->AddLine(ImVec2(x1, y), ImVec2(x1 + 4, y), ink);
-    const float width = ImGui::CalcTextSize(label).x;
-    draw->AddText(ImVec2(std::min(x1 + 6, right - width), y - 0.5f * font), ink, label);
-  }
-  const float width = ImGui::CalcTextSize(legend.title.c_str()).x;
-  draw->AddText(
-      ImVec2(std::max(static_cast<float>(area.x), std::min(x0, right - width)), y0 - 2.0f * font),
-      ink, legend.title.c_str());
-}
-
-void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background) {
-  if (title.empty() || area.z <= 0) return;
-  const ImVec2 size = ImGui::CalcTextSize(title.c_str());
-  ImGui::GetBackgroundDrawList()->AddText(
-      ImVec2(static_cast<float>(area.x) + 0.5f * (static_cast<float>(area.z) - size.x),
-             static_cast<float>(area.y) + 0.5f * (static_cast<float>(area.w) - size.y)),
-      imguiInk(background), title.c_str());
 }
 
 Actions drawUi(Session& session, UiState& ui, const Stats& stats) {

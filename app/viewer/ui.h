@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The desktop app's Dear ImGui panels: every parameter of a Session, with tooltips, plus the
-// stats overlay, the colour legend and the help panel. Panels edit the session in place; the
-// caller compares sessions to decide between reloading, recomputing and redrawing.
+// stats overlay and the help panel (the legend is the engine's: viewer/overlay.h). Panels edit the
+// session in place; the caller compares sessions to decide between reloading, recomputing and
+// redrawing.
 
 #include <imgui.h>
 
@@ -88,14 +89,6 @@ struct UiState {
 // The panels are docked at the right, the full height of the window; the picture takes the
 // rest. Their width in pixels for a window `displayWidth` wide (0 while hidden).
 float panelWidth(const UiState& ui, float displayWidth);
-
-// The legend (its colour bar, ticks and title) and the title drawn by ImGui into the rectangles
-// of a PictureLayout (x, y, width, height in pixels), in the ink that stands out from
-// `background`.
-void drawLegend(const LegendSpec& legend, glm::ivec4 area, glm::vec3 background);
-// lic/legend.h's inkFor as an ImGui colour.
-ImU32 imguiInk(glm::vec3 background, std::uint8_t alpha = 255);
-void drawTitle(const std::string& title, glm::ivec4 area, glm::vec3 background);
 
 // A text box for a file's path. While it is not edited, a path wider than the box shows its file
 // name with the directory elided in the middle (elidePath), the whole path in its tooltip; a

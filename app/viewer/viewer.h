@@ -19,6 +19,11 @@ struct ViewerOptions {
   // the window closes.
   int frames = 0;
   std::string screenshot;
+  // Scripted runs: also save the picture "Render image" makes (offscreen, without the UI) to this
+  // PNG, at `imageWidth` x `imageHeight` in 3D (0: the panel's size), before quitting.
+  std::string renderImage;
+  int imageWidth = 0;
+  int imageHeight = 0;
   // On quit, save the session (every parameter as shown) to this JSON file, if given.
   std::string saveSession;
   // With `frames`: change a LIC or a view parameter every 10 frames and resize the window every
