@@ -14,14 +14,7 @@ set(source ${CMAKE_SOURCE_DIR})
 
 # Documentation, laid out as in the repository so that its links hold.
 install(FILES ${source}/README.md ${source}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
-# Debian wants the licence as share/doc/<package>/copyright: in the packages only (EXCLUDE_FROM_ALL
-# leaves it to an install of the component, which is what cpack does).
-install(FILES ${source}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright
-        COMPONENT lic3d EXCLUDE_FROM_ALL)
-if(TARGET Lic3D)
-  install(FILES ${source}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/lic3d-paraview
-          RENAME copyright COMPONENT paraview EXCLUDE_FROM_ALL)
-endif()
+# The Debian packages add share/doc/<package>/copyright and changelog.gz (Lic3dPackaging.cmake).
 file(GLOB doc_pages CONFIGURE_DEPENDS ${source}/docs/*.md)
 install(FILES ${doc_pages} ${source}/docs/paraview_lic3d.py
         DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)

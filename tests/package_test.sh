@@ -1,18 +1,22 @@
 #!/bin/sh
 # SPDX-License-Identifier: BSD-3-Clause
-# The Debian packages as a user gets them: cpack makes them from a build folder, dpkg installs
-# them into a scratch root (the machine's own packages untouched), and the installed lic3d
-# renders a picture on lavapipe. Checks what is installed (programs, man pages, completion,
-# desktop entry, icon, documentation, the ParaView plugin and Python module where they were
-# built) and what is not (headers, static libraries, also from a plain `cmake --install`). ctest
-# runs it as package.deb:
-#   sh tests/package_test.sh CMAKE CPACK BUILD_DIR LAVAPIPE_ICD
+# The Debian packages as a user gets them: cpack makes them from a build folder, lintian finds
+# no errors or warnings in them (where it is installed), their copyright files are
+# machine-readable, dpkg installs them into a scratch root (the machine's own packages
+# untouched), and the installed lic3d renders a picture on lavapipe. Checks what is installed
+# (programs, man pages, completion, desktop entry, icon, documentation, the ParaView plugin and
+# Python module where they were built) and what is not (headers, static libraries, also from a
+# plain `cmake --install`). ctest runs it as package.deb:
+#   sh tests/package_test.sh CMAKE CPACK BUILD_DIR LAVAPIPE_ICD static|shared
+# the last saying whether the build links zlib and libpng statically
+# (LIC3D_STATIC_SYSTEM_LIBRARIES).
 set -eu
 
 cmake=$1
 cpack=$2
 build=$3
 icd=$4
+system_libraries=$5
 work=$(mktemp -d "${TMPDIR:-/tmp}/lic3d-package.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 1' INT TERM
@@ -32,6 +36,31 @@ main=$(find "$work/packages" -maxdepth 1 -name 'lic3d_*.deb')
 for deb in "$work"/packages/*.deb; do
   echo "package.deb: $(basename "$deb"), $(wc -c <"$deb") bytes"
 done
+
+# lintian, Debian's checker of packages against its policy, where it is installed
+# (cmake/install-deps.sh installs it): no errors and no warnings. README.md, "Install", lists the
+# informational tags that remain.
+# A build that links zlib and libpng statically makes packages that carry them, which lintian
+# rejects (embedded-library): that tag is left out there, and the test says so.
+if command -v lintian >/dev/null; then
+  suppress=""
+  if [ "$system_libraries" = static ]; then
+    suppress="--suppress-tags embedded-library"
+    echo "package.deb: lintian's embedded-library left out: this build links zlib and" \
+      "libpng statically (LIC3D_STATIC_SYSTEM_LIBRARIES=ON); packages for others come from" \
+      "the package preset"
+  fi
+  # shellcheck disable=SC2086
+  if ! lintian --fail-on error,warning $suppress "$work"/packages/*.deb >"$work/lintian.log" 2>&1
+  then
+    cat "$work/lintian.log" >&2
+    fail "lintian found errors or warnings"
+  fi
+  echo "package.deb: lintian: no errors or warnings ($(lintian --version))"
+else
+  echo "package.deb: lintian is not installed, the packages are NOT checked with it" \
+    "(cmake/install-deps.sh installs it)"
+fi
 
 # A scratch root with an empty dpkg database. Its dependencies (libc, Vulkan...) are the
 # machine's, so dpkg is told not to look for them there.
@@ -53,7 +82,61 @@ expect() {
 }
 expect bin/lic3d
 expect share/doc/lic3d/README.md
-expect share/doc/lic3d/copyright
+
+# Each package's copyright file is machine-readable (DEP-5), which lintian checks in source
+# packages only: the Format line first, a "Files: *" paragraph, Copyright and License in every
+# Files paragraph, and the text of every licence they name, in the paragraph or in a License
+# paragraph of its own. Each also has Debian's changelog.
+dep5() {
+  awk '
+    function fault(why) { printf "%s:%d: %s\n", FILENAME, FNR, why; bad = 1 }
+    function paragraph(  n, names, i) {
+      if ("Files" in f) {
+        if (f["Files"] == "*") all = 1
+        if (!("Copyright" in f) || !("License" in f))
+          fault("Files paragraph without Copyright or License")
+        n = split(f["License"], names, / (and|or) /)
+        for (i = 1; i <= n; i++) if (!text) named[names[i]] = FNR; else defined[names[i]] = 1
+      } else if ("License" in f) {
+        if (!text) fault("License paragraph without the licence text")
+        defined[f["License"]] = 1
+      } else if (paragraphs > 0 && length(f) > 0) {
+        fault("a paragraph with neither Files nor License")
+      }
+      if (length(f) > 0) paragraphs++
+      delete f; field = ""; text = 0
+    }
+    FNR == 1 && $0 != "Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/" {
+      fault("the first line is not the Format line")
+    }
+    /^$/ { paragraph(); next }
+    /^[ \t]/ {
+      if (field == "") fault("a continuation line outside a field")
+      if (field == "License") text = 1
+      next
+    }
+    /^[A-Za-z][A-Za-z-]*:/ {
+      field = substr($0, 1, index($0, ":") - 1)
+      value = substr($0, index($0, ":") + 1)
+      sub(/^[ \t]+/, "", value); sub(/[ \t]+$/, "", value)
+      f[field] = value
+      next
+    }
+    { fault("neither a field nor a continuation line") }
+    END {
+      paragraph()
+      if (!all) fault("no \"Files: *\" paragraph")
+      for (name in named) if (!(name in defined)) fault("no text of the licence " name)
+      exit bad
+    }' "$1"
+}
+for deb in "$work"/packages/*.deb; do
+  package=$(dpkg-deb -f "$deb" Package)
+  expect "share/doc/$package/changelog.gz"
+  expect "share/doc/$package/copyright"
+  dep5 "$usr/share/doc/$package/copyright" >&2 ||
+    fail "/usr/share/doc/$package/copyright is not machine-readable (DEP-5)"
+done
 expect share/bash-completion/completions/lic3d
 if [ -x "$build/lic3d-view" ]; then
   expect bin/lic3d-view
