@@ -62,6 +62,9 @@ else()
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libc6, libgcc-s1, libstdc++6, libvulkan1")
   set(CPACK_DEBIAN_LIC3D_PACKAGE_DEPENDS
       "${CPACK_DEBIAN_PACKAGE_DEPENDS}, libglfw3, libstb0, libpng16-16, zlib1g")
+  if(LIC3D_WITH_OPENVDB)  # lic3d writes .vdb (engine/CMakeLists.txt)
+    string(APPEND CPACK_DEBIAN_LIC3D_PACKAGE_DEPENDS ", libopenvdb10.0, libtbb12")
+  endif()
   set(CPACK_DEBIAN_PARAVIEW_PACKAGE_DEPENDS "${CPACK_DEBIAN_PACKAGE_DEPENDS}, zlib1g, paraview")
 endif()
 # ffmpeg encodes --video; the Python module needs numpy.
