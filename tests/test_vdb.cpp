@@ -156,6 +156,18 @@ TEST_F(VdbTest, ColourScalarsOnlyForVdbAndFailedWritesLeaveNothing) {
   file.open();
   EXPECT_EQ(file.getGrids()->front()->activeVoxelCount(), 8u);
   EXPECT_EQ(listFolder(), std::vector<std::string>{"dense.vdb"});
+
+  // The free-space check's bound holds for values that do not compress, every voxel active.
+  const Dims dims{37, 20, 9};
+  std::vector<float> noise(voxelCount(dims));
+  std::uint32_t state = 12345;
+  for (float& v : noise) v = static_cast<float>((state = state * 1664525u + 1013904223u) >> 8);
+  VdbVolume noisy{.dims = dims, .geometry = kGeometry};
+  noisy.grids = {{.name = "x", .values = noise}, {.name = "y", .values = noise}};
+  ASSERT_TRUE(writeVdb(path("noise.vdb"), noisy).ok());
+  EXPECT_LE(std::filesystem::file_size(path("noise.vdb")), vdbFileBytesBound(dims, 2));
+  EXPECT_GT(std::filesystem::file_size(path("noise.vdb")), 2 * voxelCount(dims) * sizeof(float));
+  EXPECT_LE(std::filesystem::file_size(path("dense.vdb")), vdbFileBytesBound({2, 2, 2}, 1));
 }
 
 }  // namespace

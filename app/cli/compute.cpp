@@ -25,6 +25,7 @@
 #include "io/field_stream.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
+#include "io/vdb_write.h"
 #include "io/volume_stream.h"
 #include "jobs/bricks.h"
 #include "lic/analytic_fields.h"
@@ -155,11 +156,8 @@ Result<void> checkSliceIndex(const std::optional<LicSlice>& slice, Dims dims) {
 // 1 KiB for the slice it records).
 OutputBytes outputBytes(const ComputeOptions& options, const std::optional<LicSlice>& slice,
                         Dims dims) {
-  // A .vdb holds at most three float grids (LIC, speed, a colour scalar), all voxels active, and
-  // OpenVDB's tree: a mask and an offset a leaf of 512 voxels.
-  if (isVdbOutput(options.output))
-    return {options.output, voxelCount(dims) * 3 * (sizeof(float) + 1) + (std::uint64_t{1} << 16),
-            true};
+  // A .vdb holds at most three float grids (LIC, speed, a colour scalar).
+  if (isVdbOutput(options.output)) return {options.output, vdbFileBytesBound(dims, 3), true};
   if (!slice) return {options.output, volumeFileBytes(dims, sizeof(float))};
   const int across = slice->axis == 0 ? 1 : 0;
   const int up = slice->axis == 2 ? 1 : 2;

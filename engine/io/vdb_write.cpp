@@ -19,6 +19,11 @@ namespace {
 // apart on all threads, one tree each, then merged.
 constexpr int kSlabDepth = openvdb::FloatTree::LeafNodeType::DIM;
 
+// vdbFileBytesBound counts the nodes of this layout.
+static_assert(openvdb::FloatTree::LeafNodeType::DIM == 8);
+static_assert(openvdb::FloatTree::RootNodeType::ChildNodeType::ChildNodeType::DIM == 128);
+static_assert(openvdb::FloatTree::RootNodeType::ChildNodeType::DIM == 4096);
+
 Result<void> checkVdbVolume(const std::filesystem::path& path, const VdbVolume& volume) {
   const std::size_t count = voxelCount(volume.dims);
   if (count == 0) return fileError(path, "the grid " + gridText(volume.dims) + " is empty");

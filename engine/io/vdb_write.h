@@ -41,6 +41,18 @@ struct VdbVolume {
   std::string creator;  // the file's "creator" metadata of each grid
 };
 
+// At most the bytes writeVdb writes for `grids` float grids on `dims`, all voxels active (the
+// free-space check before a run): OpenVDB's float tree has leaves of 8^3 voxels under nodes of
+// 16^3 leaves under nodes of 32^3 of those (vdb_write.cpp checks it), and stores per node its
+// masks and every value, compressed or, where that does not help, as it is.
+inline std::uint64_t vdbFileBytesBound(Dims dims, int grids) {
+  const auto nodes = [&](int size) { return std::uint64_t{voxelCount((dims + size - 1) / size)}; };
+  const std::uint64_t leaves = nodes(8) * (512 * 4 + 256);
+  const std::uint64_t lower = nodes(128) * (2 * 512 + 4096 * 4 + 256);
+  const std::uint64_t upper = nodes(4096) * (2 * 4096 + 32768 * 4 + 256);
+  return static_cast<std::uint64_t>(grids) * (leaves + lower + upper + 4096) + 1024;
+}
+
 // Writes the volume to `path` atomically (a temporary file renamed over it; never a half-written
 // file). Errors name the path: InvalidInput for grids that do not match `dims`, names that repeat
 // or a path that cannot be written, Runtime for a failure while writing, and InvalidInput saying
