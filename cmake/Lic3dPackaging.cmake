@@ -63,7 +63,7 @@ else()
   set(CPACK_DEBIAN_LIC3D_PACKAGE_DEPENDS
       "${CPACK_DEBIAN_PACKAGE_DEPENDS}, libglfw3, libstb0, libpng16-16, zlib1g")
   if(LIC3D_WITH_OPENVDB)  # lic3d writes .vdb (engine/CMakeLists.txt)
-    string(APPEND CPACK_DEBIAN_LIC3D_PACKAGE_DEPENDS ", libopenvdb10.0, libtbb12")
+    string(APPEND CPACK_DEBIAN_LIC3D_PACKAGE_DEPENDS ", libopenvdb10.0, libtbb12, libimath-3-1-29")
   endif()
   set(CPACK_DEBIAN_PARAVIEW_PACKAGE_DEPENDS "${CPACK_DEBIAN_PACKAGE_DEPENDS}, zlib1g, paraview")
 endif()
