@@ -129,6 +129,26 @@ TEST_F(VdbTest, ComputeWritesTheNrrdsLicWithSpeedAndColourGridsEmptySpaceInactiv
   EXPECT_LT(drawn, voxelCount(kDims) * 3 / 4);
 }
 
+TEST_F(VdbTest, ASessionColouredByAScalarAddsItsGrid) {
+  const CommandRun render = run(
+      "render --field tornado --grid 16 --color-by vorticity --width 32 --height 32 -q -o a.png");
+  ASSERT_EQ(render.status, 0) << render.output;
+  const CommandRun compute = run("compute --session a.png -q -o s.vdb");
+  ASSERT_EQ(compute.status, 0) << compute.output;
+  openvdb::io::File file(path("s.vdb").string());
+  file.open();
+  const openvdb::GridPtrVecPtr grids = file.getGrids();
+  const openvdb::FloatGrid::Ptr vorticity = floatGrid(grids, "vorticity");
+  ASSERT_TRUE(vorticity);
+  EXPECT_EQ(vorticity->activeVoxelCount(), floatGrid(grids, "LIC")->activeVoxelCount());
+  float largest = 0.0f;
+  for (auto v = vorticity->cbeginValueOn(); v; ++v) {
+    ASSERT_GE(*v, 0.0f);  // |curl v|
+    largest = std::max(largest, *v);
+  }
+  EXPECT_GT(largest, 0.0f);
+}
+
 TEST_F(VdbTest, ColourScalarsOnlyForVdbAndFailedWritesLeaveNothing) {
   const CommandRun nrrd = run("compute --field tornado --grid 16 -o x.nrrd --color-by vorticity");
   EXPECT_EQ(nrrd.status, 2) << nrrd.output;
