@@ -14,6 +14,7 @@ packages="
   clang-14 libclang-rt-14-dev clang-format-14
   ffmpeg
   lintian
+  libopenvdb-dev
   pybind11-dev python3-dev python3-numpy
   paraview paraview-dev python3-paraview openmpi-bin libopenmpi-dev libdouble-conversion-dev
 "

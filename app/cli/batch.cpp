@@ -21,6 +21,7 @@
 #include "io/file_util.h"
 #include "io/nrrd.h"
 #include "io/session_file.h"
+#include "io/vdb_write.h"
 #include "io/volume_stream.h"
 #include "io/vti.h"
 
@@ -373,6 +374,9 @@ Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
                                                    const BatchOptions& options,
                                                    const SessionOptions& inputs) {
   const std::string extension = extensionOf(path);
+  if (given(inputs.colorBy) && extension != ".vdb")
+    return inputError("--color-by " + inputs.session.view.colorBy +
+                      ": compute writes the scalar as a grid of a .vdb; use -o FILE.vdb");
   if (options.slice.given()) {
     LIC3D_TRY_ASSIGN(const LicSlice slice, parseSlice(options.slice.text));
     if (extension != ".png")
@@ -388,9 +392,13 @@ Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
   if (extension == ".png")
     return inputError(
         "-o " + path +
-        ": compute writes the LIC volume (.nrrd, .vti or .raw); for a 16-bit PNG of one "
+        ": compute writes the LIC volume (.nrrd, .vti, .raw or .vdb); for a 16-bit PNG of one "
         "slice add --slice AXIS[:INDEX], e.g. --slice z:64");
-  LIC3D_TRY(checkOutputPathOneOf(path, "-o", {".nrrd", ".vti", ".raw"}));
+  LIC3D_TRY(checkOutputPathOneOf(path, "-o", {".nrrd", ".vti", ".raw", ".vdb"}));
+  if (extension == ".vdb" && !openVdbAvailable())
+    return inputError("-o " + path +
+                      ": this lic3d was built without OpenVDB (LIC3D_OPENVDB), so it cannot write "
+                      ".vdb; write .nrrd, .vti or .raw");
   return std::optional<LicSlice>();
 }
 

@@ -109,9 +109,10 @@ struct LicSlice {
   int index = -1;
 };
 Result<LicSlice> parseSlice(const std::string& text);
-// Checks compute's output before any work: a volume (.nrrd, .vti; nothing returned) or a slice
-// PNG, whose slice is --slice or, with a session (a slice PNG remaking itself), the slice the
-// session records (its plane's axis and index).
+// Checks compute's output before any work: a volume (.nrrd, .vti, .raw, .vdb; nothing returned)
+// or a slice PNG, whose slice is --slice or, with a session (a slice PNG remaking itself), the
+// slice the session records (its plane's axis and index). .vdb is refused in a build without
+// OpenVDB, and --color-by (a grid of the .vdb) with any other output.
 Result<std::optional<LicSlice>> checkComputeOutput(const std::string& path,
                                                    const BatchOptions& options,
                                                    const SessionOptions& inputs);

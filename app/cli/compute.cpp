@@ -15,6 +15,7 @@
 
 #include "cli/command_support.h"
 #include "cli/commands.h"
+#include "cli/compute_vdb.h"
 #include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/stage_times.h"
@@ -24,6 +25,7 @@
 #include "io/field_stream.h"
 #include "io/file_util.h"
 #include "io/png_writer.h"
+#include "io/vdb_write.h"
 #include "io/volume_stream.h"
 #include "jobs/bricks.h"
 #include "lic/analytic_fields.h"
@@ -43,9 +45,11 @@
 namespace lic3d::cli {
 namespace {
 
-// compute's output: the volume (.nrrd, .vti) or one slice (.png with --slice).
+// compute's output: the volume (.nrrd, .vti, .raw; .vdb with `vdb`) or one slice (.png with
+// --slice).
 Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<LicSlice> slice,
-                                const ScalarVolume& volume) {
+                                const ScalarVolume& volume, const VdbScalars* vdb) {
+  if (vdb) return writeLicVdb(options.output, volume, *vdb);
   if (!slice) {
     StageTimer timer("volume write");
     LIC3D_TRY(writeLicVolumeFile(options.output, volume));
@@ -63,8 +67,10 @@ Result<void> writeComputeOutput(const ComputeOptions& options, std::optional<Lic
 std::optional<FieldStream> openFieldStream(const ComputeOptions& options,
                                            const std::vector<Context>& contexts) {
   const Session& session = options.inputs.session;
+  // A .vdb is made from the whole volume and field on the host.
   if (parseEnum<AnalyticField>(session.field.field) || session.timeSteps > 0 ||
-      !session.field.resolution.empty() || !isWhiteNoise(session.noise))
+      !session.field.resolution.empty() || !isWhiteNoise(session.noise) ||
+      isVdbOutput(options.output))
     return std::nullopt;
   Result<FieldStream> stream = FieldStream::open(session.field.field, session.field.array);
   if (!stream) return std::nullopt;
@@ -119,7 +125,8 @@ class StreamedOutput {
 Result<SessionInputs> readComputeInputs(const GlobalOptions& global, const ComputeOptions& options,
                                         std::optional<FieldStream>& stream,
                                         std::optional<StreamScan>& scan) {
-  if (!stream) return loadInputs(options, !options.cpu);
+  // The speed grid of a .vdb needs the field on the host.
+  if (!stream) return loadInputs(options, !options.cpu && !isVdbOutput(options.output));
   {
     Progress progress("reading " + stream->path().string() + " (" + gridText(stream->dims()) +
                           ") for its largest speed",
@@ -149,6 +156,8 @@ Result<void> checkSliceIndex(const std::optional<LicSlice>& slice, Dims dims) {
 // 1 KiB for the slice it records).
 OutputBytes outputBytes(const ComputeOptions& options, const std::optional<LicSlice>& slice,
                         Dims dims) {
+  // A .vdb holds at most three float grids (LIC, speed, a colour scalar).
+  if (isVdbOutput(options.output)) return {options.output, vdbFileBytesBound(dims, 3), true};
   if (!slice) return {options.output, volumeFileBytes(dims, sizeof(float))};
   const int across = slice->axis == 0 ? 1 : 0;
   const int up = slice->axis == 2 ? 1 : 2;
@@ -159,8 +168,8 @@ OutputBytes outputBytes(const ComputeOptions& options, const std::optional<LicSl
 
 // compute --cpu: the CPU reference at the session's time, then the output.
 int computeOnHost(const GlobalOptions& global, const ComputeOptions& options,
-                  const std::optional<LicSlice>& slice, SessionInputs& inputs, RunSummary& summary,
-                  Clock::time_point start) {
+                  const std::optional<LicSlice>& slice, SessionInputs& inputs,
+                  const VdbScalars* vdb, RunSummary& summary, Clock::time_point start) {
   const Session& session = options.inputs.session;
   if (inputs.series) {
     Result<VectorField> field = hostFieldAt(inputs, session, session.time);
@@ -170,7 +179,7 @@ int computeOnHost(const GlobalOptions& global, const ComputeOptions& options,
   }
   const Result<ScalarVolume> volume = computeOnCpu(inputs, session.lic, global.quiet);
   if (!volume) return reportError(volume.error());
-  if (auto r = writeComputeOutput(options, slice, *volume); !r) return reportError(r.error());
+  if (auto r = writeComputeOutput(options, slice, *volume, vdb); !r) return reportError(r.error());
   if (!global.quiet)
     std::fprintf(stderr, "lic3d: wrote %s (%s, on the CPU)\n", options.output.c_str(),
                  fieldText(session.field, inputs).c_str());
@@ -185,7 +194,7 @@ int computeOnHost(const GlobalOptions& global, const ComputeOptions& options,
 int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
                      const std::optional<LicSlice>& slice, const std::vector<Context>& contexts,
                      FieldStream* stream, const StreamScan* scan, SessionInputs& inputs,
-                     RunSummary& summary) {
+                     const VdbScalars* vdb, RunSummary& summary) {
   const Session& session = options.inputs.session;
   const std::string deviceNames = devicesText(contexts);
   Progress progress("LIC " + gridText(inputs.field.dims) + " on " + deviceNames, global.quiet);
@@ -210,7 +219,7 @@ int computeOnDevices(const GlobalOptions& global, const ComputeOptions& options,
   }
   Result<void> done = !run       ? Result<void>(run.error())
                       : streamed ? streamed->finish()
-                                 : writeComputeOutput(options, slice, run->volume);
+                                 : writeComputeOutput(options, slice, run->volume, vdb);
   if (!done) return reportError(done.error());
   const bool sparse = session.lic.sparsity.distribution != SparsityDistribution::None;
   const std::optional<double> hidden =
@@ -284,15 +293,24 @@ int runCompute(const GlobalOptions& global, const ComputeOptions& options,
   if (!knownGrid)
     if (auto r = checkFreeSpace({outputBytes(options, *slice, inputs->field.dims)}); !r)
       return fail(r.error());
+  // The grids of a .vdb besides the LIC, before the work.
+  std::optional<VdbScalars> vdb;
+  if (isVdbOutput(options.output)) {
+    Result<VdbScalars> loaded = loadVdbScalars(options, *inputs);
+    if (!loaded) return fail(fromSessionFile(loaded.error(), options.inputs));
+    vdb = std::move(*loaded);
+  }
+  const VdbScalars* vdbScalars = vdb ? &*vdb : nullptr;
   RunSummary summary = makeSummary("compute", session.field, *inputs);
   summary.readByBricks = stream.has_value();
   summary.outputs = {options.output};
 
-  if (options.cpu) return computeOnHost(global, options, *slice, *inputs, summary, start);
+  if (options.cpu)
+    return computeOnHost(global, options, *slice, *inputs, vdbScalars, summary, start);
 
   const Context& device = contexts.front();
   int status = computeOnDevices(global, options, *slice, contexts, stream ? &*stream : nullptr,
-                                scan ? &*scan : nullptr, *inputs, summary);
+                                scan ? &*scan : nullptr, *inputs, vdbScalars, summary);
   status = finish(contexts, status);
   if (status == kExitOk) {
     summary.device = device.deviceInfo().name;

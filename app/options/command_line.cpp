@@ -39,9 +39,14 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   BatchOptions& computeBatch = line->computeBatch;
   CLI::App* computeCommand = line->computeCommand = app.add_subcommand(
       "compute",
-      "Compute a LIC volume and write it as float32 NRRD or VTK image data (.vti), "
-      "or one slice of it as a 16-bit PNG");
+      "Compute a LIC volume and write it as float32 NRRD, VTK image data (.vti) or OpenVDB "
+      "(.vdb), or one slice of it as a 16-bit PNG");
   addComputeOptions(*computeCommand, compute, "lic3d.nrrd");
+  compute.inputs.colorBy = computeCommand->add_option(
+      "--color-by", compute.inputs.session.view.colorBy,
+      "With -o FILE.vdb: a scalar written as a further grid of its name, as render colours "
+      "by it: vorticity, helicity, a scalar array of the field's file, or a scalar .nrrd on "
+      "the field's grid (speed is always written)");
   addComputeBatchOptions(*computeCommand, computeBatch);
   computeCommand->footer(globalNote + summaryNote);
 

@@ -287,8 +287,8 @@ void addComputeOptions(CLI::App& app, ComputeOptions& options, const char* defau
              picture ? "Output PNG; for --turntable or --animate-bias a pattern with one "
                        "%d or %0Nd for the frame number (default then lic3d_%04d.png)"
                      : "Output: the LIC volume as .nrrd, .vti or .raw (float32; .raw with a JSON "
-                       "sidecar), or one slice "
-                       "as .png with --slice")
+                       "sidecar), as .vdb (OpenVDB for Blender and Houdini: grids LIC and speed, "
+                       "empty space inactive), or one slice as .png with --slice")
           ->capture_default_str();
 }
 

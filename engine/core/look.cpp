@@ -2,6 +2,7 @@
 #include "core/look.h"
 
 #include "core/session.h"
+#include "core/value_histogram.h"
 
 namespace lic3d {
 namespace {
@@ -17,6 +18,10 @@ constexpr float kSeeThroughHalo = 0.3f;
 constexpr float kStreamlinesHalo = 0.4f;
 
 }  // namespace
+
+double emptySpaceSpeed(const ValueHistogram& speeds) {
+  return kEmptySpeedFraction * speeds.percentile(1.0 - kLookRangeTail);
+}
 
 void applyLook(Look look, Session& session) {
   ViewParams& v = session.view;

@@ -12,6 +12,7 @@
 namespace lic3d {
 
 struct Session;
+struct ValueHistogram;
 
 enum class Look : std::uint32_t {
   Dense,        // the thesis' look: white noise, grey, constant-ish opacity; an opaque block
@@ -32,6 +33,10 @@ inline constexpr Look kDefaultLook = Look::SeeThrough;
 // of the fast speeds) too.
 inline constexpr float kEmptySpeedFraction = 0.02f;
 inline constexpr float kLookRangeTail = 0.001f;
+// The physical speed below which a field's voxels are empty space, from its speedHistogram
+// (core/value_histogram.h): kEmptySpeedFraction of the speed a fraction kLookRangeTail of its
+// voxels lie above. 0 for a field that is zero everywhere.
+double emptySpaceSpeed(const ValueHistogram& speeds);
 
 // Sets the look's parameters in `session` (its view, the noise, LIC sparsity and length) and
 // session.look; everything else keeps its value.

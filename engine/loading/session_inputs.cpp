@@ -166,7 +166,7 @@ Result<NoiseVolume> loadNoise(const NoiseSource& source, const VectorField& fiel
     // box gets as many seeds per flowing voxel as a field filling all of it. Flowing: faster
     // than the looks' empty-space threshold (kEmptySpeedFraction of the fastest speeds).
     const ValueHistogram speeds = speedHistogram(field);
-    const double empty = kEmptySpeedFraction * speeds.percentile(1.0 - kLookRangeTail);
+    const double empty = emptySpaceSpeed(speeds);
     double flowing = 0.0;
     for (const glm::vec3& v : field.vectors) flowing += glm::length(v) > empty ? 1.0 : 0.0;
     const double share = std::max(flowing / static_cast<double>(field.vectors.size()), 0.01);

@@ -19,7 +19,7 @@ FieldTextures::FieldTextures(const Context& context, FieldPrecision precision, b
 
 double FieldTextures::emptySpeed() const {
   if (!field_.speeds) return 0.0;
-  return kEmptySpeedFraction * field_.speeds->percentile(1.0 - kLookRangeTail);
+  return emptySpaceSpeed(*field_.speeds);
 }
 
 std::uint64_t FieldTextures::bytes() const {
