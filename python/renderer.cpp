@@ -92,10 +92,11 @@ Result<SessionInputs*> Renderer::inputsFor(const Request& request,
   const Session& session = request.session();
   InputsKey key{.session = session, .options = inputOptions(request), .cpu = request.options->cpu};
   if (vectors_) key.options = {};
-  if (!inputs_ || !inputsKey_ || !(*inputsKey_ == key)) {
+  const bool made = !inputs_ || !inputsKey_ || !(*inputsKey_ == key);
+  if (made) {
     inputs_.reset();
     inputsKey_.reset();
-    Result<SessionInputs> made = [&]() -> Result<SessionInputs> {
+    Result<SessionInputs> loaded = [&]() -> Result<SessionInputs> {
       if (!vectors_) return loadSessionInputs(session, key.options);
       // A Renderer used once gives its arrays away; one kept copies them for later inputs.
       VectorField field = keep_ ? *vectors_ : std::move(*vectors_);
@@ -103,19 +104,23 @@ Result<SessionInputs*> Renderer::inputsFor(const Request& request,
       if (noise_) noise = keep_ ? *noise_ : std::move(*noise_);
       return sessionInputsOf(session, std::move(field), std::move(noise), "vectors");
     }();
-    if (!made) return made.error();
-    inputs_ = std::move(made).value();
+    if (!loaded) return loaded.error();
+    inputs_ = std::move(loaded).value();
     inputsKey_ = key;
     ++inputsMade_;
     nonFinite_ = inputs_->info.nonFiniteVectors;
   }
-  // The call's arrays beside the Renderer's, by name over them; the scalars made of the arrays
-  // before are loaded again.
-  if (!callArrays.empty() || inputs_->arrays.size() != arrays_.size()) scalarsKey_.reset();
-  inputs_->arrays = arrays_;
-  for (PointScalars& array : callArrays) {
-    std::erase_if(inputs_->arrays, [&](const PointScalars& a) { return a.name == array.name; });
-    inputs_->arrays.push_back(std::move(array));
+  // The call's arrays beside the Renderer's, by name over them, where the inputs are new or a
+  // call gave arrays of its own (this one or the one before); the scalars made of the arrays
+  // before are loaded again. Otherwise the inputs keep the arrays they hold, uncopied.
+  if (made || !callArrays.empty() || callArraysHeld_) {
+    scalarsKey_.reset();
+    inputs_->arrays = keep_ ? arrays_ : std::move(arrays_);  // used once: given away
+    for (PointScalars& array : callArrays) {
+      std::erase_if(inputs_->arrays, [&](const PointScalars& a) { return a.name == array.name; });
+      inputs_->arrays.push_back(std::move(array));
+    }
+    callArraysHeld_ = !callArrays.empty();
   }
   return &*inputs_;
 }
@@ -219,37 +224,31 @@ Result<RgbaImage> Renderer::picture(const Request& request, std::vector<PointSca
   return image;
 }
 
-namespace {
-
-// What `work` makes of a request, on a thread of its own with the GIL released and the
-// Renderer's mutex held, its errors raised.
-template <class Work>
-auto runLocked(std::mutex& mutex, const py::object& progress, Work work) {
-  using Made = decltype(work(ProgressCallback()));
-  return take(runInterruptibly<Made>(
+template <class Made, class Work>
+Made Renderer::call(const char* command, const py::object& session, const py::object& progress,
+                    const py::dict& params, Work work) {
+  std::vector<PointScalars> arrays;
+  const Request made = request(command, session, params, arrays);
+  setThreadLimit(made.global().threads);
+  std::size_t nonFinite = 0;
+  Made result = take(runInterruptibly<Result<Made>>(
       [&](const ProgressCallback& report) {
-        const std::lock_guard lock(mutex);
-        return work(report);
+        const std::lock_guard lock(mutex_);
+        if (closed_) return Result<Made>(runtimeError("the lic3d.Renderer is closed"));
+        nonFinite_ = 0;
+        Result<Made> done = (this->*work)(made, std::move(arrays), report);
+        nonFinite = nonFinite_;
+        return done;
       },
       progress));
+  warnNonFinite(nonFinite);
+  return result;
 }
-
-}  // namespace
 
 py::array_t<float> Renderer::compute(const py::object& session, const py::object& progress,
                                      const py::dict& params) {
-  std::vector<PointScalars> arrays;
-  const Request made = request("compute", session, params, arrays);
-  setThreadLimit(made.global().threads);
-  std::size_t nonFinite = 0;
-  ScalarVolume result = runLocked(mutex_, progress, [&](const ProgressCallback& report) {
-    if (closed_) return Result<ScalarVolume>(runtimeError("the lic3d.Renderer is closed"));
-    nonFinite_ = 0;
-    Result<ScalarVolume> volume = licVolume(made, std::move(arrays), report);
-    nonFinite = nonFinite_;
-    return volume;
-  });
-  warnNonFinite(nonFinite);
+  ScalarVolume result =
+      call<ScalarVolume>("compute", session, progress, params, &Renderer::licVolume);
   markHiddenVoxels(result);
   const Dims d = result.dims;
   return arrayOf(std::move(result.values), {d.z, d.y, d.x});
@@ -257,18 +256,7 @@ py::array_t<float> Renderer::compute(const py::object& session, const py::object
 
 py::array_t<std::uint8_t> Renderer::render(const py::object& session, const py::object& progress,
                                            const py::dict& params) {
-  std::vector<PointScalars> arrays;
-  const Request made = request("render", session, params, arrays);
-  setThreadLimit(made.global().threads);
-  std::size_t nonFinite = 0;
-  RgbaImage result = runLocked(mutex_, progress, [&](const ProgressCallback& report) {
-    if (closed_) return Result<RgbaImage>(runtimeError("the lic3d.Renderer is closed"));
-    nonFinite_ = 0;
-    Result<RgbaImage> image = picture(made, std::move(arrays), report);
-    nonFinite = nonFinite_;
-    return image;
-  });
-  warnNonFinite(nonFinite);
+  RgbaImage result = call<RgbaImage>("render", session, progress, params, &Renderer::picture);
   return arrayOf(std::move(result.pixels), {result.height, result.width, 4});
 }
 

@@ -70,6 +70,13 @@ class Renderer {
   Result<void> openDevices(const Request& request);
   // The renderer on the first device, holding the inputs at the session's time.
   Result<LicRenderer*> rendererFor(const Request& request, SessionInputs& inputs);
+  // A call of `command`: its request parsed with the GIL held, then `work` (&Renderer::licVolume
+  // or &Renderer::picture) on a thread of its own
+  // with the GIL released and the mutex held (calls take turns); its error raised, and the
+  // vectors of new inputs read as zero warned of.
+  template <class Made, class Work>
+  Made call(const char* command, const py::object& session, const py::object& progress,
+            const py::dict& params, Work work);
   Result<ScalarVolume> licVolume(const Request& request, std::vector<PointScalars>&& callArrays,
                                  const ProgressCallback& progress);
   Result<RgbaImage> picture(const Request& request, std::vector<PointScalars>&& callArrays,
@@ -100,6 +107,7 @@ class Renderer {
   std::optional<ScalarsKey> scalarsKey_;
   std::uint64_t scalarsInputs_ = 0;  // the inputs_ the scalars were loaded from
   std::size_t nonFinite_ = 0;        // of inputs made in the call under way
+  bool callArraysHeld_ = false;      // inputs_ holds arrays a call gave
   std::uint64_t renderersMade_ = 0;
   std::uint64_t dispatchesBefore_ = 0;  // of the renderers made before renderer_
 };
