@@ -21,16 +21,23 @@ std::vector<std::pair<std::string, std::uint64_t>>& bytesTable() {
   return bytes;
 }
 
+// Adds `amount` to the row of `stage`, made at the end of `rows` the first time. With the
+// mutex held.
+template <class T>
+void addToRow(std::vector<std::pair<std::string, T>>& rows, std::string_view stage, T amount) {
+  for (auto& [name, total] : rows)
+    if (name == stage) {
+      total += amount;
+      return;
+    }
+  rows.emplace_back(std::string(stage), amount);
+}
+
 }  // namespace
 
 void addStageTime(std::string_view stage, double seconds) {
   const std::scoped_lock lock(stageMutex());
-  for (auto& [name, total] : table())
-    if (name == stage) {
-      total += seconds;
-      return;
-    }
-  table().emplace_back(std::string(stage), seconds);
+  addToRow(table(), stage, seconds);
 }
 
 StageTimings stageTimings() {
@@ -40,12 +47,7 @@ StageTimings stageTimings() {
 
 void addStageBytes(std::string_view stage, std::uint64_t bytes) {
   const std::scoped_lock lock(stageMutex());
-  for (auto& [name, total] : bytesTable())
-    if (name == stage) {
-      total += bytes;
-      return;
-    }
-  bytesTable().emplace_back(std::string(stage), bytes);
+  addToRow(bytesTable(), stage, bytes);
 }
 
 std::uint64_t stageBytes(std::string_view stage) {
